@@ -1,0 +1,230 @@
+"""Velocity-dependent friction laws (METHOD.md §5, thesis Table 4.1 and eq. 4.13/4.33).
+
+A law is a :class:`FrictionLaw`: a *shape* (an integer code understood by the compiled
+function :func:`mu_kinetic`), its parameter vector and the static coefficient ``μ(0)``.
+The integrators only ever call :func:`mu_kinetic` / :func:`dmu_kinetic` with these
+three numbers, so a new law is added here and never in the integrators:
+
+* a new *named* law with an existing shape is one factory function and one entry in
+  :data:`FRICTION_LAWS`;
+* a new *shape* is one more branch in :func:`mu_kinetic` and :func:`dmu_kinetic` plus a
+  code in :data:`SHAPES`.
+
+All laws take the magnitude of the *dimensional* relative velocity ``|v_rel|`` in m/s
+(``v_rel = v0 − ẏ``, eq. 4.1); the sign of the friction force is applied by the
+integrators (``sign(v_rel)``).  The kinetic value is the coefficient while slipping
+(``v_rel ≠ 0``); ``static`` is the coefficient that bounds the sticking force (eq. 4.2).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numba
+import numpy as np
+import numpy.typing as npt
+
+SHAPE_CONSTANT = 0
+SHAPE_RATIONAL = 1
+SHAPE_TABULATED = 2
+
+#: Codes of the compiled shapes understood by :func:`mu_kinetic`.
+SHAPES: dict[str, int] = {
+    "constant": SHAPE_CONSTANT,
+    "rational": SHAPE_RATIONAL,
+    "tabulated": SHAPE_TABULATED,
+}
+
+#: Number of parameters of each shape (``-1``: variable, tabulated).
+N_PARAMS = {SHAPE_CONSTANT: 1, SHAPE_RATIONAL: 4, SHAPE_TABULATED: -1}
+
+
+@numba.njit(cache=True, nogil=True)
+def mu_kinetic(shape: int, v_abs: float, p: npt.NDArray[np.float64]) -> float:  # pragma: no cover
+    """Kinetic friction coefficient μ(|v_rel|) for ``|v_rel|`` in m/s.
+
+    * ``constant``: ``μ = p0`` (laws I and II).
+    * ``rational``: ``μ = p0/(1 + p1|v|) + p2 + p3 v²`` (law III with
+      ``p = (μ0 − μ1, 1.42, μ1, 0.01)``; eq. 4.13 with ``p = (μ_fit, 1.42, μ0 − μ_fit, 0.01)``).
+    * ``tabulated``: ``p = (m, v_1..v_m, μ_1..μ_m)``, linear interpolation in ``|v|``,
+      constant beyond the ends.
+    """
+    if shape == 0:
+        return p[0]
+    elif shape == 1:
+        return p[0] / (1.0 + p[1] * v_abs) + p[2] + p[3] * v_abs * v_abs
+    else:
+        m = int(p[0])
+        if v_abs <= p[1]:
+            return p[1 + m]
+        if v_abs >= p[m]:
+            return p[2 * m]
+        lo = 1
+        hi = m
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            if p[mid] <= v_abs:
+                lo = mid
+            else:
+                hi = mid
+        w = (v_abs - p[lo]) / (p[hi] - p[lo])
+        return (1.0 - w) * p[lo + m] + w * p[hi + m]
+
+
+@numba.njit(cache=True, nogil=True)
+def dmu_kinetic(shape: int, v_abs: float, p: npt.NDArray[np.float64]) -> float:  # pragma: no cover
+    """Derivative dμ/d|v| of :func:`mu_kinetic` [s/m] (one-sided at table nodes)."""
+    if shape == 0:
+        return 0.0
+    elif shape == 1:
+        d = 1.0 + p[1] * v_abs
+        return -p[0] * p[1] / (d * d) + 2.0 * p[3] * v_abs
+    else:
+        m = int(p[0])
+        if v_abs < p[1] or v_abs >= p[m]:
+            return 0.0
+        for i in range(1, m):
+            if p[i] <= v_abs < p[i + 1]:
+                return (p[i + 1 + m] - p[i + m]) / (p[i + 1] - p[i])
+        return 0.0
+
+
+@dataclass(frozen=True, kw_only=True)
+class FrictionLaw:
+    """A velocity-dependent friction law: compiled shape, parameters, static coefficient."""
+
+    name: str
+    shape: int
+    params: tuple[float, ...]
+    static: float
+    description: str = ""
+
+    def __post_init__(self) -> None:
+        if self.shape not in N_PARAMS:
+            raise ValueError(f"unknown friction-law shape code {self.shape}")
+        need = N_PARAMS[self.shape]
+        if need >= 0 and len(self.params) != need:
+            raise ValueError(f"law {self.name!r}: shape needs {need} parameters, got {self.params}")
+        if not np.all(np.isfinite(self.params)) or not np.isfinite(self.static):
+            raise ValueError(f"law {self.name!r}: parameters must be finite")
+        if self.static < 0:
+            raise ValueError(f"law {self.name!r}: static coefficient must be >= 0")
+        vs = np.linspace(0.0, 20.0, 2001)
+        if np.any(self.kinetic(vs) < 0):
+            raise ValueError(
+                f"law {self.name!r} gives a negative kinetic coefficient for |v| <= 20 m/s; "
+                "check its parameters (e.g. μ_fit(p) > μ0 in the pressure law)"
+            )
+
+    @property
+    def param_array(self) -> npt.NDArray[np.float64]:
+        return np.asarray(self.params, dtype=np.float64)
+
+    def kinetic(self, v_abs: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """Kinetic coefficient at ``|v_rel|`` [m/s] (vectorised)."""
+        p = self.param_array
+        v = np.abs(np.asarray(v_abs, dtype=np.float64))
+        return np.vectorize(lambda x: mu_kinetic(self.shape, float(x), p), otypes=[float])(v)
+
+    def derivative(self, v_abs: float) -> float:
+        """dμ/d|v| at ``|v_rel| = v_abs`` [s/m]."""
+        return float(dmu_kinetic(self.shape, float(abs(v_abs)), self.param_array))
+
+    def __call__(self, v_rel: npt.ArrayLike) -> npt.NDArray[np.float64]:
+        """μ(v_rel) with the static value at ``v_rel = 0`` (Table 4.1)."""
+        v = np.asarray(v_rel, dtype=np.float64)
+        out = self.kinetic(v)
+        return np.where(v == 0.0, self.static, out)
+
+    def to_dict(self) -> dict[str, object]:
+        return {
+            "name": self.name,
+            "shape": next(k for k, c in SHAPES.items() if c == self.shape),
+            "params": list(self.params),
+            "static": self.static,
+            "description": self.description,
+        }
+
+
+def law_I(mu: float = 0.25) -> FrictionLaw:
+    """Law I of Table 4.1: constant ``μ = 0.25`` (static = kinetic)."""
+    return FrictionLaw(
+        name="I", shape=SHAPE_CONSTANT, params=(mu,), static=mu,
+        description=f"Table 4.1 law I: mu = {mu}",
+    )
+
+
+def law_II(mu_static: float = 0.4, mu_kinetic_value: float = 0.25) -> FrictionLaw:
+    """Law II of Table 4.1: ``μ(0) = 0.4``, ``μ(v ≠ 0) = 0.25``."""
+    return FrictionLaw(
+        name="II", shape=SHAPE_CONSTANT, params=(mu_kinetic_value,), static=mu_static,
+        description=f"Table 4.1 law II: mu(0) = {mu_static}, mu(v != 0) = {mu_kinetic_value}",
+    )
+
+
+def law_III(mu0: float = 0.4, mu1: float = 0.1, decay: float = 1.42, quad: float = 0.01) -> FrictionLaw:
+    """Law III of Table 4.1: ``μ = (μ0 − μ1)/(1 + 1.42|v|) + μ1 + 0.01 v²`` (v in m/s)."""
+    return FrictionLaw(
+        name="III", shape=SHAPE_RATIONAL, params=(mu0 - mu1, decay, mu1, quad), static=mu0,
+        description=f"Table 4.1 law III: (mu0-mu1)/(1+{decay}|v|) + mu1 + {quad} v^2, "
+        f"mu0={mu0}, mu1={mu1}",
+    )
+
+
+def pressure_law(mu_fit: float, mu0: float = 0.4, decay: float = 1.42, quad: float = 0.01) -> FrictionLaw:
+    """Pressure-dependent law μ_D of eq. (4.13)/(4.33).
+
+    ``μ_D(v) = μ_fit(p)/(1 + 1.42|v|) + μ0 − μ_fit(p) + 0.01 v²`` with ``μ_fit(p) = E[μ](p)``
+    from the contact analysis (model function 3.21) and ``μ0 = μ_D(0) = 0.4``.
+    """
+    if not np.isfinite(mu_fit) or mu_fit <= 0:
+        raise ValueError(f"mu_fit(p) must be a positive finite number, got {mu_fit}")
+    if mu_fit > mu0:
+        raise ValueError(
+            f"mu_fit(p) = {mu_fit:.4g} exceeds mu0 = {mu0}: eq. (4.13) would give a negative "
+            "friction coefficient at high sliding speed; the pressure is outside the range the "
+            "model function was fitted for"
+        )
+    return FrictionLaw(
+        name="pressure", shape=SHAPE_RATIONAL, params=(mu_fit, decay, mu0 - mu_fit, quad),
+        static=mu0,
+        description=f"eq. (4.13): mu_fit/(1+{decay}|v|) + mu0 - mu_fit + {quad} v^2, "
+        f"mu_fit={mu_fit:.6g}, mu0={mu0}",
+    )
+
+
+def tabulated_law(
+    name: str, v_abs: npt.ArrayLike, mu: npt.ArrayLike, static: float | None = None
+) -> FrictionLaw:
+    """A measured law μ(|v|) given as a table (linear interpolation, constant beyond the ends)."""
+    v = np.asarray(v_abs, dtype=float)
+    m = np.asarray(mu, dtype=float)
+    if v.ndim != 1 or v.shape != m.shape or v.size < 2:
+        raise ValueError("tabulated law needs two 1-D arrays of equal length >= 2")
+    if np.any(np.diff(v) <= 0) or v[0] < 0:
+        raise ValueError("tabulated law: velocities must be >= 0 and strictly increasing")
+    return FrictionLaw(
+        name=name, shape=SHAPE_TABULATED, params=(float(v.size), *v.tolist(), *m.tolist()),
+        static=float(m[0] if static is None else static), description="tabulated",
+    )
+
+
+#: Named laws: name → factory.  The ``pressure`` law needs ``mu_fit``.
+FRICTION_LAWS: dict[str, Callable[..., FrictionLaw]] = {
+    "I": law_I,
+    "II": law_II,
+    "III": law_III,
+    "pressure": pressure_law,
+}
+
+
+def get_law(name: str, **kwargs: float) -> FrictionLaw:
+    """Build the registered law ``name`` (``I``, ``II``, ``III``, ``pressure``)."""
+    try:
+        factory = FRICTION_LAWS[name]
+    except KeyError:
+        raise ValueError(
+            f"unknown friction law {name!r}; choose one of {sorted(FRICTION_LAWS)}"
+        ) from None
+    return factory(**kwargs)
