@@ -1,0 +1,488 @@
+"""``simulate``: ensembles of friction-oscillator trajectories (METHOD.md §5, thesis 4.1).
+
+One call runs ``runs`` trajectories for each of many parameter sets (normal forces,
+damping ratios, forcing frequencies …) in compiled kernels on all cores.  Trajectory
+``(i, r)`` (parameter set ``i``, run ``r``) draws all its random numbers from its own
+stream, the child with spawn key ``(i, r)`` of the root seed
+(:class:`numpy.random.SeedSequence`); with ``common_random_numbers=True`` the key is
+``(0, r)`` for every set, so run ``r`` sees the same noise at every parameter set.  The
+numbers of a trajectory therefore do not depend on the number of threads, the batch
+size or the order of execution.
+
+Models (METHOD §5): ``deterministic`` (friction law only), ``white`` (law + Gaussian
+white noise of intensity σ_ζ in the relative path, §5.1; integrators ``euler`` =
+Euler–Maruyama, ``milstein``), ``contact`` (law + a band-limited process μ̂ generated
+once per run from a friction-process model, §5.2; integrators ``euler``, ``accurate``).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import warnings
+from collections.abc import Callable, Sequence
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass
+from typing import Any, Protocol
+
+import numpy as np
+import numpy.typing as npt
+
+from ..random import SeedLike, as_seed_sequence
+from . import accurate as _acc
+from . import kernels as _k
+from .friction_laws import FrictionLaw, law_III
+from .parameters import OscillatorParameters, ParameterError
+from .result import SimulationResult, SimulationWarning
+
+MODELS = ("deterministic", "white", "contact")
+INTEGRATORS = ("euler", "milstein", "accurate")
+PATH_COORDINATES = {"mass": _k.PATH_MASS, "relative": _k.PATH_RELATIVE}
+
+#: Above this Δτ the Euler methods are refused: fewer than ~25 steps per natural period
+#: 2π turn the solution's character (thesis Fig. 4.7/4.8 already shows it at 0.05/0.1).
+DT_REFUSE = 0.25
+#: Above these Δτ a warning is issued (thesis Fig. 4.8: forced, q = 0.5, η = 1.15, the
+#: two-periodic solution is right up to Δτ = 0.01 and looks chaotic at 0.1; Fig. 4.7:
+#: unforced, a deviation is visible at 0.05).
+DT_WARN_FORCED = 0.01
+DT_WARN_UNFORCED = 0.02
+
+
+class SimulationWarningCategory(UserWarning):
+    """Python warning category for :class:`SimulationWarning` messages."""
+
+
+class ProcessModel(Protocol):
+    """What :func:`simulate` needs from a friction-process model (§4e)."""
+
+    @property
+    def dx(self) -> float: ...
+
+    @property
+    def length(self) -> float: ...
+
+    def generate(self, p: float, rng: np.random.Generator) -> npt.NDArray[np.float64]: ...
+
+    def sigma_zeta(self, p: float) -> float: ...
+
+    def to_dict(self) -> dict[str, Any]: ...
+
+
+LawSpec = FrictionLaw | Callable[[OscillatorParameters], FrictionLaw]
+
+
+@dataclass(frozen=True)
+class _Plan:
+    params: list[OscillatorParameters]
+    laws: list[FrictionLaw]
+    sigma: list[float]
+    pressures: list[float | None]
+    x0: list[tuple[float, float]]
+    nsteps: int
+
+
+def trajectory_seed(root: np.random.SeedSequence, param_set: int, run: int) -> np.random.SeedSequence:
+    """The seed sequence of trajectory ``(param_set, run)``: spawn key ``(param_set, run)``."""
+    return np.random.SeedSequence(
+        entropy=root.entropy, spawn_key=(*root.spawn_key, param_set, run), pool_size=root.pool_size
+    )
+
+
+def check_time_step(
+    dt: float, tau_end: float, integrator: str, params: Sequence[OscillatorParameters]
+) -> list[SimulationWarning]:
+    """Refuse or warn about a Δτ that would change the solution's character.
+
+    Euler-type schemes: refused above :data:`DT_REFUSE`; a warning above
+    :data:`DT_WARN_FORCED` / ``max(1, η)`` for forced and above :data:`DT_WARN_UNFORCED`
+    for unforced motion.  For ``accurate``, ``dt`` is only the initial step and the
+    trajectory sampling interval.
+    """
+    if not (math.isfinite(dt) and dt > 0):
+        raise ParameterError(f"time step dt must be a positive number, got {dt}")
+    if not (math.isfinite(tau_end) and tau_end > 0):
+        raise ParameterError(f"tau_end must be a positive number, got {tau_end}")
+    if dt > tau_end:
+        raise ParameterError(f"time step dt = {dt} exceeds tau_end = {tau_end}")
+    out: list[SimulationWarning] = []
+    if integrator == "accurate":
+        return out
+    eta_max = max(p.eta for p in params)
+    forced = any(p.q > 0 and p.eta > 0 for p in params)
+    fast = max(1.0, eta_max) if forced else 1.0
+    if dt > DT_REFUSE / fast:
+        raise ParameterError(
+            f"dt = {dt} gives only {2 * math.pi / (dt * fast):.0f} steps per period "
+            f"(2π/{fast:g}); the {integrator} scheme would change the solution's character. "
+            f"Use dt <= {DT_WARN_FORCED if forced else DT_WARN_UNFORCED} "
+            "(thesis Fig. 4.7/4.8) or the 'accurate' integrator"
+        )
+    limit = DT_WARN_FORCED / max(1.0, eta_max) if forced else DT_WARN_UNFORCED
+    if dt > limit:
+        what = (
+            f"forced motion (η up to {eta_max:g}): the stick boundary moves in time, and the "
+            "thesis (Fig. 4.8, q = 0.5, η = 1.15) shows Δτ > 0.01 turning a two-periodic "
+            "solution into apparent chaos"
+            if forced
+            else "the thesis (Fig. 4.7) shows visible deviations of the stick-slip cycle at "
+            "Δτ = 0.05"
+        )
+        out.append(SimulationWarning(
+            "coarse-time-step",
+            f"dt = {dt:g} is coarse for {what}; use dt <= {limit:g} or check convergence "
+            "with the 'accurate' integrator",
+        ))
+    return out
+
+
+def _resolve_law(law: LawSpec, p: OscillatorParameters) -> FrictionLaw:
+    return law if isinstance(law, FrictionLaw) else law(p)
+
+
+def _plan(
+    params: Sequence[OscillatorParameters],
+    model: str,
+    law: LawSpec,
+    process: ProcessModel | None,
+    sigma_zeta: float | Callable[[float], float] | None,
+    x0: tuple[float, float] | Sequence[tuple[float, float]] | None,
+    tau_end: float,
+    dt: float,
+) -> _Plan:
+    laws: list[FrictionLaw] = []
+    sig: list[float] = []
+    pressures: list[float | None] = []
+    x0s: list[tuple[float, float]] = []
+    per_set_x0 = x0 is not None and len(x0) > 0 and isinstance(x0[0], Sequence | np.ndarray)
+    if per_set_x0 and len(x0) != len(params):  # type: ignore[arg-type]
+        raise ParameterError("x0 per parameter set must have one entry per set")
+    for i, p in enumerate(params):
+        laws.append(_resolve_law(law, p))
+        pressures.append(p.pressure)
+        if model == "white":
+            if sigma_zeta is None and process is None:
+                raise ParameterError(
+                    "the white-noise model needs the intensity sigma_zeta or a friction-process "
+                    "model (thesis rule: sigma_zeta = sigma_mu(p))"
+                )
+            if sigma_zeta is None:
+                assert process is not None
+                sig.append(process.sigma_zeta(_need_pressure(p, "white-noise intensity")))
+            elif callable(sigma_zeta):
+                sig.append(float(sigma_zeta(_need_pressure(p, "white-noise intensity"))))
+            else:
+                sig.append(float(sigma_zeta))
+            if not (math.isfinite(sig[-1]) and sig[-1] >= 0):
+                raise ParameterError(f"sigma_zeta must be finite and >= 0, got {sig[-1]}")
+        else:
+            sig.append(0.0)
+        if model == "contact":
+            if process is None:
+                raise ParameterError("the contact-analysis model needs a friction-process model")
+            _need_pressure(p, "friction process")
+        if x0 is None:
+            x0s.append((0.0, p.gamma0))
+        elif per_set_x0:
+            xi = x0[i]  # type: ignore[index]
+            x0s.append((float(xi[0]), float(xi[1])))  # type: ignore[index]
+        else:
+            x0s.append((float(x0[0]), float(x0[1])))  # type: ignore[arg-type,index]
+        if not all(math.isfinite(v) for v in x0s[-1]):
+            raise ParameterError(f"initial state x0 must be finite, got {x0s[-1]}")
+    nsteps = int(round(tau_end / dt))
+    return _Plan(list(params), laws, sig, pressures, x0s, nsteps)
+
+
+def _need_pressure(p: OscillatorParameters, what: str) -> float:
+    pr = p.pressure
+    if pr is None:
+        raise ParameterError(
+            f"the {what} depends on the contact pressure p = N/A; give the stiffness c and the "
+            "contact area A (physical parameters or a preset)"
+        )
+    return pr
+
+
+def simulate(
+    params: OscillatorParameters | Sequence[OscillatorParameters],
+    *,
+    model: str = "deterministic",
+    law: LawSpec | None = None,
+    process: ProcessModel | None = None,
+    sigma_zeta: float | Callable[[float], float] | None = None,
+    x0: tuple[float, float] | Sequence[tuple[float, float]] | None = None,
+    tau_end: float = 50.0,
+    dt: float = 0.005,
+    integrator: str = "euler",
+    runs: int = 1,
+    seed: SeedLike = None,
+    path_coordinate: str = "mass",
+    save_trajectory: bool = False,
+    save_every: int = 10,
+    max_events: int | None = None,
+    workers: int | None = None,
+    batch_size: int = 32,
+    rtol: float = 1e-11,
+    atol: float = 1e-13,
+    max_step: float = 0.1,
+    common_random_numbers: bool = False,
+    progress: Callable[[int, int], None] | None = None,
+) -> SimulationResult:
+    """Simulate the friction oscillator for every parameter set and run.
+
+    Parameters
+    ----------
+    params:
+        One or several :class:`OscillatorParameters` (dimensionless, eq. 4.6/4.7).
+    model:
+        ``deterministic`` | ``white`` | ``contact`` (METHOD §5, §5.1, §5.2).
+    law:
+        A :class:`FrictionLaw` or a function of the parameter set returning one (e.g. the
+        pressure law of eq. 4.13, whose ``μ_fit`` depends on ``p = N/A``).  Default: law III.
+    process:
+        Friction-process model for ``contact`` (and the σ_ζ rule for ``white``).
+    sigma_zeta:
+        White-noise intensity σ_ζ (a number, or a function of the pressure in Pa); by
+        default ``process.sigma_zeta(p)`` (thesis rule σ_ζ = σ_μ(p)).
+    x0:
+        Initial ``(x1, x2)``; default ``(0, γ0)`` (sticking at the origin).  One pair for
+        all sets or one pair per set.
+    tau_end, dt:
+        Simulated dimensionless time and step (``accurate``: initial step and sampling).
+    integrator:
+        ``euler`` (thesis; Euler–Maruyama for white noise), ``milstein`` (white noise,
+        strong order 1), ``accurate`` (adaptive RK45 with events; deterministic/contact).
+    runs, seed, common_random_numbers:
+        Monte Carlo runs per set; the root seed; see the module docstring.
+    path_coordinate:
+        Where the contact process is read: ``mass`` (thesis: the mass's own path |Δx1| in
+        slip) or ``relative`` (relative sliding distance |γ0 − x2|Δτ) (METHOD §7.7).
+    save_trajectory, save_every:
+        Keep every ``save_every``-th grid state (τ, x1, x2).
+    max_events:
+        Capacity for X_gh per trajectory (default ``2 τ_end + 16``).
+    workers, batch_size:
+        Threads (default: all cores) and trajectories per compiled call; they change the
+        speed, never the numbers.
+    rtol, atol, max_step:
+        Tolerances of the ``accurate`` integrator.
+    progress:
+        Called as ``progress(done, total)`` after every batch.
+    """
+    plist = [params] if isinstance(params, OscillatorParameters) else list(params)
+    if not plist:
+        raise ParameterError("no parameter set given")
+    if model not in MODELS:
+        raise ParameterError(f"unknown model {model!r}; choose one of {MODELS}")
+    if integrator not in INTEGRATORS:
+        raise ParameterError(f"unknown integrator {integrator!r}; choose one of {INTEGRATORS}")
+    if model == "white" and integrator == "accurate":
+        raise ParameterError(
+            "the white-noise model is an SDE: use integrator 'euler' (Euler–Maruyama) or "
+            "'milstein', not 'accurate'"
+        )
+    if integrator == "milstein" and model != "white":
+        raise ParameterError(
+            "'milstein' is the strong order-1 scheme for the white-noise SDE; for the "
+            f"{model} model use 'euler' or 'accurate'"
+        )
+    if path_coordinate not in PATH_COORDINATES:
+        raise ParameterError(
+            f"unknown path coordinate {path_coordinate!r}; choose 'mass' (thesis) or 'relative'"
+        )
+    if isinstance(runs, bool) or not isinstance(runs, int | np.integer) or runs < 1:
+        raise ParameterError(f"runs must be a positive integer, got {runs!r}")
+    if save_every < 1:
+        raise ParameterError(f"save_every must be >= 1, got {save_every}")
+    warn_list = check_time_step(dt, tau_end, integrator, plist)
+    law_spec: LawSpec = law_III() if law is None else law
+    plan = _plan(plist, model, law_spec, process, sigma_zeta, x0, tau_end, dt)
+    root = as_seed_sequence(seed)
+    if model == "deterministic" and runs > 1:
+        pass  # identical runs; allowed (cheap) so that studies can treat models alike
+
+    npar = len(plist)
+    n_traj = npar * runs
+    nev = int(max_events) if max_events is not None else int(2 * tau_end) + 16
+    nsteps = plan.nsteps
+    nsave = nsteps // save_every + 1 if save_trajectory else 0
+    noise = {"deterministic": _k.NOISE_NONE, "white": _k.NOISE_WHITE,
+             "contact": _k.NOISE_PROCESS}[model]
+    scheme = _k.SCHEME_MILSTEIN if integrator == "milstein" else _k.SCHEME_EULER
+    path_mode = PATH_COORDINATES[path_coordinate]
+
+    # per-set rows
+    maxp = max(len(lw.params) for lw in plan.laws)
+    prm_set = np.zeros((npar, _k.N_PRM))
+    lawp_set = np.zeros((npar, maxp))
+    shape_set = np.zeros(npar, dtype=np.int64)
+    proc_dx = process.dx if (process is not None and model == "contact") else 1.0
+    for i, (p, lw) in enumerate(zip(plist, plan.laws, strict=True)):
+        row = prm_set[i]
+        row[_k.P_GAMMA0] = p.gamma0
+        row[_k.P_N] = p.n
+        row[_k.P_D] = p.damping_ratio
+        row[_k.P_Q] = p.q
+        row[_k.P_ETA] = p.eta
+        row[_k.P_X30] = 0.0
+        row[_k.P_VSCALE] = p.velocity_scale
+        row[_k.P_MUS] = lw.static
+        row[_k.P_SIGMA] = plan.sigma[i]
+        row[_k.P_PROC_DX] = proc_dx / p.length_scale
+        lawp_set[i, : len(lw.params)] = lw.params
+        shape_set[i] = lw.shape
+
+    x_gh = np.full((n_traj, nev), np.nan)
+    t_gh = np.full((n_traj, nev), np.nan)
+    counts = np.zeros(n_traj, dtype=np.int64)
+    diag = np.zeros((n_traj, _k.N_DIAG))
+    traj = np.zeros((n_traj, nsave, 3))
+    n_proc_len = 1
+    if model == "contact":
+        assert process is not None
+        n_proc_len = int(round(process.length / process.dx))
+
+    def run_batch(lo: int, hi: int) -> None:
+        idx = np.arange(lo, hi)
+        sets = idx // runs
+        rr = idx % runs
+        b = hi - lo
+        dw = np.zeros((b, nsteps if noise == _k.NOISE_WHITE else 1))
+        proc = np.zeros((b, n_proc_len))
+        nproc = np.full(b, n_proc_len, dtype=np.int64)
+        if noise != _k.NOISE_NONE:
+            sq = math.sqrt(dt)
+            for j in range(b):
+                key_set = 0 if common_random_numbers else int(sets[j])
+                rng = np.random.Generator(np.random.PCG64(trajectory_seed(root, key_set, int(rr[j]))))
+                if noise == _k.NOISE_WHITE:
+                    rng.standard_normal(out=dw[j])
+                    dw[j] *= sq
+                else:
+                    assert process is not None
+                    pr = plan.pressures[int(sets[j])]
+                    assert pr is not None
+                    vals = np.asarray(process.generate(pr, rng), dtype=np.float64)
+                    if vals.shape != (n_proc_len,):
+                        raise RuntimeError(
+                            f"process realisation has shape {vals.shape}, expected ({n_proc_len},)"
+                        )
+                    proc[j] = vals
+        x0b = np.array([plan.x0[int(s)] for s in sets], dtype=np.float64)
+        if integrator == "accurate":
+            _acc.run_accurate_batch(
+                prm_set[sets], shape_set[sets], lawp_set[sets], x0b, float(tau_end),
+                min(dt, max_step), max_step, rtol, atol, noise, path_mode, proc, nproc,
+                x_gh[lo:hi], t_gh[lo:hi], counts[lo:hi], traj[lo:hi], save_every * dt,
+                diag[lo:hi],
+            )
+        else:
+            _k.run_fixed_step_batch(
+                prm_set[sets], shape_set[sets], lawp_set[sets], x0b, nsteps, dt, scheme, noise,
+                path_mode, dw, proc, nproc, x_gh[lo:hi], t_gh[lo:hi], counts[lo:hi],
+                traj[lo:hi], save_every, diag[lo:hi],
+            )
+
+    bounds = [(lo, min(lo + batch_size, n_traj)) for lo in range(0, n_traj, batch_size)]
+    nworkers = workers if workers is not None else (os.cpu_count() or 1)
+    if nworkers < 1:
+        raise ParameterError(f"workers must be >= 1, got {workers}")
+    done = 0
+    if nworkers == 1 or len(bounds) == 1:
+        for lo, hi in bounds:
+            run_batch(lo, hi)
+            done += hi - lo
+            if progress is not None:
+                progress(done, n_traj)
+    else:
+        with ThreadPoolExecutor(max_workers=nworkers) as pool:
+            futures = [pool.submit(run_batch, lo, hi) for lo, hi in bounds]
+            try:
+                for f, (lo, hi) in zip(futures, bounds, strict=True):
+                    f.result()
+                    done += hi - lo
+                    if progress is not None:
+                        progress(done, n_traj)
+            except BaseException:
+                for f in futures:
+                    f.cancel()
+                raise
+
+    # outputs
+    diag_names = {
+        "path": _k.D_PATH, "min_slip_path": _k.D_MIN_SLIP_PATH,
+        "n_short_slip_phases": _k.D_N_SHORT_SLIP, "n_belt_speed_without_stick": _k.D_N_NO_STICK,
+        "x1_final": _k.D_X1, "x2_final": _k.D_X2, "stick_final": _k.D_STICK,
+        "n_breakaway": _k.D_N_BREAKAWAY, "n_slip_phases": _k.D_N_SLIP_PHASES,
+    }
+    diagnostics = {k: diag[:, j].reshape(npar, runs).copy() for k, j in diag_names.items()}
+    warn_list += _post_warnings(counts, nev, diag, model, process, plist)
+    for w in warn_list:
+        warnings.warn(w.message, SimulationWarningCategory, stacklevel=2)
+    return SimulationResult(
+        params=plist,
+        x_gh=x_gh.reshape(npar, runs, nev),
+        t_gh=t_gh.reshape(npar, runs, nev),
+        stick_count=counts.reshape(npar, runs),
+        diagnostics=diagnostics,
+        trajectory=traj.reshape(npar, runs, nsave, 3) if save_trajectory else None,
+        model=model,
+        integrator=integrator,
+        dt=dt,
+        tau_end=tau_end,
+        runs=runs,
+        seed_entropy=int(root.entropy),  # type: ignore[arg-type]
+        path_coordinate=path_coordinate,
+        x0=plan.x0,
+        laws=[lw.to_dict() for lw in plan.laws],
+        sigma_zeta=plan.sigma,
+        process=process.to_dict() if (process is not None and model != "deterministic") else None,
+        warnings=warn_list,
+        settings={
+            "save_every": save_every, "max_events": nev,
+            "common_random_numbers": common_random_numbers,
+            "rtol": rtol, "atol": atol, "max_step": max_step,
+            "spawn_key_layout": "(param_set, run)",
+        },
+    )
+
+
+def _post_warnings(
+    counts: npt.NDArray[np.int64],
+    nev: int,
+    diag: npt.NDArray[np.float64],
+    model: str,
+    process: ProcessModel | None,
+    params: list[OscillatorParameters],
+) -> list[SimulationWarning]:
+    out: list[SimulationWarning] = []
+    over = int(np.sum(counts > nev))
+    if over:
+        out.append(SimulationWarning(
+            "event-buffer-full",
+            f"{over} trajectories had more than max_events = {nev} slip->stick transitions; "
+            "stick_count is exact but only the first X_gh were stored — raise max_events",
+        ))
+    if model == "contact" and process is not None:
+        length_scale = params[0].length_scale
+        path_m = diag[:, _k.D_PATH] * length_scale
+        worst = float(np.max(path_m))
+        if worst > process.length:
+            out.append(SimulationWarning(
+                "process-exhausted",
+                f"process exhausted: slip path {worst:.4g} m exceeds process length "
+                f"{process.length:.4g} m; the process repeats {worst / process.length:.2f} times "
+                "(periodic continuation) — generate a longer process (--process-length)",
+            ))
+        n_short = int(np.sum(diag[:, _k.D_N_SHORT_SLIP]))
+        n_ph = int(np.sum(diag[:, _k.D_N_SLIP_PHASES]))
+        if n_short:
+            out.append(SimulationWarning(
+                "slip-shorter-than-grid",
+                f"{n_short} of {n_ph} slip phases ({100 * n_short / max(n_ph, 1):.1f} %) covered "
+                f"less than one process grid spacing dx = {process.dx:.3g} m: there the friction "
+                "process is only read between two grid points (thesis 4.1.3); use a finer "
+                "process (smaller dx) for oscillations this small",
+            ))
+    return out

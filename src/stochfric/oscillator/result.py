@@ -1,0 +1,203 @@
+"""Results of oscillator simulations: per-trajectory slip→stick data with provenance.
+
+A :class:`SimulationResult` holds, for every parameter set ``i`` and run ``r``, the
+slip→stick positions ``X_gh`` (dimensionless, ``x = y/L``) with their times, the stick
+count ``M`` (number of slip→stick transitions in ``0 < τ ≤ τ_end``), optionally the
+decimated trajectory, and diagnostics; plus the parameters, seed, integrator, friction
+law, process model, warnings and package versions.  It converts to an
+:class:`xarray.Dataset` (dimensions ``param_set``, ``run``, ``event``, ``time``) and
+saves to NetCDF atomically; :func:`load_result` reads such a file back as a Dataset.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import xarray as xr
+
+from ..io_utils import package_versions, write_atomic
+from .parameters import OscillatorParameters
+
+SCHEMA = "stochfric.simulation/1"
+
+
+@dataclass(frozen=True)
+class SimulationWarning:
+    """A condition the user should know about, with an actionable message."""
+
+    code: str
+    message: str
+
+    def to_dict(self) -> dict[str, str]:
+        return {"code": self.code, "message": self.message}
+
+
+@dataclass
+class SimulationResult:
+    """Ensemble result; arrays are indexed ``[param_set, run, ...]``.
+
+    ``x_gh``/``t_gh`` are NaN-padded to ``max_events``; ``stick_count`` may exceed the
+    stored events (a warning says so).  ``trajectory`` is ``[param_set, run, k, (τ, x1, x2)]``
+    or ``None``.
+    """
+
+    params: list[OscillatorParameters]
+    x_gh: npt.NDArray[np.float64]
+    t_gh: npt.NDArray[np.float64]
+    stick_count: npt.NDArray[np.int64]
+    diagnostics: dict[str, npt.NDArray[np.float64]]
+    trajectory: npt.NDArray[np.float64] | None
+    model: str
+    integrator: str
+    dt: float
+    tau_end: float
+    runs: int
+    seed_entropy: int
+    path_coordinate: str
+    x0: list[tuple[float, float]]
+    laws: list[dict[str, Any]]
+    sigma_zeta: list[float]
+    process: dict[str, Any] | None
+    warnings: list[SimulationWarning] = field(default_factory=list)
+    settings: dict[str, Any] = field(default_factory=dict)
+    versions: dict[str, str] = field(default_factory=package_versions)
+
+    @property
+    def n_param_sets(self) -> int:
+        return len(self.params)
+
+    def x_gh_list(self, param_set: int = 0) -> list[list[float]]:
+        """The stored ``X_gh`` of every run of one parameter set, as plain lists."""
+        out = []
+        for r in range(self.runs):
+            row = self.x_gh[param_set, r]
+            out.append([float(v) for v in row[np.isfinite(row)]])
+        return out
+
+    def metadata(self) -> dict[str, Any]:
+        """Everything needed to reproduce the result (JSON-serialisable)."""
+        return {
+            "schema": SCHEMA,
+            "model": self.model,
+            "integrator": self.integrator,
+            "dt": self.dt,
+            "tau_end": self.tau_end,
+            "runs": self.runs,
+            "seed_entropy": str(self.seed_entropy),
+            "path_coordinate": self.path_coordinate,
+            "x0": [list(x) for x in self.x0],
+            "parameters": [p.to_dict() for p in self.params],
+            "friction_law": self.laws,
+            "sigma_zeta": self.sigma_zeta,
+            "process": self.process,
+            "settings": self.settings,
+            "warnings": [w.to_dict() for w in self.warnings],
+            "versions": self.versions,
+        }
+
+    def to_dataset(self) -> xr.Dataset:
+        """Labelled arrays with units and provenance (ARCHITECTURE habit 6)."""
+        npar, nrun, nev = self.x_gh.shape
+        coords: dict[str, Any] = {
+            "param_set": np.arange(npar),
+            "run": np.arange(nrun),
+            "event": np.arange(nev),
+        }
+        per_set = {
+            "gamma0": [p.gamma0 for p in self.params],
+            "n": [p.n for p in self.params],
+            "damping_ratio": [p.damping_ratio for p in self.params],
+            "q": [p.q for p in self.params],
+            "eta": [p.eta for p in self.params],
+            "omega0_rad_s": [p.omega0 for p in self.params],
+            "normal_force_n": [
+                np.nan if p.normal_force is None else p.normal_force for p in self.params
+            ],
+            "pressure_pa": [np.nan if p.pressure is None else p.pressure for p in self.params],
+            "sigma_zeta": self.sigma_zeta,
+        }
+        for name, values in per_set.items():
+            coords[name] = ("param_set", np.asarray(values, dtype=float))
+        data: dict[str, Any] = {
+            "x_gh": (("param_set", "run", "event"), self.x_gh,
+                     {"long_name": "slip->stick position X_gh = y/L", "units": "1"}),
+            "t_gh": (("param_set", "run", "event"), self.t_gh,
+                     {"long_name": "dimensionless time of slip->stick tau = omega0 t",
+                      "units": "1"}),
+            "stick_count": (("param_set", "run"), self.stick_count,
+                            {"long_name": "number M of slip->stick transitions", "units": "1"}),
+        }
+        for name, arr in self.diagnostics.items():
+            data[name] = (("param_set", "run"), arr, {"units": "1"})
+        if self.trajectory is not None:
+            t = self.trajectory[0, 0, :, 0]
+            coords["time"] = ("time", t, {"long_name": "tau = omega0 t", "units": "1"})
+            data["x1"] = (("param_set", "run", "time"), self.trajectory[..., 1],
+                          {"long_name": "x1 = y/L", "units": "1"})
+            data["x2"] = (("param_set", "run", "time"), self.trajectory[..., 2],
+                          {"long_name": "x2 = dx1/dtau", "units": "1"})
+        ds = xr.Dataset(data_vars=data, coords=coords)
+        ds.attrs["title"] = "stochfric friction-oscillator simulation"
+        ds.attrs["metadata_json"] = json.dumps(self.metadata(), default=_json_default)
+        ds.attrs["model"] = self.model
+        ds.attrs["integrator"] = self.integrator
+        ds.attrs["seed_entropy"] = str(self.seed_entropy)
+        ds.attrs["path_coordinate"] = self.path_coordinate
+        return ds
+
+    def to_netcdf(self, path: str | Path) -> Path:
+        """Write :meth:`to_dataset` to ``path`` (NetCDF-4 via h5netcdf), atomically."""
+        ds = self.to_dataset()
+        return write_atomic(path, lambda p: ds.to_netcdf(p, engine="h5netcdf"))
+
+    def to_json_dict(self, param_set: int = 0) -> dict[str, Any]:
+        """The CLI's ``--json`` object for one parameter set."""
+        p = self.params[param_set]
+        return {
+            "x_gh": self.x_gh_list(param_set),
+            "t_gh": [
+                [float(v) for v in row[np.isfinite(row)]] for row in self.t_gh[param_set]
+            ],
+            "stick_count": [int(v) for v in self.stick_count[param_set]],
+            "parameters": p.to_dict(),
+            "model": self.model,
+            "integrator": self.integrator,
+            "dt": self.dt,
+            "tau_end": self.tau_end,
+            "runs": self.runs,
+            "seed_entropy": str(self.seed_entropy),
+            "path_coordinate": self.path_coordinate,
+            "x0": list(self.x0[param_set]),
+            "friction_law": self.laws[param_set],
+            "sigma_zeta": self.sigma_zeta[param_set],
+            "process": self.process,
+            "diagnostics": {
+                k: [float(x) for x in v[param_set]] for k, v in self.diagnostics.items()
+            },
+            "warnings": [w.to_dict() for w in self.warnings],
+            "versions": self.versions,
+        }
+
+
+def _json_default(obj: object) -> object:
+    if isinstance(obj, np.generic):
+        return obj.item()
+    if isinstance(obj, np.ndarray):
+        return obj.tolist()
+    raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
+
+
+def load_result(path: str | Path) -> xr.Dataset:
+    """Load a result written by :meth:`SimulationResult.to_netcdf` (fully into memory)."""
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        out = ds.load()
+    if "metadata_json" not in out.attrs or json.loads(out.attrs["metadata_json"]).get(
+        "schema"
+    ) != SCHEMA:
+        raise ValueError(f"{path} is not a stochfric simulation result ({SCHEMA})")
+    return out
