@@ -1,0 +1,241 @@
+"""The thesis's two application cases: brake pad (§4.2) and DC04 steel sheet (§4.3).
+
+Values from METHOD.md §6 (oscillator and study parameters) and §4d (model-function fits,
+thesis Tables 3.3 and 3.6, p in Pa).  Each :class:`Preset` carries a
+:class:`~stochfric.process.model.BandLimitedProcessModel` whose spectrum has variance
+σ_μ(p)² exactly (METHOD §4d).  Recorded but **not used**: the thesis's fits of the mean
+PSD level E[S](p) (third rows of Tables 3.3/3.6), whose normalisation the thesis does not
+state (METHOD §7.8); they cannot be mixed with the PSD convention of METHOD §0.
+
+Known discrepancies of the thesis, recorded here and in ``docs/friction_process.md``,
+deliberately not "fixed" (the fits are used exactly as printed):
+
+* Brake, §3.2.5: the text quotes σ_μ(0.5 MPa) = 0.087 from the model function, but
+  Table 3.3 gives σ_μ(5·10⁵ Pa) = 1.6063·(5·10⁵)^−0.4163 + 0.0663 ≈ 0.0731.
+* Sheet, Table 4.4: σ_ζ = σ_μ̂SD at p = 0.1 / 0.5 / 1 MPa is printed as
+  0.1001 / 0.0805 / 0.0594; the Table 3.6 fit gives 0.0995 / 0.0767 / 0.0667
+  (fit relative to table: −0.6 %, −4.7 %, +12.4 %).  Table 4.4's first row also reads
+  N = 1 / 5 / 10 instead of 100 / 500 / 1000 N (METHOD §7.5).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from types import MappingProxyType
+from typing import Any
+
+from stochfric.process.model import BandLimitedProcessModel, ModelFunction
+
+__all__ = [
+    "PRESETS",
+    "Preset",
+    "brake",
+    "get_preset",
+    "sheet",
+]
+
+#: Length scale L [m] of the dimensionless displacement x = y/L (thesis: L = 1 m).
+_LENGTH_SCALE_M = 1.0
+
+
+@dataclass(frozen=True, kw_only=True)
+class Preset:
+    """One application case of the thesis (METHOD §6), SI units.
+
+    Attributes
+    ----------
+    name:
+        ``"brake"`` or ``"sheet"``.
+    mass:
+        Oscillating mass m [kg].
+    stiffness:
+        Spring stiffness c [N/m].
+    belt_speed:
+        Belt speed v0 [m/s].
+    contact_area:
+        Nominal contact area A [m²] for the pressure p = N/A (eq. 4.13).
+    normal_force_range:
+        (N_min, N_max) [N] of the stick-slip range studied in the thesis.
+    default_normal_force:
+        A representative normal force N [N] inside that range.
+    process:
+        The friction-process model (E[μ](p), σ_μ(p), band-limited spectrum, σ_ζ rule).
+    tau_end, dt:
+        Default dimensionless simulation end time τ_end and step Δτ (METHOD §6).
+    description:
+        One-line provenance.
+    study_parameters:
+        The thesis's study settings (read-only mapping), forces in N:
+        ``damping_undamped`` (D = 5e-6), ``damping_damped`` (D of the damped runs),
+        ``damping_study_force``, ``forcing_study_force``, ``normal_force_study_forces``.
+    recorded_psd_level_fit:
+        The thesis's E[S](p) fit (third row of Table 3.3/3.6), **metadata only, not
+        used**: its PSD normalisation is unstated (METHOD §7.8) and incompatible with
+        METHOD §0; the process spectrum is instead scaled to σ_μ(p)².
+    """
+
+    name: str
+    mass: float
+    stiffness: float
+    belt_speed: float
+    contact_area: float
+    normal_force_range: tuple[float, float]
+    default_normal_force: float
+    process: BandLimitedProcessModel
+    tau_end: float = 50.0
+    dt: float = 0.005
+    description: str = ""
+    study_parameters: Mapping[str, Any] = field(default_factory=dict)
+    recorded_psd_level_fit: ModelFunction | None = None
+
+    def __post_init__(self) -> None:
+        for attr, unit in (
+            ("mass", "kg"),
+            ("stiffness", "N/m"),
+            ("belt_speed", "m/s"),
+            ("contact_area", "m²"),
+            ("default_normal_force", "N"),
+            ("tau_end", "(dimensionless)"),
+            ("dt", "(dimensionless)"),
+        ):
+            value = float(getattr(self, attr))
+            if not math.isfinite(value) or value <= 0.0:
+                raise ValueError(f"{attr} must be a positive finite number {unit}, got {value!r}")
+            object.__setattr__(self, attr, value)
+        lo, hi = (float(v) for v in self.normal_force_range)
+        if not (0.0 < lo < hi and math.isfinite(hi)):
+            raise ValueError(
+                f"normal_force_range must be (N_min, N_max) with 0 < N_min < N_max, "
+                f"got {self.normal_force_range!r}"
+            )
+        object.__setattr__(self, "normal_force_range", (lo, hi))
+        if not lo <= self.default_normal_force <= hi:
+            raise ValueError(
+                f"default_normal_force {self.default_normal_force!r} N lies outside "
+                f"normal_force_range {self.normal_force_range!r}"
+            )
+        if not isinstance(self.process, BandLimitedProcessModel):
+            raise TypeError(f"process must be a BandLimitedProcessModel, got {self.process!r}")
+        object.__setattr__(self, "study_parameters", MappingProxyType(dict(self.study_parameters)))
+
+    @property
+    def omega0(self) -> float:
+        """Natural circular frequency ω0 = √(c/m) [rad/s] (below eq. 4.7)."""
+        return math.sqrt(self.stiffness / self.mass)
+
+    @property
+    def gamma0(self) -> float:
+        """Dimensionless belt speed γ0 = v0/(L ω0), L = 1 m (below eq. 4.7)."""
+        return self.belt_speed / (_LENGTH_SCALE_M * self.omega0)
+
+    def pressure(self, normal_force: float) -> float:
+        """Nominal contact pressure p = N/A [Pa] for a normal force N [N] (eq. 4.13)."""
+        n = float(normal_force)
+        if not math.isfinite(n) or n <= 0.0:
+            raise ValueError(f"normal_force must be a positive finite number [N], got {n!r}")
+        return n / self.contact_area
+
+    @property
+    def pressure_range(self) -> tuple[float, float]:
+        """(p_min, p_max) [Pa] of :attr:`normal_force_range`."""
+        lo, hi = self.normal_force_range
+        return lo / self.contact_area, hi / self.contact_area
+
+
+def brake() -> Preset:
+    """Brake pad on a disc (thesis §3.2, §4.2; METHOD §4d table "brake", §6).
+
+    m = 2 kg, c = 10⁶ N/m, v0 = 1 m/s → ω0 ≈ 707 rad/s, γ0 ≈ 1.414·10⁻³;
+    A_pad = 0.016 m², stick-slip range N = 500 … 20000 N (p ≈ 0.031 … 1.25 MPa);
+    Table 3.3 fits (p in Pa): E[μ] = 5.8574 p^−0.4478 + 0.2603,
+    σ_μ = 1.6063 p^−0.4163 + 0.0663; process Δx = 0.05/79 m ≈ 6.33·10⁻⁴ m (thesis: 6.3·10⁻⁴ m,
+    adjusted so that the 79 grid points span exactly one period ℓ), length 0.05 m, flat
+    spectrum (the thesis found the brake spectrum constant, Fig. 3.20/3.21).
+    """
+    process = BandLimitedProcessModel(
+        name="brake",
+        mu_mean=ModelFunction(a=5.8574, b=-0.4478, c=0.2603),
+        mu_std=ModelFunction(a=1.6063, b=-0.4163, c=0.0663),
+        dx=0.05 / 79,  # thesis 6.3e-4 m, adjusted so that 79 points span exactly one period
+        length=0.05,
+        spectrum_shape="flat",
+    )
+    return Preset(
+        name="brake",
+        mass=2.0,
+        stiffness=1e6,
+        belt_speed=1.0,
+        contact_area=0.016,
+        normal_force_range=(500.0, 20000.0),
+        default_normal_force=5600.0,
+        process=process,
+        tau_end=50.0,
+        dt=0.005,
+        description="Brake pad on a rigid disc, Gaus (2013) §3.2 and §4.2, Table 3.3 fits",
+        study_parameters={
+            "damping_undamped": 5e-6,
+            "damping_damped": 0.15,
+            "damping_study_force": 5600.0,
+            "forcing_study_force": 4000.0,
+            "normal_force_study_forces": (720.0, 2720.0, 8000.0),
+        },
+        recorded_psd_level_fit=ModelFunction(a=0.0068, b=-0.3174, c=2.4785e-5),
+    )
+
+
+def sheet() -> Preset:
+    """DC04 steel sheet on DC04 (thesis §3.3, §4.3; METHOD §4d table "sheet", §6).
+
+    m = 1 kg, c = 10⁵ N/m, v0 = 1 m/s → ω0 ≈ 316 rad/s, γ0 ≈ 3.16·10⁻³;
+    A = 10⁻³ m², stick-slip range N = 100 … 2000 N (p = 0.1 … 2 MPa);
+    Table 3.6 fits (p in Pa): E[μ] = 28.3661 p^−0.4786 + 0.2194,
+    σ_μ = −1.0185 p^0.0120 + 1.2689; process Δx = 0.02/67 m ≈ 2.99·10⁻⁴ m (thesis: 3·10⁻⁴ m,
+    adjusted to span exactly one period with 67 points), length 0.02 m, spectrum
+    falling linearly to half its level over the band — our stand-in for the thesis's
+    "falls slightly with frequency" (§3.3.3) until measured spectra exist (issue 4).
+    """
+    process = BandLimitedProcessModel(
+        name="sheet",
+        mu_mean=ModelFunction(a=28.3661, b=-0.4786, c=0.2194),
+        mu_std=ModelFunction(a=-1.0185, b=0.0120, c=1.2689),
+        dx=0.02 / 67,  # thesis 3e-4 m, adjusted so that 67 points span exactly one period
+        length=0.02,
+        spectrum_shape="falling",
+        falling_ratio=0.5,
+    )
+    return Preset(
+        name="sheet",
+        mass=1.0,
+        stiffness=1e5,
+        belt_speed=1.0,
+        contact_area=1e-3,
+        normal_force_range=(100.0, 2000.0),
+        default_normal_force=1400.0,
+        process=process,
+        tau_end=50.0,
+        dt=0.005,
+        description="DC04 steel sheet on DC04, Gaus (2013) §3.3 and §4.3, Table 3.6 fits",
+        study_parameters={
+            "damping_undamped": 5e-6,
+            "damping_damped": 0.17,
+            "damping_study_force": 1400.0,
+            "forcing_study_force": 1100.0,
+            "normal_force_study_forces": (400.0, 880.0, 1750.0),
+        },
+        recorded_psd_level_fit=ModelFunction(a=0.0223, b=-0.3174, c=-5.9154e-5),
+    )
+
+
+#: Factories of the thesis's presets by name; call one to get a fresh :class:`Preset`.
+PRESETS: Mapping[str, Callable[[], Preset]] = MappingProxyType({"brake": brake, "sheet": sheet})
+
+
+def get_preset(name: str) -> Preset:
+    """The preset called ``name`` (``"brake"`` or ``"sheet"``); ValueError for others."""
+    try:
+        factory = PRESETS[name]
+    except (KeyError, TypeError):
+        raise ValueError(f"unknown preset {name!r}; available presets: {sorted(PRESETS)}") from None
+    return factory()
