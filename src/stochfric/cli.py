@@ -7,15 +7,15 @@ input end with a one-line message and exit code 2, never with a traceback.
 from __future__ import annotations
 
 import json
-import math
 import sys
 import warnings
-from enum import Enum
+from enum import StrEnum
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
@@ -32,38 +32,38 @@ app = typer.Typer(
 err_console = Console(stderr=True)
 
 
-class ModelChoice(str, Enum):
+class ModelChoice(StrEnum):
     deterministic = "deterministic"
     white = "white"
     contact = "contact"
 
 
-class LawChoice(str, Enum):
-    I = "I"  # noqa: E741
+class LawChoice(StrEnum):
+    I = "I"
     II = "II"
     III = "III"
     pressure = "pressure"
 
 
-class IntegratorChoice(str, Enum):
+class IntegratorChoice(StrEnum):
     euler = "euler"
     accurate = "accurate"
     milstein = "milstein"
 
 
-class PresetChoice(str, Enum):
+class PresetChoice(StrEnum):
     brake = "brake"
     sheet = "sheet"
 
 
-class PathChoice(str, Enum):
+class PathChoice(StrEnum):
     mass = "mass"
     relative = "relative"
 
 
 def fail(message: str) -> typer.Exit:
     """Print ``message`` as a one-line error and return the exit to raise (code 2)."""
-    err_console.print(f"[bold red]error:[/] {message}")
+    err_console.print(f"[bold red]error:[/] {escape(message)}", soft_wrap=True, highlight=False)
     return typer.Exit(code=2)
 
 
@@ -99,6 +99,8 @@ def _build_parameters(
     omega0: float | None,
 ) -> tuple[Any, Any]:
     """Turn the CLI options into OscillatorParameters (and the preset, if any)."""
+    from dataclasses import replace
+
     from .oscillator.parameters import OscillatorParameters, ParameterError, PhysicalParameters
     from .process.presets import get_preset
 
@@ -140,9 +142,10 @@ def _build_parameters(
                 None if damping_coefficient is not None else (
                     pre.study_parameters.get("damping_undamped", 0.0) if pre else 0.0)),
             forcing_amplitude=(q * c_ if q is not None else (forcing_amplitude or 0.0)),
-            forcing_frequency=(eta or 0.0) * math.sqrt(c_ / m_),
             contact_area=a_,
         )
+        # η is a ratio: Ω = η ω0, with ω0 from the validated mass and stiffness
+        phys = replace(phys, forcing_frequency=(eta or 0.0) * phys.omega0)
         return phys.to_dimensionless(), pre
     if normal_force is not None or forcing_amplitude is not None or damping_coefficient is not None:
         raise ParameterError(
@@ -244,7 +247,8 @@ def simulate(
     from dataclasses import replace
 
     from .oscillator.friction_laws import get_law, pressure_law
-    from .oscillator.integrate import SimulationWarningCategory, simulate as run_sim
+    from .oscillator.integrate import SimulationWarningCategory
+    from .oscillator.integrate import simulate as run_sim
     from .oscillator.parameters import ParameterError
 
     try:
@@ -292,7 +296,7 @@ def simulate(
             try:
                 result = run_sim(
                     params, model=model.value, law=law, process=process,
-                    sigma_zeta=sigma_zeta, x0=tuple(x0) if x0 else None, tau_end=te, dt=step,
+                    sigma_zeta=sigma_zeta, x0=(float(x0[0]), float(x0[1])) if x0 else None, tau_end=te, dt=step,
                     integrator=integrator.value, runs=runs, seed=seed,
                     path_coordinate=path_coordinate.value,
                     save_trajectory=plot is not None or out is not None, save_every=save_every,

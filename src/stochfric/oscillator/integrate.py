@@ -184,13 +184,14 @@ def _plan(
         if x0 is None:
             x0s.append((0.0, p.gamma0))
         elif per_set_x0:
-            xi = x0[i]  # type: ignore[index]
-            x0s.append((float(xi[0]), float(xi[1])))  # type: ignore[index]
+            xi: Any = x0[i]
+            x0s.append((float(xi[0]), float(xi[1])))
         else:
-            x0s.append((float(x0[0]), float(x0[1])))  # type: ignore[arg-type,index]
+            xx: Any = x0
+            x0s.append((float(xx[0]), float(xx[1])))
         if not all(math.isfinite(v) for v in x0s[-1]):
             raise ParameterError(f"initial state x0 must be finite, got {x0s[-1]}")
-    nsteps = int(round(tau_end / dt))
+    nsteps = round(tau_end / dt)
     return _Plan(list(params), laws, sig, pressures, x0s, nsteps)
 
 
@@ -341,7 +342,7 @@ def simulate(
     n_proc_len = 1
     if model == "contact":
         assert process is not None
-        n_proc_len = int(round(process.length / process.dx))
+        n_proc_len = round(process.length / process.dx)
 
     def run_batch(lo: int, hi: int) -> None:
         idx = np.arange(lo, hi)
@@ -465,6 +466,12 @@ def _post_warnings(
             "stick_count is exact but only the first X_gh were stored — raise max_events",
         ))
     if model == "contact" and process is not None:
+        if not getattr(process, "grid_is_periodic", True):
+            out.append(SimulationWarning(
+                "process-grid-not-periodic",
+                f"the process grid ({process.length:.4g} m / dx {process.dx:.4g} m) does not span "
+                "exactly one period: its periodic continuation has a seam; choose dx = length/n",
+            ))
         length_scale = params[0].length_scale
         path_m = diag[:, _k.D_PATH] * length_scale
         worst = float(np.max(path_m))

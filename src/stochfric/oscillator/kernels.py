@@ -89,8 +89,12 @@ def process_value(proc: npt.NDArray[np.float64], n_proc: int, dx: float, path: f
     u = path / dx
     i = math.floor(u)
     w = u - i
-    i0 = int(i) % n_proc
-    i1 = (i0 + 1) % n_proc
+    i0 = int(i)
+    if i0 < 0 or i0 >= n_proc:  # integer division only beyond the first period
+        i0 %= n_proc
+    i1 = i0 + 1  # = (i0 + 1) mod n_proc
+    if i1 == n_proc:
+        i1 = 0
     return (1.0 - w) * proc[i0] + w * proc[i1]
 
 
@@ -112,6 +116,34 @@ def milstein_step(
 def _stick_force(x1: float, tau: float, prm: npt.NDArray[np.float64]) -> float:  # pragma: no cover
     """``x1 + 2Dγ0 − q cos(x30 + ητ)``: the force the static friction must hold (4.2/4.9)."""
     return x1 + 2.0 * prm[P_D] * prm[P_GAMMA0] - prm[P_Q] * math.cos(prm[P_X30] + prm[P_ETA] * tau)
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _stick_force_hoisted(
+    x1: float, tau: float, c2: float, qq: float, x30: float, eta: float, forced: bool
+) -> float:  # pragma: no cover
+    """:func:`_stick_force` with the invariants hoisted: ``c2 = 2Dγ0``; the cosine is
+    skipped when ``q = 0`` (``forced`` false), where ``q cos x3`` is ±0 and changes nothing."""
+    f = x1 + c2
+    if forced:
+        f -= qq * math.cos(x30 + eta * tau)
+    return f
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _breakaway_limit(
+    lim: float, nn: float, mu_k0: float, noise: int, proc: npt.NDArray[np.float64], n_proc: int,
+    dx: float, path: float,
+) -> float:  # pragma: no cover
+    """The force the static friction holds in a stick phase (constant during the phase).
+
+    ``n μ_s``; for the contact model (``noise == NOISE_PROCESS``) breakaway also needs the
+    unbalanced force to exceed the kinetic friction at ``v_rel → 0``,
+    ``n (μ_k(0) + μ̂(path))``, else the first slip would run against it (see docs).
+    """
+    if noise == NOISE_PROCESS:
+        return max(lim, nn * (mu_k0 + process_value(proc, n_proc, dx, path)))
+    return lim
 
 
 @numba.njit(cache=True, nogil=True)
@@ -154,6 +186,15 @@ def run_fixed_step(
     sigma = prm[P_SIGMA]
     pdx = prm[P_PROC_DX]
     ito = -0.25 * nn * nn * sigma  # ½ b b' / s (METHOD §5.1)
+    # loop invariants, hoisted with the same rounding as the expressions they replace
+    dd2 = 2.0 * dd  # 2D
+    c2 = dd2 * gamma0  # 2Dγ0 of the stick force (4.2/4.9)
+    forced = qq != 0.0  # q = 0: q cos x3 is ±0, the cosine is not evaluated
+    white = noise == NOISE_WHITE
+    contact = noise == NOISE_PROCESS
+    milstein = scheme == SCHEME_MILSTEIN
+    mass_path = path_mode == PATH_MASS
+    mu_k0 = mu_kinetic(shape, 0.0, lawp) if contact else 0.0
 
     x1 = x10
     x2 = x20
@@ -163,6 +204,8 @@ def run_fixed_step(
     if x2 > gamma0:
         s = -1.0
     path = 0.0
+    # static limit of the current stick phase (path, hence μ̂, is fixed while sticking)
+    lim_b = _breakaway_limit(lim, nn, mu_k0, noise, proc, n_proc, pdx, path)
     path_slip_start = 0.0
     min_slip = np.inf
     n_short = 0
@@ -182,21 +225,21 @@ def run_fixed_step(
     for k in range(nsteps):
         h = dt
         dwk = 0.0
-        if noise == NOISE_WHITE:
+        if white:
             dwk = dw[k]
         t_end_step = (k + 1) * dt
         it = 0
         while h > tiny and it < 8:
             it += 1
             if stick:
-                f0 = _stick_force(x1, tau, prm)
                 x1n = x1 + gamma0 * h
-                fn = _stick_force(x1n, tau + h, prm)
-                if abs(fn) <= lim:
+                fn = _stick_force_hoisted(x1n, tau + h, c2, qq, x30, eta, forced)
+                if abs(fn) <= lim_b:
                     x1 = x1n
                     h = 0.0
                 else:
-                    bound = lim if fn > 0.0 else -lim
+                    f0 = _stick_force_hoisted(x1, tau, c2, qq, x30, eta, forced)
+                    bound = lim_b if fn > 0.0 else -lim_b
                     den = fn - f0
                     th = (bound - f0) / den if den != 0.0 else 1.0
                     if th < 0.0:
@@ -218,24 +261,27 @@ def run_fixed_step(
                     s = 1.0
                 elif vr < 0.0:
                     s = -1.0
-                mu = mu_kinetic(shape, vscale * abs(vr), lawp)
-                if noise == NOISE_PROCESS:
+                avr = abs(vr)
+                mu = mu_kinetic(shape, vscale * avr, lawp)
+                if contact:
                     mu += process_value(proc, n_proc, pdx, path)
-                drift = -x1 - 2.0 * dd * x2 + nn * mu * s + qq * math.cos(x30 + eta * tau)
+                drift = -x1 - dd2 * x2 + nn * mu * s
+                if forced:
+                    drift += qq * math.cos(x30 + eta * tau)
                 x1n = x1 + x2 * h
-                if noise == NOISE_WHITE:
+                if white:
                     dwh = dwk if h == dt else dwk * math.sqrt(h / dt)
-                    b = nn * s * math.sqrt(sigma * abs(vr))
-                    if scheme == SCHEME_MILSTEIN:
+                    b = nn * s * math.sqrt(sigma * avr)
+                    if milstein:
                         x2n = milstein_step(x2, drift + s * ito, b, 2.0 * s * ito, dwh, h)
                     else:
                         x2n = em_step(x2, drift + s * ito, b, dwh, h)
                 else:
                     x2n = x2 + drift * h
-                if path_mode == PATH_MASS:
+                if mass_path:
                     dpath = abs(x1n - x1)
                 else:
-                    dpath = abs(vr) * h
+                    dpath = avr * h
                 vrn = gamma0 - x2n
                 if vr == 0.0 and vrn * s <= 0.0:
                     # first slip step went against the unbalanced force (friction exceeded it):
@@ -248,7 +294,7 @@ def run_fixed_step(
                     th = vr / (x2n - x2)
                     x1c = x1 + th * (x1n - x1)
                     tc = tau + th * h
-                    if abs(_stick_force(x1c, tc, prm)) <= lim:
+                    if abs(_stick_force_hoisted(x1c, tc, c2, qq, x30, eta, forced)) <= lim:
                         # slip → stick: X_gh
                         if m < max_ev:
                             xgh[m] = x1c
@@ -266,6 +312,7 @@ def run_fixed_step(
                         h -= th * h
                         tau = tc
                         stick = True
+                        lim_b = _breakaway_limit(lim, nn, mu_k0, noise, proc, n_proc, pdx, path)
                     else:
                         # belt speed reached, static friction cannot hold: keep slipping
                         n_no_stick += 1

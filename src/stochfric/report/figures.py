@@ -7,11 +7,11 @@ from pathlib import Path
 import matplotlib
 
 matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
+import matplotlib.pyplot as plt
+import numpy as np
 
-from ..io_utils import write_atomic  # noqa: E402
-from ..oscillator.result import SimulationResult  # noqa: E402
+from ..io_utils import write_atomic
+from ..oscillator.result import SimulationResult
 
 
 def plot_phase_portrait(result: SimulationResult, path: str | Path, param_set: int = 0) -> Path:

@@ -1,0 +1,89 @@
+"""Command line: the simulate contract (issue 2) and clean errors."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from typer.testing import CliRunner
+
+from stochfric.cli import app
+from stochfric.oscillator.result import load_result
+
+runner = CliRunner()
+
+
+def _json(args: list[str]) -> dict:
+    res = runner.invoke(app, args)
+    assert res.exit_code == 0, res.output
+    return json.loads(res.stdout)
+
+
+def test_simulate_json_contract_brake_preset() -> None:
+    d = _json(["simulate", "--preset", "brake", "--model", "white", "--runs", "3", "--seed", "5",
+               "--tau-end", "20", "--json"])
+    assert len(d["x_gh"]) == 3 and all(isinstance(v, float) for v in d["x_gh"][0])
+    assert d["stick_count"] == [len(r) for r in d["x_gh"]]
+    assert d["parameters"]["normal_force_n"] == pytest.approx(5600.0)
+    assert d["parameters"]["gamma0"] == pytest.approx(1.41421e-3, rel=1e-5)
+    assert d["warnings"] == []
+    assert d["friction_law"]["name"] == "pressure"
+    assert d["sigma_zeta"] == pytest.approx(0.0742, abs=5e-4)  # σ_μ(0.35 MPa), Table 3.3
+    assert d["seed_entropy"] == "5" and d["model"] == "white"
+    again = _json(["simulate", "--preset", "brake", "--model", "white", "--runs", "3", "--seed",
+                   "5", "--tau-end", "20", "--json", "--workers", "1"])
+    assert again["x_gh"] == d["x_gh"]
+
+
+def test_simulate_dimensionless_thesis_demo_matches_closed_form() -> None:
+    d = _json(["simulate", "--gamma0", "1", "--n", "10", "--friction-law", "II",
+               "--integrator", "accurate", "--tau-end", "30", "--json"])
+    assert d["x_gh"][0][0] == pytest.approx(1.0, abs=1e-8)  # n(2μ_k − μ_s)
+    assert d["parameters"]["normal_force_n"] is None
+
+
+def test_simulate_forced_with_coarse_step_warns_in_json() -> None:
+    d = _json(["simulate", "--gamma0", "1", "--n", "10", "--q", "0.5", "--eta", "1.15",
+               "--x0", "3.2", "1", "--dt", "0.1", "--tau-end", "20", "--json"])
+    assert [w["code"] for w in d["warnings"]] == ["coarse-time-step"]
+    assert d["x0"] == [3.2, 1.0]
+
+
+def test_simulate_writes_netcdf_and_plot(tmp_path) -> None:
+    out = tmp_path / "run"
+    plot = tmp_path / "phase.png"
+    res = runner.invoke(app, ["simulate", "--preset", "sheet", "--model", "contact", "--runs", "2",
+                              "--seed", "1", "--tau-end", "10", "--out", str(out), "--plot",
+                              str(plot)])
+    assert res.exit_code == 0, res.output
+    assert "E[X_gh]" in res.stdout
+    ds = load_result(out / "simulation.nc")
+    assert ds.attrs["model"] == "contact"
+    assert json.loads((out / "simulation.json").read_text())["preset"] == "sheet"
+    assert plot.read_bytes()[:4] == b"\x89PNG"
+    plot3 = tmp_path / "forced.png"
+    res = runner.invoke(app, ["simulate", "--preset", "brake", "--forcing-amplitude", "500",
+                              "--forcing-frequency", "1.2", "--tau-end", "10", "--plot",
+                              str(plot3)])
+    assert res.exit_code == 0, res.output
+    assert plot3.stat().st_size > 1000
+
+
+@pytest.mark.parametrize(
+    ("args", "fragment"),
+    [
+        (["--gamma0", "1"], "--gamma0 and --n"),
+        (["--mass", "-2", "--stiffness", "1e6", "--belt-speed", "1", "--normal-force", "10"],
+         "mass"),
+        (["--gamma0", "1", "--n", "1", "--forcing-amplitude", "100"], "SI units"),
+        (["--gamma0", "1", "--n", "10", "--model", "contact"], "friction-process model"),
+        (["--gamma0", "1", "--n", "10", "--friction-law", "pressure"], "pressure law"),
+        (["--preset", "brake", "--dt", "1"], "steps per period"),
+        (["--preset", "brake", "--n", "0.1", "--normal-force", "5"], "not both"),
+    ],
+)
+def test_simulate_errors_are_one_line_messages(args: list[str], fragment: str) -> None:
+    res = runner.invoke(app, ["simulate", *args])
+    assert res.exit_code == 2
+    assert "Traceback" not in res.output
+    assert fragment in res.output.replace("\n", " ")

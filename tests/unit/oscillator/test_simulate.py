@@ -1,0 +1,176 @@
+"""simulate(): ensembles, reproducibility, the contact model, warnings and errors."""
+
+from __future__ import annotations
+
+import warnings
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from stochfric.oscillator.friction_laws import law_III, pressure_law
+from stochfric.oscillator.integrate import SimulationWarningCategory, simulate
+from stochfric.oscillator.parameters import OscillatorParameters, ParameterError, PhysicalParameters
+from stochfric.oscillator.result import load_result
+from stochfric.process.presets import brake
+
+
+def _brake(force: float = 5600.0, damping: float = 5e-6) -> tuple[OscillatorParameters, object]:
+    pre = brake()
+    p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
+                           normal_force=force, damping_ratio=damping,
+                           contact_area=pre.contact_area).to_dimensionless()
+    return p, pre
+
+
+def _law(p: OscillatorParameters) -> object:
+    assert p.pressure is not None
+    return pressure_law(brake().process.mean(p.pressure))
+
+
+@pytest.mark.parametrize("model", ["white", "contact"])
+def test_same_seed_same_numbers_whatever_the_threads_and_batches(model: str) -> None:
+    p, pre = _brake()
+    sets = [p, p.with_normal_force(2720.0), p.with_normal_force(8000.0)]
+    kw = dict(model=model, law=_law, process=pre.process, runs=5, seed=7, tau_end=10.0)
+    a = simulate(sets, workers=1, batch_size=15, **kw)
+    b = simulate(sets, workers=2, batch_size=1, **kw)
+    c = simulate(sets, workers=2, batch_size=4, **kw)
+    for r in (b, c):
+        np.testing.assert_array_equal(a.x_gh, r.x_gh)
+        np.testing.assert_array_equal(a.stick_count, r.stick_count)
+    # a parameter set's runs do not depend on the other sets
+    d = simulate(sets[1:2], **kw)
+    assert not np.array_equal(d.x_gh[0], a.x_gh[1], equal_nan=True)  # spawn key (0, r) ≠ (1, r)
+    e = simulate(sets, common_random_numbers=True, **kw)
+    f = simulate(sets[1:2], common_random_numbers=True, **kw)
+    np.testing.assert_array_equal(e.x_gh[1], f.x_gh[0])
+    # different runs differ, a different seed differs
+    assert not np.array_equal(a.x_gh[0, 0], a.x_gh[0, 1], equal_nan=True)
+    g = simulate(sets, workers=1, **{**kw, "seed": 8})
+    assert not np.array_equal(a.x_gh, g.x_gh, equal_nan=True)
+
+
+def test_contact_model_with_a_zero_process_equals_the_deterministic_model() -> None:
+    p, pre = _brake()
+
+    class Zero:
+        dx = pre.process.dx
+        length = pre.process.length
+        grid_is_periodic = True
+
+        def generate(self, p: float, rng: np.random.Generator) -> np.ndarray:
+            return np.zeros(pre.process.n_points)
+
+        def sigma_zeta(self, p: float) -> float:
+            return 0.0
+
+        def to_dict(self) -> dict:
+            return {"kind": "zero"}
+
+    for integ in ("euler", "accurate"):
+        det = simulate(p, law=_law, integrator=integ, tau_end=20.0)
+        con = simulate(p, model="contact", law=_law, process=Zero(), integrator=integ,
+                       tau_end=20.0, runs=2, seed=1)
+        for r in range(2):
+            # Euler: bit-identical; accurate: the process's grid points are extra restart
+            # events, so the step sequence differs (agreement to its tolerance)
+            np.testing.assert_allclose(con.x_gh[0, r], det.x_gh[0, 0], rtol=0,
+                                       atol=0 if integ == "euler" else 1e-10)
+
+
+def test_contact_accurate_is_step_independent() -> None:
+    p, pre = _brake()
+    a = simulate(p, model="contact", law=_law, process=pre.process, integrator="accurate",
+                 tau_end=20.0, dt=0.01, runs=2, seed=3)
+    b = simulate(p, model="contact", law=_law, process=pre.process, integrator="accurate",
+                 tau_end=20.0, dt=0.001, runs=2, seed=3, rtol=1e-12, atol=1e-15, max_step=0.05)
+    assert np.array_equal(a.stick_count, b.stick_count)
+    scale = np.nanmax(np.abs(a.x_gh))  # cycle amplitude ≈ 2e-3
+    np.testing.assert_allclose(a.x_gh, b.x_gh, atol=1e-8 * scale / 1e-3)
+    # Euler converges to it
+    e = simulate(p, model="contact", law=_law, process=pre.process, dt=0.0005, tau_end=20.0,
+                 runs=2, seed=3)
+    assert np.nanmax(np.abs(e.x_gh - a.x_gh)) < 0.05 * scale
+
+
+def test_path_coordinate_is_recorded_and_matters() -> None:
+    p, pre = _brake()
+    m = simulate(p, model="contact", law=_law, process=pre.process, runs=2, seed=1, tau_end=20.0)
+    r = simulate(p, model="contact", law=_law, process=pre.process, runs=2, seed=1, tau_end=20.0,
+                 path_coordinate="relative")
+    assert m.path_coordinate == "mass" and r.path_coordinate == "relative"
+    assert m.to_dataset().attrs["path_coordinate"] == "mass"
+    assert not np.array_equal(m.x_gh, r.x_gh, equal_nan=True)
+    # relative sliding distance per cycle exceeds the mass's own path (belt moves too)
+    assert np.all(r.diagnostics["path"] > m.diagnostics["path"])
+
+
+def test_process_exhausted_and_short_slip_warnings() -> None:
+    p, pre = _brake()
+    short = replace(pre.process, length=0.01, dx=0.01 / 16)
+    with pytest.warns(SimulationWarningCategory, match="process exhausted") as rec:
+        res = simulate(p, model="contact", law=_law, process=short, runs=2, seed=1)
+    codes = {w.code for w in res.warnings}
+    assert "process-exhausted" in codes
+    msg = next(w.message for w in res.warnings if w.code == "process-exhausted")
+    assert "repeats" in msg and "0.01 m" in msg
+    assert len(rec) >= 1
+    coarse = replace(pre.process, dx=0.05 / 5)  # 1 cm grid: slip paths (≈ 5 mm) are shorter
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        r2 = simulate(p.with_normal_force(720.0), model="contact", law=_law, process=coarse,
+                      runs=2, seed=1)
+    assert "slip-shorter-than-grid" in {w.code for w in r2.warnings}
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "fragment"),
+    [
+        ({"model": "white"}, "needs the intensity"),
+        ({"model": "white", "sigma_zeta": 0.1, "integrator": "accurate"}, "SDE"),
+        ({"integrator": "milstein"}, "strong order-1"),
+        ({"model": "contact"}, "friction-process model"),
+        ({"dt": 0.5}, "steps per period"),
+        ({"dt": -1.0}, "positive"),
+        ({"runs": 0}, "positive integer"),
+        ({"path_coordinate": "belt"}, "path coordinate"),
+        ({"x0": (float("nan"), 0.0)}, "finite"),
+    ],
+)
+def test_bad_input_is_refused_with_a_message(kwargs: dict, fragment: str) -> None:
+    with pytest.raises(ParameterError, match=fragment):
+        simulate(OscillatorParameters(gamma0=1.0, n=10.0), **kwargs)
+
+
+def test_white_noise_needs_pressure_for_the_sigma_rule() -> None:
+    with pytest.raises(ParameterError, match="pressure"):
+        simulate(OscillatorParameters(gamma0=1.0, n=1.0), model="white",
+                 process=brake().process)
+
+
+def test_result_round_trip_through_netcdf(tmp_path) -> None:
+    p, pre = _brake()
+    res = simulate([p, p.with_normal_force(8000.0)], model="white", law=_law,
+                   process=pre.process, runs=3, seed=11, tau_end=10.0, save_trajectory=True)
+    path = res.to_netcdf(tmp_path / "sub" / "sim.nc")
+    ds = load_result(path)
+    np.testing.assert_array_equal(ds["x_gh"].values, res.x_gh)
+    np.testing.assert_array_equal(ds["stick_count"].values, res.stick_count)
+    assert ds["x1"].shape == (2, 3, res.trajectory.shape[2])
+    assert ds.attrs["model"] == "white" and ds.attrs["seed_entropy"] == "11"
+    np.testing.assert_allclose(ds["normal_force_n"].values, [5600.0, 8000.0])
+    assert ds["sigma_zeta"].values[0] == pytest.approx(pre.process.std(350000.0))
+    assert not list(tmp_path.glob("sub/.*tmp"))  # atomic write left nothing behind
+    with pytest.raises(ValueError, match="not a stochfric"):
+        (tmp_path / "other.nc").write_bytes(b"")
+        import xarray as xr
+
+        xr.Dataset({"a": ("x", [1.0])}).to_netcdf(tmp_path / "other.nc", engine="h5netcdf")
+        load_result(tmp_path / "other.nc")
+
+
+def test_event_buffer_overflow_is_reported() -> None:
+    with pytest.warns(SimulationWarningCategory, match="max_events"):
+        r = simulate(OscillatorParameters(gamma0=1.0, n=10.0), law=law_III(), max_events=2)
+    assert r.stick_count[0, 0] == 6 and np.isfinite(r.x_gh[0, 0]).sum() == 2
