@@ -20,6 +20,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
 from . import __version__
+from .cli_surface import register as register_surface_commands
 
 app = typer.Typer(
     name="stochfric",
@@ -364,6 +365,9 @@ def _print_summary(result: Any, summary: dict[str, Any], out: Path | None, plot:
         con.print(f"wrote {out / 'simulation.nc'} and {out / 'simulation.json'}")
     if plot is not None:
         con.print(f"wrote {plot}")
+
+
+register_surface_commands(app)
 
 
 def main() -> None:

@@ -1,0 +1,378 @@
+"""Command-line commands ``surface`` and ``contact`` (parse, call, print; no physics).
+
+``register(app)`` adds both commands to a :class:`typer.Typer` application.  Units are
+converted here, at the edge: lengths on the command line are in µm, everything inside is SI.
+Bad input ends with one line ``error: …`` on stderr and exit status 2, never a traceback.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from enum import StrEnum
+from pathlib import Path
+from typing import Annotated, Any
+
+import numpy as np
+import numpy.typing as npt
+import typer
+
+from stochfric.contact.asperity import ContactError, ContactResult, asperity_contact
+from stochfric.contact.materials import Material, MaterialError, load_material, material_names
+from stochfric.surface.io import Surface, SurfaceError, default_surface_path, read_surface
+from stochfric.surface.preprocess import Preparation, prepare
+from stochfric.surface.statistics import (
+    height_moments,
+    plasticity_index,
+    plasticity_verdict,
+    surface_statistics,
+)
+from stochfric.surface.summits import Summits, summits_of
+from stochfric.units import MICROMETRE
+
+__all__ = ["parse_approach_um", "parse_size_um", "register"]
+
+_INPUT_ERRORS = (SurfaceError, ContactError, MaterialError)
+
+
+class SummitRuleChoice(StrEnum):
+    """Summit rules offered on the command line."""
+
+    thesis = "thesis"
+    eight = "8-neighbour"
+
+
+class MethodChoice(StrEnum):
+    """Contact methods offered on the command line."""
+
+    asperity = "asperity"
+    halfspace = "halfspace"
+
+
+# ------------------------------------------------------------------ parsing helpers
+
+
+def parse_approach_um(spec: str) -> npt.NDArray[np.float64]:
+    """``"START:STOP:NUM"`` in µm → ``linspace(START, STOP, NUM)`` in metres."""
+    parts = spec.split(":")
+    if len(parts) != 3:
+        raise ContactError(f"--approach-um must be START:STOP:NUM in µm, got {spec!r}")
+    try:
+        start, stop = float(parts[0]), float(parts[1])
+        num = int(parts[2])
+    except ValueError:
+        raise ContactError(f"--approach-um must be START:STOP:NUM in µm, got {spec!r}") from None
+    if not (math.isfinite(start) and math.isfinite(stop)) or start <= 0 or stop < start:
+        raise ContactError(f"--approach-um needs 0 < START <= STOP, got {spec!r}")
+    if num < 1:
+        raise ContactError(f"--approach-um needs NUM >= 1, got {spec!r}")
+    return np.linspace(start, stop, num) * MICROMETRE
+
+
+def parse_size_um(spec: str) -> tuple[float, float]:
+    """``"LX:LY"`` (or one value for a square) in µm → ``(ℓx, ℓy)`` in metres."""
+    parts = spec.split(":")
+    try:
+        values = [float(p) for p in parts]
+    except ValueError:
+        raise SurfaceError(f"--size-um must be LX:LY in µm, got {spec!r}") from None
+    if len(values) == 1:
+        values = values * 2
+    if len(values) != 2 or not all(math.isfinite(v) and v > 0 for v in values):
+        raise SurfaceError(f"--size-um must be two positive lengths LX:LY in µm, got {spec!r}")
+    return values[0] * MICROMETRE, values[1] * MICROMETRE
+
+
+# ------------------------------------------------------------------ shared pipeline
+
+
+def _fail(message: str) -> typer.Exit:
+    typer.echo(f"error: {message}", err=True)
+    return typer.Exit(code=2)
+
+
+def _load_and_prepare(
+    file: Path | None,
+    *,
+    size_um: str | None,
+    height_unit: str | None,
+    fill_undefined: bool,
+    preparation: Preparation,
+    summit_rule: str,
+) -> tuple[Surface, Surface, Surface, Summits, Summits, dict[str, Any]]:
+    path = default_surface_path() if file is None else file
+    size = parse_size_um(size_um) if size_um is not None else None
+    raw = read_surface(path, physical_size_m=size, height_unit=height_unit, fill_undefined=fill_undefined)
+    fine, coarse = prepare(raw, preparation)
+    fine_summits = summits_of(fine, rule=summit_rule)
+    coarse_summits = fine_summits if coarse is fine else summits_of(coarse, rule=summit_rule)
+    record: dict[str, Any] = {
+        "file": str(path),
+        "default_surface": file is None,
+        "sha256": raw.info.get("sha256"),
+        "reader": raw.info.get("reader"),
+        **preparation.to_dict(),
+        "fill_undefined": fill_undefined,
+        "n_undefined_filled": raw.n_undefined_filled,
+        "summit_rule": summit_rule,
+    }
+    return raw, fine, coarse, fine_summits, coarse_summits, record
+
+
+def _gamma(material: Material, stats: dict[str, Any]) -> float | None:
+    sigma, beta = stats["summit_height_std_m"], stats["summit_radius_mean_m"]
+    if sigma is None or beta is None:
+        return None
+    return plasticity_index(
+        e_star_pa=material.e_star_pa,
+        hardness_pa=material.hardness,
+        sigma_s_m=sigma,
+        beta_mean_m=beta,
+    )
+
+
+def _echo_json(payload: dict[str, Any]) -> None:
+    typer.echo(json.dumps(payload, indent=2, allow_nan=False))
+
+
+# ------------------------------------------------------------------ options
+
+FileArg = Annotated[
+    Path | None,
+    typer.Argument(
+        help="Height map: an instrument file SurfaceTopography reads (x3p, sur, opd, datx, "
+        "plu, mnt, al3d, frt, …) or a .npy/.txt/.csv matrix (then --size-um and "
+        "--height-unit are required). Default: the measured surface shipped with the package.",
+        show_default=False,
+    ),
+]
+MedianOpt = Annotated[int, typer.Option("--median-radius", help="Median filter radius r, window (2r+1)²; 0 = off.")]
+StepOpt = Annotated[int, typer.Option("--step", help="Coarsening: keep every k-th point; 1 = off.")]
+DetrendOpt = Annotated[str, typer.Option("--detrend", help="none | mean | plane | quadratic (default plane).")]
+FillOpt = Annotated[
+    bool,
+    typer.Option("--fill-undefined", help="Fill undefined points by harmonic interpolation (else refuse)."),
+]
+RuleOpt = Annotated[
+    SummitRuleChoice,
+    typer.Option("--summit-rule", help="thesis (2 neighbours each side in x, y) or 8-neighbour."),
+]
+SizeOpt = Annotated[
+    str | None,
+    typer.Option("--size-um", help="Physical size LX:LY [µm] for files that do not store it."),
+]
+UnitOpt = Annotated[
+    str | None,
+    typer.Option("--height-unit", help="Height unit (m, mm, um, nm) for files without one."),
+]
+PlotOpt = Annotated[Path | None, typer.Option("--plot", help="Write PNG figures into this directory.")]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print the result as JSON.")]
+
+
+# ------------------------------------------------------------------ commands
+
+
+def surface_command(
+    file: FileArg = None,
+    median_radius: MedianOpt = 0,
+    step: StepOpt = 1,
+    detrend: DetrendOpt = "plane",
+    fill_undefined: FillOpt = False,
+    summit_rule: RuleOpt = SummitRuleChoice.thesis,
+    material: Annotated[
+        str | None,
+        typer.Option(
+            "--material",
+            help=f"Pairing for the plasticity index (3.7): {', '.join(material_names())} or a JSON file.",
+        ),
+    ] = None,
+    size_um: SizeOpt = None,
+    height_unit: UnitOpt = None,
+    plot: PlotOpt = None,
+    as_json: JsonOpt = False,
+) -> None:
+    """Surface analysis: statistics of the fine and the coarse surface, summits, radii,
+    plasticity index (METHOD.md §1)."""
+    try:
+        prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
+        mat = load_material(material) if material is not None else None
+        raw, fine, coarse, fs, cs, record = _load_and_prepare(
+            file,
+            size_um=size_um,
+            height_unit=height_unit,
+            fill_undefined=fill_undefined,
+            preparation=prep,
+            summit_rule=summit_rule.value,
+        )
+        if cs.count == 0:
+            raise SurfaceError(
+                f"no summit found on the {coarse.nb_grid_pts[0]}×{coarse.nb_grid_pts[1]} "
+                f"prepared surface (rule {summit_rule.value!r}); use a smaller step or "
+                "median radius"
+            )
+        fine_stats = surface_statistics(fine, fs).to_dict()
+        coarse_stats = surface_statistics(coarse, cs).to_dict()
+        payload: dict[str, Any] = {
+            "file": record["file"],
+            "preparation": record,
+            **coarse_stats,
+            "raw_sq_m": height_moments(raw.heights_m)[0],
+            "fine": fine_stats,
+            "coarse": coarse_stats,
+        }
+        if mat is not None:
+            g_coarse = _gamma(mat, coarse_stats)
+            g_fine = _gamma(mat, fine_stats)
+            payload["material"] = mat.to_dict()
+            payload["plasticity_index"] = g_coarse
+            payload["plasticity_verdict"] = plasticity_verdict(g_coarse) if g_coarse is not None else None
+            payload["plasticity_index_fine"] = g_fine
+        figures: list[str] = []
+        if plot is not None:
+            from stochfric.surface.figures import write_surface_figures
+
+            figures = [
+                str(p)
+                for p in write_surface_figures(
+                    plot, fine=fine, coarse=coarse, fine_summits=fs, coarse_summits=cs, step=step
+                )
+            ]
+            payload["figures"] = figures
+    except _INPUT_ERRORS as exc:
+        raise _fail(str(exc)) from None
+    if as_json:
+        _echo_json(payload)
+        return
+    um = MICROMETRE
+    typer.echo(f"surface   {record['file']}")
+    typer.echo(
+        f"prepared  detrend={prep.detrend} median_radius={prep.median_radius} step={prep.step} "
+        f"summit_rule={summit_rule.value} filled={raw.n_undefined_filled}"
+    )
+    for label, st in (("fine", fine_stats), ("coarse", coarse_stats)):
+        typer.echo(
+            f"{label:<7}   grid {st['grid'][0]}x{st['grid'][1]}, "
+            f"size {st['physical_size_m'][0] / um:.4g} x {st['physical_size_m'][1] / um:.4g} µm, "
+            f"Sq {st['sq_m'] / um:.4g} µm, summits {st['n_summits']}, "
+            f"σ_S {_fmt(st['summit_height_std_m'], um)} µm, "
+            f"β̄ {_fmt(st['summit_radius_mean_m'], um)} µm"
+        )
+    if mat is not None:
+        typer.echo(
+            f"plasticity index ({mat.name}): γ = {_fmt(payload['plasticity_index'], 1.0)} "
+            f"(coarse, {payload['plasticity_verdict']}), "
+            f"{_fmt(payload['plasticity_index_fine'], 1.0)} (fine)"
+        )
+    for f in figures:
+        typer.echo(f"figure    {f}")
+
+
+def contact_command(
+    material: Annotated[
+        str,
+        typer.Option(
+            "--material",
+            help=f"Pairing: {', '.join(material_names())} or a JSON file with the fields of "
+            "stochfric.contact.Material (SI units).",
+        ),
+    ],
+    file: FileArg = None,
+    approach_um: Annotated[
+        str | None,
+        typer.Option(
+            "--approach-um",
+            help="START:STOP:NUM in µm (linspace); default σ_S/4 … 3σ_S in 12 steps.",
+        ),
+    ] = None,
+    method: Annotated[
+        MethodChoice,
+        typer.Option("--method", help="asperity (GW/Hertz sums) or halfspace (boundary elements)."),
+    ] = MethodChoice.asperity,
+    median_radius: MedianOpt = 0,
+    step: StepOpt = 1,
+    detrend: DetrendOpt = "plane",
+    fill_undefined: FillOpt = False,
+    summit_rule: RuleOpt = SummitRuleChoice.thesis,
+    size_um: SizeOpt = None,
+    height_unit: UnitOpt = None,
+    output: Annotated[Path | None, typer.Option("--output", help="Write the result to this netCDF file.")] = None,
+    plot: PlotOpt = None,
+    as_json: JsonOpt = False,
+) -> None:
+    """Contact analysis over the approach u: A_c, p, contacts, μ (METHOD.md §2)."""
+    try:
+        mat = load_material(material)
+        prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
+        approach = parse_approach_um(approach_um) if approach_um is not None else None
+        _raw, _fine, coarse, _fs, cs, record = _load_and_prepare(
+            file,
+            size_um=size_um,
+            height_unit=height_unit,
+            fill_undefined=fill_undefined,
+            preparation=prep,
+            summit_rule=summit_rule.value,
+        )
+        record["approach"] = "given" if approach is not None else "default: sigma_S/4..3 sigma_S"
+        gw = asperity_contact(coarse, cs, mat, approach, preparation=record)
+        results: list[ContactResult] = [gw]
+        main = gw
+        if method is MethodChoice.halfspace:
+            from stochfric.contact.halfspace import halfspace_contact
+
+            main = halfspace_contact(coarse, mat, gw.approach_m, summits=cs, preparation=dict(gw.preparation))
+            results = [gw, main]
+        payload = main.to_dict()
+        if main is not gw:
+            payload["asperity"] = {
+                "contact_area_m2": gw.to_dict()["contact_area_m2"],
+                "pressure_pa": gw.to_dict()["pressure_pa"],
+                "n_contacts": [int(v) for v in gw.n_contacts],
+                "mu": gw.to_dict()["mu"],
+                "area_ratio_halfspace_to_asperity": _ratio(main.contact_area_m2, gw.contact_area_m2),
+                "pressure_ratio_halfspace_to_asperity": _ratio(main.pressure_pa, gw.pressure_pa),
+            }
+        if output is not None:
+            payload["output"] = str(main.to_netcdf(output))
+        if plot is not None:
+            from stochfric.surface.figures import write_contact_figures
+
+            payload["figures"] = [str(p) for p in write_contact_figures(plot, results)]
+    except _INPUT_ERRORS as exc:
+        raise _fail(str(exc)) from None
+    if as_json:
+        _echo_json(payload)
+        return
+    um = MICROMETRE
+    typer.echo(f"surface   {record['file']}  ({coarse.nb_grid_pts[0]}x{coarse.nb_grid_pts[1]})")
+    typer.echo(
+        f"material  {mat.name}: E* = {mat.e_star_pa / 1e9:.4g} GPa, "
+        f"τ_max = {mat.shear_strength_pa / 1e6:.4g} MPa; method {main.method}"
+    )
+    typer.echo(f"{'u [µm]':>9} {'A_c [m²]':>11} {'A_c/A_nom':>10} {'p [MPa]':>10} {'contacts':>9} {'μ':>7}")
+    for k in range(main.approach_m.size):
+        typer.echo(
+            f"{main.approach_m[k] / um:9.4g} {main.contact_area_m2[k]:11.4g} "
+            f"{main.area_fraction[k]:10.4g} {main.pressure_pa[k] / 1e6:10.4g} "
+            f"{int(main.n_contacts[k]):9d} {main.mu[k]:7.4g}"
+        )
+    for key in ("output",):
+        if key in payload:
+            typer.echo(f"{key:<9} {payload[key]}")
+    for f in payload.get("figures", []):
+        typer.echo(f"figure    {f}")
+
+
+def _ratio(a: npt.NDArray[np.float64], b: npt.NDArray[np.float64]) -> list[float | None]:
+    with np.errstate(divide="ignore", invalid="ignore"):
+        r = a / b
+    return [float(v) if math.isfinite(v) else None for v in r]
+
+
+def _fmt(value: float | None, scale: float) -> str:
+    return "n/a" if value is None else f"{value / scale:.4g}"
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``surface`` and ``contact`` commands to ``app``."""
+    app.command("surface")(surface_command)
+    app.command("contact")(contact_command)

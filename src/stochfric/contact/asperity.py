@@ -1,0 +1,355 @@
+"""Greenwood–Williamson / Hertz contact with Bowden–Tabor friction (METHOD.md §2,
+thesis 3.1.3, eq. 3.8–3.16).
+
+An elastic rough surface (its summits, each a Hertzian sphere of radius β_i) is pressed by a
+smooth rigid flat.  The flat's position is the approach ``u`` measured from the highest
+summit, and the asperities do not interact:
+
+* ``d_i = z_s,i − (z_s,max − u)`` for the summits with ``d_i > 0`` (3.11)
+* ``A_c = Σ π β_i d_i`` (3.8, 3.12), ``N = Σ (4/3) E* √(β_i d_i³)`` (3.9, 3.13)
+* ``p = N / A_nom`` (3.14), number of contacts, ``A_c / A_nom``
+* Bowden–Tabor: ``R = A_c τ_max`` (3.15), ``μ = A_c τ_max / N`` (3.16)
+
+Vectorised over ``u``: the summits are sorted by height once; the area and the number of
+contacts follow from cumulative sums and :func:`numpy.searchsorted`, the force (a 3/2 power,
+not a cumulative sum) by broadcasting ``u`` against the summits that touch at the largest
+approach, in blocks that bound the memory.
+
+Approaches must be > 0: at ``u = 0`` nothing carries load and μ = 0/0 (and μ → ∞ as u → 0⁺,
+the single-Hertz limit ``μ = 3πτ_max√β / (4E*√u)``).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import tempfile
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from stochfric.contact.materials import Material
+from stochfric.surface.io import Surface
+from stochfric.surface.summits import Summits
+
+__all__ = [
+    "ContactError",
+    "ContactResult",
+    "asperity_contact",
+    "asperity_sums",
+    "default_approach_m",
+    "read_contact_result",
+]
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
+
+#: Default approach range in units of σ_S: ``linspace(σ_S/4, 3σ_S, 12)`` (ratio 1:12 as the
+#: thesis's brake range 1…12 µm).
+DEFAULT_APPROACH_SIGMA = (0.25, 3.0)
+DEFAULT_APPROACH_NUM = 12
+
+#: Block size (elements of the u × summits broadcast) that bounds the memory of the force sum.
+_BLOCK_ELEMENTS = 1 << 22
+
+_VARIABLES: dict[str, tuple[str, str]] = {
+    "contact_area_m2": ("m2", "real contact area A_c (3.12)"),
+    "normal_force_n": ("N", "normal force N (3.13)"),
+    "pressure_pa": ("Pa", "nominal pressure p = N / A_nom (3.14)"),
+    "n_contacts": ("1", "number of contacts (summits with d > 0, or grid points in contact)"),
+    "area_fraction": ("1", "A_c / A_nom"),
+    "friction_force_n": ("N", "Bowden-Tabor friction force R = A_c tau_max (3.15)"),
+    "mu": ("1", "friction coefficient mu = A_c tau_max / N (3.16)"),
+}
+
+
+class ContactError(ValueError):
+    """Invalid contact-analysis input (no summit, bad approach range, missing solver)."""
+
+
+def _as_approach(approach_m: npt.ArrayLike) -> FloatArray:
+    u = np.atleast_1d(np.asarray(approach_m, dtype=np.float64))
+    if u.ndim != 1 or u.size == 0:
+        raise ContactError("approach_m must be a non-empty 1-D sequence of approaches [m]")
+    if not np.all(np.isfinite(u)) or np.any(u <= 0.0):
+        raise ContactError(
+            "approaches must be finite and > 0 m (u is measured from the highest summit; at "
+            "u = 0 nothing carries load and mu is undefined)"
+        )
+    return u
+
+
+def default_approach_m(summits: Summits, num: int = DEFAULT_APPROACH_NUM) -> FloatArray:
+    """Default approaches ``linspace(σ_S/4, 3σ_S, num)`` [m], σ_S = std of summit heights.
+
+    The range follows the surface: real measurements span nm to tens of µm in roughness, so
+    the thesis's µm ranges (brake 1…12 µm, sheet 0.1…0.8 µm) are not a usable default.
+    """
+    if summits.count < 2:
+        raise ContactError(
+            f"{summits.count} summit(s) found: the default approach range needs the summit "
+            "height spread σ_S; give an explicit range"
+        )
+    sigma = float(np.std(summits.heights_m))
+    if not sigma > 0.0:
+        raise ContactError("all summits have the same height (σ_S = 0); give an explicit range")
+    lo, hi = DEFAULT_APPROACH_SIGMA
+    return np.linspace(lo * sigma, hi * sigma, int(num))
+
+
+def asperity_sums(
+    summit_heights_m: npt.ArrayLike,
+    radius_m: npt.ArrayLike,
+    approach_m: npt.ArrayLike,
+    *,
+    e_star_pa: float,
+    reference_m: float | None = None,
+) -> tuple[FloatArray, FloatArray, IntArray]:
+    """GW/Hertz sums over summits for every approach: ``(A_c [m²], N [N], n_contacts)``.
+
+    Eq. (3.11)–(3.13): ``d_i = z_i − (z_ref − u)``; summits with ``d_i > 0`` touch;
+    ``A_c = Σ π β_i d_i``, ``N = Σ (4/3) E* √β_i d_i^{3/2}``.  ``z_ref`` defaults to the
+    highest summit (the thesis's choice); a lower reference is allowed.
+
+    Parameters
+    ----------
+    summit_heights_m, radius_m:
+        Summit heights ``z_i`` [m] and radii ``β_i`` [m] (> 0), same length.
+    approach_m:
+        Approaches ``u`` [m], any order, > 0.
+    e_star_pa:
+        Contact modulus E* [Pa] (3.10).
+    reference_m:
+        ``z_ref`` [m]; default ``max(z_i)``.
+    """
+    z = np.asarray(summit_heights_m, dtype=np.float64).ravel()
+    beta = np.asarray(radius_m, dtype=np.float64).ravel()
+    u = _as_approach(approach_m)
+    if z.shape != beta.shape:
+        raise ContactError(f"{z.size} summit heights but {beta.size} radii")
+    if z.size == 0:
+        raise ContactError("no summit: the surface has no asperity that could touch the flat")
+    if not (np.all(np.isfinite(z)) and np.all(np.isfinite(beta)) and np.all(beta > 0.0)):
+        raise ContactError("summit heights must be finite and radii finite and > 0")
+    if not (math.isfinite(e_star_pa) and e_star_pa > 0.0):
+        raise ContactError(f"E* must be finite and > 0 Pa, got {e_star_pa!r}")
+    z_ref = float(z.max()) if reference_m is None else float(reference_m)
+
+    # sort once: depth below the reference, ascending
+    order = np.argsort(z_ref - z, kind="stable")
+    delta = (z_ref - z)[order]  # >= 0 for the default reference
+    beta_s = beta[order]
+    # number touching at each u: d = u − δ > 0  <=>  δ < u
+    k = np.searchsorted(delta, u, side="left").astype(np.int64)
+    # area by cumulative sums: Σ_{i<k} π β_i (u − δ_i) = π (u S_β(k) − S_βδ(k))
+    s_beta = np.concatenate(([0.0], np.cumsum(beta_s)))
+    s_beta_delta = np.concatenate(([0.0], np.cumsum(beta_s * delta)))
+    area = np.pi * (u * s_beta[k] - s_beta_delta[k])
+    area = np.maximum(area, 0.0)  # guard against round-off for tiny d
+    # force by broadcasting over the summits that touch at the largest u, in blocks
+    k_max = int(k.max())
+    sqrt_beta = np.sqrt(beta_s[:k_max])
+    delta_t = delta[:k_max]
+    force = np.empty_like(u)
+    rows = max(1, _BLOCK_ELEMENTS // max(k_max, 1))
+    for start in range(0, u.size, rows):
+        ub = u[start : start + rows, None]
+        d = np.clip(ub - delta_t[None, :], 0.0, None)
+        force[start : start + rows] = (d * np.sqrt(d)) @ sqrt_beta
+    force *= (4.0 / 3.0) * e_star_pa
+    return area, force, k
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class ContactResult:
+    """Contact quantities over the approach ``u``; SI units, one value per approach.
+
+    ``preparation`` records how the surface was prepared and analysed (detrend, median
+    radius, step, summit rule, file, sha256, …); ``material`` the pairing used.
+    """
+
+    method: str
+    approach_m: FloatArray
+    contact_area_m2: FloatArray
+    normal_force_n: FloatArray
+    n_contacts: IntArray
+    nominal_area_m2: float
+    shear_strength_pa: float
+    e_star_pa: float
+    material: dict[str, Any] = field(default_factory=dict)
+    preparation: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def pressure_pa(self) -> FloatArray:
+        """Nominal pressure ``p = N / A_nom`` [Pa] (3.14)."""
+        return self.normal_force_n / self.nominal_area_m2
+
+    @property
+    def area_fraction(self) -> FloatArray:
+        """``A_c / A_nom`` [-]."""
+        return self.contact_area_m2 / self.nominal_area_m2
+
+    @property
+    def friction_force_n(self) -> FloatArray:
+        """Bowden–Tabor friction force ``R = A_c τ_max`` [N] (3.15)."""
+        return self.contact_area_m2 * self.shear_strength_pa
+
+    @property
+    def mu(self) -> FloatArray:
+        """Friction coefficient ``μ = A_c τ_max / N`` (3.16); NaN where N = 0."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out = self.friction_force_n / self.normal_force_n
+        return np.where(self.normal_force_n > 0.0, out, np.nan)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary: arrays as lists (NaN as ``None``), SI units in the keys."""
+
+        def listify(a: npt.NDArray[Any]) -> list[Any]:
+            return [None if isinstance(v, float) and not math.isfinite(v) else v for v in a.tolist()]
+
+        return {
+            "method": self.method,
+            "approach_m": listify(self.approach_m),
+            "contact_area_m2": listify(self.contact_area_m2),
+            "normal_force_n": listify(self.normal_force_n),
+            "pressure_pa": listify(self.pressure_pa),
+            "n_contacts": [int(v) for v in self.n_contacts],
+            "area_fraction": listify(self.area_fraction),
+            "friction_force_n": listify(self.friction_force_n),
+            "mu": listify(self.mu),
+            "nominal_area_m2": self.nominal_area_m2,
+            "e_star_pa": self.e_star_pa,
+            "shear_strength_pa": self.shear_strength_pa,
+            "material": self.material,
+            "preparation": self.preparation,
+        }
+
+    def to_dataset(self) -> Any:
+        """An :class:`xarray.Dataset` over the dimension ``approach`` with units in ``attrs``.
+
+        Dictionaries (material, preparation) are stored as JSON strings so that the dataset
+        round-trips through netCDF (:func:`read_contact_result`).
+        """
+        import xarray as xr
+
+        from stochfric import __version__
+
+        values = {
+            "contact_area_m2": self.contact_area_m2,
+            "normal_force_n": self.normal_force_n,
+            "pressure_pa": self.pressure_pa,
+            "n_contacts": self.n_contacts.astype(np.int64),
+            "area_fraction": self.area_fraction,
+            "friction_force_n": self.friction_force_n,
+            "mu": self.mu,
+        }
+        data_vars = {
+            name: (
+                ("approach",),
+                np.asarray(arr),
+                {"units": _VARIABLES[name][0], "long_name": _VARIABLES[name][1]},
+            )
+            for name, arr in values.items()
+        }
+        return xr.Dataset(
+            data_vars=data_vars,
+            coords={
+                "approach_m": (
+                    ("approach",),
+                    self.approach_m,
+                    {"units": "m", "long_name": "approach u of the rigid flat (3.11)"},
+                )
+            },
+            attrs={
+                "title": "stochfric contact analysis",
+                "method": self.method,
+                "nominal_area_m2": self.nominal_area_m2,
+                "e_star_pa": self.e_star_pa,
+                "shear_strength_pa": self.shear_strength_pa,
+                "material": json.dumps(self.material, sort_keys=True),
+                "preparation": json.dumps(self.preparation, sort_keys=True),
+                "stochfric_version": __version__,
+            },
+        )
+
+    @classmethod
+    def from_dataset(cls, ds: Any) -> ContactResult:
+        """Rebuild from :meth:`to_dataset` output (also after a netCDF round trip)."""
+        attrs = ds.attrs
+        return cls(
+            method=str(attrs["method"]),
+            approach_m=np.asarray(ds["approach_m"].values, dtype=np.float64),
+            contact_area_m2=np.asarray(ds["contact_area_m2"].values, dtype=np.float64),
+            normal_force_n=np.asarray(ds["normal_force_n"].values, dtype=np.float64),
+            n_contacts=np.asarray(ds["n_contacts"].values, dtype=np.int64),
+            nominal_area_m2=float(attrs["nominal_area_m2"]),
+            shear_strength_pa=float(attrs["shear_strength_pa"]),
+            e_star_pa=float(attrs["e_star_pa"]),
+            material=json.loads(attrs.get("material", "{}")),
+            preparation=json.loads(attrs.get("preparation", "{}")),
+        )
+
+    def to_netcdf(self, path: str | Path) -> Path:
+        """Write :meth:`to_dataset` to ``path`` atomically (temp file in the same folder,
+        then :func:`os.replace`); returns the path."""
+        target = Path(path)
+        target.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+        os.close(fd)
+        try:
+            self.to_dataset().to_netcdf(tmp, engine="h5netcdf")
+            os.replace(tmp, target)
+        except BaseException:
+            Path(tmp).unlink(missing_ok=True)
+            raise
+        return target
+
+
+def read_contact_result(path: str | Path) -> ContactResult:
+    """Load a :class:`ContactResult` written by :meth:`ContactResult.to_netcdf`."""
+    import xarray as xr
+
+    with xr.open_dataset(path, engine="h5netcdf") as ds:
+        return ContactResult.from_dataset(ds.load())
+
+
+def asperity_contact(
+    surface: Surface,
+    summits: Summits,
+    material: Material,
+    approach_m: npt.ArrayLike | None = None,
+    *,
+    preparation: dict[str, Any] | None = None,
+) -> ContactResult:
+    """GW/Hertz + Bowden–Tabor contact of ``surface`` over ``approach_m`` (3.8–3.16).
+
+    ``summits`` must have been found on ``surface`` (its nominal area gives ``p``);
+    ``approach_m`` defaults to :func:`default_approach_m`.
+    """
+    if summits.count == 0:
+        raise ContactError(
+            f"no summit found on the {surface.nb_grid_pts[0]}×{surface.nb_grid_pts[1]} surface "
+            f"(rule {summits.rule!r}); use a smaller step or a larger surface"
+        )
+    u = default_approach_m(summits) if approach_m is None else _as_approach(approach_m)
+    area, force, k = asperity_sums(summits.heights_m, summits.radius_m, u, e_star_pa=material.e_star_pa)
+    prep = dict(preparation or {})
+    prep.setdefault("summit_rule", summits.rule)
+    prep.setdefault("n_summits", summits.count)
+    prep.setdefault("reference", "highest summit")
+    return ContactResult(
+        method="asperity",
+        approach_m=u,
+        contact_area_m2=area,
+        normal_force_n=force,
+        n_contacts=k,
+        nominal_area_m2=surface.nominal_area_m2,
+        shear_strength_pa=material.shear_strength_pa,
+        e_star_pa=material.e_star_pa,
+        material=material.to_dict(),
+        preparation=prep,
+    )

@@ -1,0 +1,432 @@
+"""Reading measured height maps (METHOD.md §1, thesis 3.2 / 3.3).
+
+Instrument files (``.x3p``, ``.sur``, ``.opd``, ``.datx``, ``.plu``, ``.mnt``, ``.al3d``,
+``.frt``, … — every format SurfaceTopography knows) are read through
+:func:`SurfaceTopography.open_topography`, a maintained reader; nothing here parses an
+instrument format by hand.  Plain matrices (``.npy``, ``.txt``, ``.csv``) carry no physical
+size and no height unit, so both must be given explicitly.
+
+Conventions of the returned :class:`Surface`:
+
+* heights in metres, as a plain ``float64`` array ``z[i, j]`` at ``x = i Δx``, ``y = j Δy``
+  (the layout of SurfaceTopography's ``heights()``; a plain matrix is read the same way,
+  axis 0 is x);
+* ``physical_size_m = (ℓx, ℓy)`` with ``Δx = ℓx / nx`` (SurfaceTopography's convention);
+* never a NaN: undefined (unmeasured) points are *reported* on reading and either filled by
+  harmonic interpolation (``fill_undefined=True``, SurfaceTopography's
+  ``interpolate_undefined_data``) or refused with a :class:`SurfaceError`.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import math
+import warnings
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from stochfric.units import length_to_m
+
+__all__ = [
+    "DEFAULT_SURFACE_NAME",
+    "MATRIX_SUFFIXES",
+    "MIN_GRID_POINTS",
+    "Surface",
+    "SurfaceError",
+    "default_surface_path",
+    "file_sha256",
+    "read_surface",
+    "surface_from_array",
+]
+
+#: File name of the measured surface shipped with the package (see ``data/NOTICE.md``).
+DEFAULT_SURFACE_NAME = "al3d-1.al3d"
+
+#: Suffixes read as plain height matrices with numpy (size and unit must be given).
+MATRIX_SUFFIXES = (".npy", ".txt", ".csv")
+
+#: The summit rule needs two neighbours on each side, so a grid needs at least 5 points.
+MIN_GRID_POINTS = 5
+
+FloatArray = npt.NDArray[np.float64]
+
+
+class SurfaceError(ValueError):
+    """Bad surface input: unreadable file, missing size or unit, undefined points, a
+    non-uniform grid, a preparation that leaves too few points, no summit.
+
+    The message is one line and says what to change; the command line prints it and
+    exits with status 2.
+    """
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class Surface:
+    """A height map on a uniform grid, SI units.
+
+    Attributes
+    ----------
+    heights_m:
+        ``z[i, j]`` [m], shape ``(nx, ny)``, finite everywhere.
+    physical_size_m:
+        ``(ℓx, ℓy)`` [m]; the nominal area is ``A_nom = ℓx ℓy`` (3.14).
+    source:
+        Where the data came from (a file path or a description).
+    n_undefined_filled:
+        Number of undefined points that were filled by harmonic interpolation on reading.
+    info:
+        Free-form provenance (reader, instrument, sha256 of the file, …), JSON-serialisable.
+    """
+
+    heights_m: FloatArray
+    physical_size_m: tuple[float, float]
+    source: str = "array"
+    n_undefined_filled: int = 0
+    info: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        h = np.asarray(self.heights_m)
+        if h.ndim != 2:
+            raise SurfaceError(f"a surface needs a 2-D height map, got {h.ndim} dimension(s)")
+        if not np.issubdtype(h.dtype, np.number):
+            raise SurfaceError(f"heights must be numbers, got dtype {h.dtype}")
+        if not np.all(np.isfinite(h)):
+            raise SurfaceError(
+                f"{int(np.count_nonzero(~np.isfinite(h)))} height(s) are NaN or infinite; "
+                "fill them (fill_undefined) before building a Surface"
+            )
+        if len(self.physical_size_m) != 2:
+            raise SurfaceError(f"physical_size_m needs two lengths, got {self.physical_size_m!r}")
+        for name, v in zip(("x", "y"), self.physical_size_m, strict=True):
+            if not (math.isfinite(float(v)) and float(v) > 0.0):
+                raise SurfaceError(f"physical size in {name} must be > 0 m, got {v!r}")
+        h = np.ascontiguousarray(h, dtype=np.float64)
+        h.setflags(write=False)
+        object.__setattr__(self, "heights_m", h)
+        object.__setattr__(
+            self,
+            "physical_size_m",
+            (float(self.physical_size_m[0]), float(self.physical_size_m[1])),
+        )
+
+    @property
+    def nb_grid_pts(self) -> tuple[int, int]:
+        """Number of grid points ``(nx, ny)``."""
+        nx, ny = self.heights_m.shape
+        return int(nx), int(ny)
+
+    @property
+    def grid_spacing_m(self) -> tuple[float, float]:
+        """Grid spacing ``(Δx, Δy) = (ℓx/nx, ℓy/ny)`` [m]."""
+        nx, ny = self.nb_grid_pts
+        return self.physical_size_m[0] / nx, self.physical_size_m[1] / ny
+
+    @property
+    def nominal_area_m2(self) -> float:
+        """Nominal (apparent) area ``A_nom = ℓx ℓy`` [m²] (3.14)."""
+        return self.physical_size_m[0] * self.physical_size_m[1]
+
+
+def default_surface_path() -> Path:
+    """Path of the measured surface shipped with the package (``stochfric/data``).
+
+    An Alicona focus-variation measurement (``al3d-1.al3d`` of the SurfaceTopography test
+    fixtures, MIT licence, see ``stochfric/data/NOTICE.md``).
+    """
+    ref = resources.files("stochfric") / "data" / DEFAULT_SURFACE_NAME
+    path = Path(str(ref))
+    if not path.is_file():  # pragma: no cover - only for a broken installation
+        raise SurfaceError(f"the default surface {DEFAULT_SURFACE_NAME} is missing from the package")
+    return path
+
+
+def file_sha256(path: str | Path) -> str:
+    """Hex sha256 of a file's bytes (recorded as provenance)."""
+    digest = hashlib.sha256()
+    with open(path, "rb") as fh:
+        for chunk in iter(lambda: fh.read(1 << 20), b""):
+            digest.update(chunk)
+    return digest.hexdigest()
+
+
+def surface_from_array(
+    heights: npt.ArrayLike,
+    *,
+    physical_size_m: tuple[float, float],
+    fill_undefined: bool = False,
+    source: str = "array",
+    info: dict[str, Any] | None = None,
+) -> Surface:
+    """Build a :class:`Surface` from heights in metres; NaN / masked entries are undefined.
+
+    Undefined points are refused with a :class:`SurfaceError` unless ``fill_undefined`` is
+    set, in which case they are filled by harmonic interpolation (SurfaceTopography).
+    """
+    masked = np.ma.masked_invalid(np.ma.asarray(heights, dtype=np.float64))
+    return _finish(
+        masked,
+        physical_size_m=physical_size_m,
+        fill_undefined=fill_undefined,
+        source=source,
+        info=dict(info or {}),
+    )
+
+
+def read_surface(
+    path: str | Path,
+    *,
+    physical_size_m: tuple[float, float] | None = None,
+    height_unit: str | None = None,
+    fill_undefined: bool = False,
+    channel: int | None = None,
+) -> Surface:
+    """Read a measured height map from ``path`` and convert it to metres.
+
+    Parameters
+    ----------
+    path:
+        An instrument file (any format of SurfaceTopography) or a plain matrix
+        (``.npy``, ``.txt`` whitespace separated, ``.csv`` comma separated).
+    physical_size_m:
+        ``(ℓx, ℓy)`` [m]. Required for plain matrices and for instrument files that do not
+        store it; refused for files that store it.
+    height_unit:
+        Unit of the stored heights (``m``, ``mm``, ``um``, ``nm``). Required for plain
+        matrices and for instrument files without a unit; refused for files that store one
+        (SurfaceTopography does not let metadata fixed by the file be overridden).
+    fill_undefined:
+        Fill undefined (unmeasured) points by harmonic interpolation instead of refusing them.
+    channel:
+        Channel index for multi-channel files (default: the file's default channel).
+
+    Raises
+    ------
+    SurfaceError
+        Unknown, missing or corrupt file; non-uniform or 1-D data; missing size or unit;
+        undefined points without ``fill_undefined``.
+    """
+    p = Path(path)
+    if not p.is_file():
+        raise SurfaceError(f"no such file: {p}")
+    info: dict[str, Any] = {"file": p.name, "sha256": file_sha256(p)}
+    if p.suffix.lower() in MATRIX_SUFFIXES:
+        return _read_matrix(
+            p,
+            physical_size_m=physical_size_m,
+            height_unit=height_unit,
+            fill_undefined=fill_undefined,
+            info=info,
+        )
+    return _read_instrument(
+        p,
+        physical_size_m=physical_size_m,
+        height_unit=height_unit,
+        fill_undefined=fill_undefined,
+        channel=channel,
+        info=info,
+    )
+
+
+# --------------------------------------------------------------------------------------
+# internals
+
+
+def _unit_factor(unit: str, what: str) -> float:
+    try:
+        return length_to_m(1.0, unit)
+    except ValueError as exc:
+        raise SurfaceError(f"{what}: {exc}") from None
+
+
+def _read_matrix(
+    p: Path,
+    *,
+    physical_size_m: tuple[float, float] | None,
+    height_unit: str | None,
+    fill_undefined: bool,
+    info: dict[str, Any],
+) -> Surface:
+    missing = [
+        name for name, value in (("physical size", physical_size_m), ("height unit", height_unit)) if value is None
+    ]
+    if missing:
+        raise SurfaceError(
+            f"{p.name} is a plain matrix without {' and '.join(missing)}; "
+            "give them explicitly (command line: --size-um LX:LY --height-unit UNIT)"
+        )
+    assert physical_size_m is not None and height_unit is not None
+    factor = _unit_factor(height_unit, "height unit")
+    try:
+        if p.suffix.lower() == ".npy":
+            raw = np.load(p, allow_pickle=False)
+        else:
+            delimiter = "," if p.suffix.lower() == ".csv" else None
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                raw = np.genfromtxt(p, delimiter=delimiter, dtype=np.float64, comments="#")
+    except Exception as exc:  # any reader failure is a corrupt file for the user
+        raise SurfaceError(f"cannot read {p.name} as a height matrix: {_one_line(exc)}") from None
+    raw = np.asarray(raw)
+    if raw.ndim != 2 or min(raw.shape) < 2:
+        raise SurfaceError(
+            f"{p.name} does not hold a 2-D height matrix (shape {raw.shape}); "
+            "line scans and xyz point lists are not supported"
+        )
+    if not np.issubdtype(raw.dtype, np.number):
+        raise SurfaceError(f"{p.name} holds {raw.dtype} data, not heights")
+    info.update({"reader": "numpy", "height_unit": height_unit})
+    return surface_from_array(
+        raw.astype(np.float64) * factor,
+        physical_size_m=physical_size_m,
+        fill_undefined=fill_undefined,
+        source=str(p),
+        info=info,
+    )
+
+
+def _read_instrument(
+    p: Path,
+    *,
+    physical_size_m: tuple[float, float] | None,
+    height_unit: str | None,
+    fill_undefined: bool,
+    channel: int | None,
+    info: dict[str, Any],
+) -> Surface:
+    # Imported here: SurfaceTopography registers its readers at import time, and importing
+    # stochfric should do no work.
+    from SurfaceTopography import open_topography
+    from SurfaceTopography.Exceptions import CannotDetectFileFormat
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            reader = open_topography(str(p))
+        except CannotDetectFileFormat:
+            raise SurfaceError(
+                f"cannot read {p.name}: no SurfaceTopography reader recognises this file "
+                "(unknown format or corrupt file)"
+            ) from None
+        except Exception as exc:
+            raise SurfaceError(f"cannot read {p.name}: {_one_line(exc)}") from None
+        channels = reader.channels
+        if channel is None:
+            ch = reader.default_channel
+        else:
+            if not 0 <= channel < len(channels):
+                raise SurfaceError(f"{p.name} has {len(channels)} channel(s); channel {channel} does not exist")
+            ch = channels[channel]
+        uniform = getattr(ch, "is_uniform", True) is not False
+        if ch.dim != 2:
+            kind = "line scan" if uniform else "non-uniform line scan"
+            raise SurfaceError(
+                f"{p.name} holds a {kind} ({ch.dim}-D data); a 2-D height map on a uniform grid is needed"
+            )
+        if not uniform:
+            raise SurfaceError(f"{p.name} is not on a uniform grid; resample it first")
+        file_unit = ch.unit
+        if file_unit is not None and height_unit is not None:
+            raise SurfaceError(
+                f"{p.name} stores its length unit ({file_unit}); a height unit can only be given for files without one"
+            )
+        if ch.physical_sizes is not None and physical_size_m is not None:
+            raise SurfaceError(f"{p.name} stores its physical size; a size can only be given for files without one")
+        unit = file_unit if file_unit is not None else height_unit
+        if unit is None:
+            raise SurfaceError(f"{p.name} does not store a length unit; give it (command line: --height-unit)")
+        factor = _unit_factor(str(unit), f"{p.name}")
+        kwargs: dict[str, Any] = {}
+        if ch.physical_sizes is None:
+            if physical_size_m is None:
+                raise SurfaceError(
+                    f"{p.name} does not store its physical size; give it (command line: --size-um LX:LY)"
+                )
+            kwargs["physical_sizes"] = (physical_size_m[0] / factor, physical_size_m[1] / factor)
+        if file_unit is None:
+            kwargs["unit"] = str(unit)
+        try:
+            topo = reader.topography(channel_index=ch.index, **kwargs)
+        except Exception as exc:
+            raise SurfaceError(f"cannot read {p.name}: {_one_line(exc)}") from None
+        if topo.dim != 2 or not topo.is_uniform:
+            raise SurfaceError(f"{p.name} is not a height map on a uniform 2-D grid")
+        heights = np.ma.asarray(topo.heights(), dtype=np.float64)
+        sizes = topo.physical_sizes
+    info.update(
+        {
+            "reader": type(reader).__name__,
+            "file_unit": None if file_unit is None else str(file_unit),
+            "height_unit": str(unit),
+        }
+    )
+    return _finish(
+        np.ma.masked_invalid(heights * factor),
+        physical_size_m=(float(sizes[0]) * factor, float(sizes[1]) * factor),
+        fill_undefined=fill_undefined,
+        source=str(p),
+        info=info,
+    )
+
+
+def _finish(
+    masked: np.ma.MaskedArray[Any, Any],
+    *,
+    physical_size_m: tuple[float, float],
+    fill_undefined: bool,
+    source: str,
+    info: dict[str, Any],
+) -> Surface:
+    """Report, fill or refuse undefined points; return a NaN-free :class:`Surface`."""
+    if masked.ndim != 2:
+        raise SurfaceError(f"a surface needs a 2-D height map, got {masked.ndim} dimension(s)")
+    mask = np.ma.getmaskarray(masked)
+    n_undefined = int(np.count_nonzero(mask))
+    info["n_undefined"] = n_undefined
+    name = Path(source).name if source != "array" else "the height map"
+    if n_undefined:
+        fraction = n_undefined / mask.size
+        if not fill_undefined:
+            raise SurfaceError(
+                f"{name} has {n_undefined} undefined point(s) ({100 * fraction:.3g} % of "
+                f"{mask.size}); fill them by harmonic interpolation (--fill-undefined) or "
+                "crop the measurement"
+            )
+        if n_undefined == mask.size:
+            raise SurfaceError(f"{name} has no defined point at all")
+        filled = _fill_harmonic(masked, physical_size_m)
+        info["undefined_fraction"] = fraction
+    else:
+        filled = np.ma.getdata(masked).astype(np.float64)
+    return Surface(
+        heights_m=filled,
+        physical_size_m=physical_size_m,
+        source=source,
+        n_undefined_filled=n_undefined,
+        info=info,
+    )
+
+
+def _fill_harmonic(masked: np.ma.MaskedArray[Any, Any], physical_size_m: tuple[float, float]) -> FloatArray:
+    """Harmonic interpolation of the masked points (SurfaceTopography, non-periodic)."""
+    from SurfaceTopography import Topography
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        topo = Topography(masked, physical_size_m, unit="m", periodic=False)
+        filled = np.ma.getdata(topo.interpolate_undefined_data().heights())
+    out = np.asarray(filled, dtype=np.float64)
+    if not np.all(np.isfinite(out)):  # pragma: no cover - SurfaceTopography guarantees this
+        raise SurfaceError("harmonic interpolation left undefined points")
+    return out
+
+
+def _one_line(exc: BaseException) -> str:
+    text = " ".join(str(exc).split())
+    if len(text) > 200:
+        text = text[:197] + "..."
+    return f"{type(exc).__name__}: {text}" if text else type(exc).__name__

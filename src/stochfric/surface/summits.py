@@ -1,0 +1,165 @@
+"""Summits (asperity tips) and their radii (METHOD.md §1.3–1.4, thesis 3.1.1, eq. 3.1).
+
+Summit rules (strict inequalities, interior points only):
+
+* ``"thesis"`` (default, thesis 3.1.1): ``z(i,j)`` is higher than the *two* points on each
+  side along x and along y: ``z(i,j) > z(i±1,j), z(i±2,j), z(i,j±1), z(i,j±2)``
+  (8 comparisons; points within 2 of the border are not candidates).
+* ``"8-neighbour"``: the common rule — higher than all 8 nearest neighbours (including the
+  diagonals; points on the border are not candidates).
+
+Summit radius (3.1, sign misprint fixed): ``κ = ½(∂²z/∂x² + ∂²z/∂y²)`` by central
+differences on the grid, ``β = −1/κ``.  Both rules require ``z(i,j) > z(i±1,j)`` and
+``z(i,j) > z(i,j±1)``, so both second differences are strictly negative and ``κ < 0`` at
+every summit found.  The code still guards the general case: a candidate with ``κ >= 0``
+(flat or saddle-like) gets no radius, is *excluded* and *counted* in
+``Summits.n_excluded_flat``.  Plateaus (the maximum shared by two or more equal points, as in
+quantised or saturated data) never pass a strict rule; their tops are counted in
+``Summits.n_plateau`` so that a user sees how much was lost.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from stochfric.surface.io import Surface, SurfaceError
+
+__all__ = ["SUMMIT_RULES", "SummitRule", "Summits", "find_summits", "summits_of"]
+
+SummitRule = Literal["thesis", "8-neighbour"]
+SUMMIT_RULES: tuple[str, ...] = ("thesis", "8-neighbour")
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.intp]
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class Summits:
+    """Summits of one surface.
+
+    Attributes
+    ----------
+    heights_m:
+        Summit heights ``z_s`` [m] (in the surface's height datum).
+    radius_m:
+        Summit radii ``β = −1/κ`` [m] (3.1), all > 0.
+    i, j:
+        Grid indices of the summits (x, y).
+    rule:
+        The summit rule used.
+    n_excluded_flat:
+        Candidates excluded because ``κ >= 0`` (flat / saddle); 0 for the strict rules.
+    n_plateau:
+        Plateau tops: candidates not lower than any compared neighbour, tied with at least
+        one and higher than at least one; not counted as summits.
+    area_m2:
+        Nominal area of the surface they were found on [m²] (for the summit density).
+    """
+
+    heights_m: FloatArray
+    radius_m: FloatArray
+    i: IntArray
+    j: IntArray
+    rule: str
+    n_excluded_flat: int
+    n_plateau: int
+    area_m2: float
+
+    @property
+    def count(self) -> int:
+        """Number of summits."""
+        return int(self.heights_m.size)
+
+    @property
+    def density_per_m2(self) -> float:
+        """Summit density [1/m²]: count / nominal area."""
+        return self.count / self.area_m2
+
+
+def _neighbour_offsets(rule: str) -> list[tuple[int, int]]:
+    if rule == "thesis":
+        return [(-2, 0), (-1, 0), (1, 0), (2, 0), (0, -2), (0, -1), (0, 1), (0, 2)]
+    if rule == "8-neighbour":
+        return [(di, dj) for di in (-1, 0, 1) for dj in (-1, 0, 1) if (di, dj) != (0, 0)]
+    raise SurfaceError(f"unknown summit rule {rule!r}; use one of {', '.join(SUMMIT_RULES)}")
+
+
+def find_summits(
+    heights_m: npt.ArrayLike,
+    grid_spacing_m: tuple[float, float],
+    *,
+    rule: str = "thesis",
+    area_m2: float | None = None,
+) -> Summits:
+    """Find summits and their radii on a uniform grid (thesis 3.1.1, eq. 3.1).
+
+    Parameters
+    ----------
+    heights_m:
+        ``z[i, j]`` [m], shape ``(nx, ny)``.
+    grid_spacing_m:
+        ``(Δx, Δy)`` [m].
+    rule:
+        ``"thesis"`` or ``"8-neighbour"`` (see the module docstring).
+    area_m2:
+        Nominal area [m²] for the density; default ``nx Δx · ny Δy``.
+    """
+    z = np.asarray(heights_m, dtype=np.float64)
+    if z.ndim != 2:
+        raise SurfaceError(f"summits need a 2-D height map, got {z.ndim} dimension(s)")
+    offsets = _neighbour_offsets(rule)
+    m = max(max(abs(di), abs(dj)) for di, dj in offsets)
+    nx, ny = z.shape
+    dx, dy = float(grid_spacing_m[0]), float(grid_spacing_m[1])
+    if not (dx > 0 and dy > 0):
+        raise SurfaceError(f"grid spacing must be > 0, got {grid_spacing_m!r}")
+    area = float(area_m2) if area_m2 is not None else nx * dx * ny * dy
+    empty_f = np.empty(0, dtype=np.float64)
+    empty_i = np.empty(0, dtype=np.intp)
+    if nx <= 2 * m or ny <= 2 * m:
+        return Summits(
+            heights_m=empty_f, radius_m=empty_f, i=empty_i, j=empty_i, rule=rule,
+            n_excluded_flat=0, n_plateau=0, area_m2=area,
+        )  # fmt: skip
+    centre = z[m : nx - m, m : ny - m]
+    strict = np.ones(centre.shape, dtype=bool)
+    weak = np.ones(centre.shape, dtype=bool)
+    above_some = np.zeros(centre.shape, dtype=bool)
+    for di, dj in offsets:
+        other = z[m + di : nx - m + di, m + dj : ny - m + dj]
+        gt = centre > other
+        strict &= gt
+        above_some |= gt
+        weak &= centre >= other
+    # plateau tops: not lower than any neighbour, tied with one, higher than another
+    # (points inside a perfectly flat region are not tops)
+    n_plateau = int(np.count_nonzero(weak & above_some & ~strict))
+    ci, cj = np.nonzero(strict)
+    i = (ci + m).astype(np.intp)
+    j = (cj + m).astype(np.intp)
+    zc = z[i, j]
+    d2x = (z[i + 1, j] - 2.0 * zc + z[i - 1, j]) / (dx * dx)
+    d2y = (z[i, j + 1] - 2.0 * zc + z[i, j - 1]) / (dy * dy)
+    kappa = 0.5 * (d2x + d2y)  # (3.1)
+    ok = kappa < 0.0
+    n_excluded = int(np.count_nonzero(~ok))
+    beta = -1.0 / kappa[ok]  # β = −1/κ (METHOD.md erratum 1)
+    return Summits(
+        heights_m=zc[ok],
+        radius_m=beta,
+        i=i[ok],
+        j=j[ok],
+        rule=rule,
+        n_excluded_flat=n_excluded,
+        n_plateau=n_plateau,
+        area_m2=area,
+    )
+
+
+def summits_of(surface: Surface, *, rule: str = "thesis") -> Summits:
+    """:func:`find_summits` on a :class:`~stochfric.surface.io.Surface`."""
+    return find_summits(surface.heights_m, surface.grid_spacing_m, rule=rule, area_m2=surface.nominal_area_m2)
