@@ -17,6 +17,7 @@ once per run from a friction-process model, §5.2; integrators ``euler``, ``accu
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 import warnings
@@ -28,6 +29,7 @@ from typing import Any, Protocol
 import numpy as np
 import numpy.typing as npt
 
+from ..io_utils import package_versions
 from ..random import SeedLike, as_seed_sequence
 from . import accurate as _acc
 from . import kernels as _k
@@ -47,6 +49,12 @@ DT_REFUSE = 0.25
 #: unforced, a deviation is visible at 0.05).
 DT_WARN_FORCED = 0.01
 DT_WARN_UNFORCED = 0.02
+
+
+@functools.cache
+def _versions() -> tuple[tuple[str, str], ...]:
+    """Package versions, read once per process (``importlib.metadata`` costs ~7 ms a call)."""
+    return tuple(package_versions().items())
 
 
 class SimulationWarningCategory(UserWarning):
@@ -264,8 +272,9 @@ def simulate(
     max_events:
         Capacity for X_gh per trajectory (default ``2 τ_end + 16``).
     workers, batch_size:
-        Threads (default: all cores) and trajectories per compiled call; they change the
-        speed, never the numbers.
+        Threads (default: all cores) and the most trajectories per compiled call (fewer
+        when needed to give every thread about four batches); they change the speed,
+        never the numbers.
     rtol, atol, max_step:
         Tolerances of the ``accurate`` integrator.
     progress:
@@ -349,7 +358,10 @@ def simulate(
         sets = idx // runs
         rr = idx % runs
         b = hi - lo
-        dw = np.zeros((b, nsteps if noise == _k.NOISE_WHITE else 1))
+        if noise == _k.NOISE_WHITE:
+            dw = np.empty((b, nsteps))  # every row is filled below
+        else:
+            dw = np.zeros((b, 1))
         proc = np.zeros((b, n_proc_len))
         nproc = np.full(b, n_proc_len, dtype=np.int64)
         if noise != _k.NOISE_NONE:
@@ -385,10 +397,18 @@ def simulate(
                 traj[lo:hi], save_every, diag[lo:hi],
             )
 
-    bounds = [(lo, min(lo + batch_size, n_traj)) for lo in range(0, n_traj, batch_size)]
     nworkers = workers if workers is not None else (os.cpu_count() or 1)
     if nworkers < 1:
         raise ParameterError(f"workers must be >= 1, got {workers}")
+    if isinstance(batch_size, bool) or not isinstance(batch_size, int | np.integer) \
+            or batch_size < 1:
+        raise ParameterError(f"batch_size must be a positive integer, got {batch_size!r}")
+    # at most batch_size per call, but at least ~4 batches per worker so that the threads
+    # stay balanced on small ensembles (the numbers never depend on the batching)
+    bsz = int(batch_size)
+    if nworkers > 1:
+        bsz = max(1, min(bsz, -(-n_traj // (4 * nworkers))))
+    bounds = [(lo, min(lo + bsz, n_traj)) for lo in range(0, n_traj, bsz)]
     done = 0
     if nworkers == 1 or len(bounds) == 1:
         for lo, hi in bounds:
@@ -434,6 +454,7 @@ def simulate(
         tau_end=tau_end,
         runs=runs,
         seed_entropy=int(root.entropy),  # type: ignore[arg-type]
+        versions=dict(_versions()),
         path_coordinate=path_coordinate,
         x0=plan.x0,
         laws=[lw.to_dict() for lw in plan.laws],
