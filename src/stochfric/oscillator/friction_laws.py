@@ -40,39 +40,48 @@ SHAPES: dict[str, int] = {
 N_PARAMS = {SHAPE_CONSTANT: 1, SHAPE_RATIONAL: 4, SHAPE_TABULATED: -1}
 
 
-@numba.njit(cache=True, nogil=True)
-def mu_kinetic(shape: int, v_abs: float, p: npt.NDArray[np.float64]) -> float:  # pragma: no cover
-    """Kinetic friction coefficient μ(|v_rel|) for ``|v_rel|`` in m/s.
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def mu_kinetic_row(shape: int, v_abs: float, p: npt.NDArray[np.float64], r: int) -> float:  # pragma: no cover
+    """Kinetic friction coefficient μ(|v_rel|) for ``|v_rel|`` in m/s, parameters ``p[r, :]``.
 
     * ``constant``: ``μ = p0`` (laws I and II).
     * ``rational``: ``μ = p0/(1 + p1|v|) + p2 + p3 v²`` (law III with
       ``p = (μ0 − μ1, 1.42, μ1, 0.01)``; eq. 4.13 with ``p = (μ_fit, 1.42, μ0 − μ_fit, 0.01)``).
     * ``tabulated``: ``p = (m, v_1..v_m, μ_1..μ_m)``, linear interpolation in ``|v|``,
       constant beyond the ends.
+
+    Row-indexed so that compiled batch kernels read a trajectory's law without creating
+    an array view (and its reference-count traffic) in every step.
     """
     if shape == 0:
-        return p[0]
+        return p[r, 0]
     elif shape == 1:
-        return p[0] / (1.0 + p[1] * v_abs) + p[2] + p[3] * v_abs * v_abs
+        return p[r, 0] / (1.0 + p[r, 1] * v_abs) + p[r, 2] + p[r, 3] * v_abs * v_abs
     else:
-        m = int(p[0])
-        if v_abs <= p[1]:
-            return p[1 + m]
-        if v_abs >= p[m]:
-            return p[2 * m]
+        m = int(p[r, 0])
+        if v_abs <= p[r, 1]:
+            return p[r, 1 + m]
+        if v_abs >= p[r, m]:
+            return p[r, 2 * m]
         lo = 1
         hi = m
         while hi - lo > 1:
             mid = (lo + hi) // 2
-            if p[mid] <= v_abs:
+            if p[r, mid] <= v_abs:
                 lo = mid
             else:
                 hi = mid
-        w = (v_abs - p[lo]) / (p[hi] - p[lo])
-        return (1.0 - w) * p[lo + m] + w * p[hi + m]
+        w = (v_abs - p[r, lo]) / (p[r, hi] - p[r, lo])
+        return (1.0 - w) * p[r, lo + m] + w * p[r, hi + m]
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def mu_kinetic(shape: int, v_abs: float, p: npt.NDArray[np.float64]) -> float:  # pragma: no cover
+    """:func:`mu_kinetic_row` for a 1-D parameter vector ``p``."""
+    return mu_kinetic_row(shape, v_abs, p.reshape((1, p.shape[0])), 0)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def dmu_kinetic(shape: int, v_abs: float, p: npt.NDArray[np.float64]) -> float:  # pragma: no cover
     """Derivative dμ/d|v| of :func:`mu_kinetic` [s/m] (one-sided at table nodes)."""
     if shape == 0:
