@@ -431,8 +431,9 @@ def run_fixed_step_batch(
                 traj[j, 0, 2] = x2
         for k in range(nsteps):
             save = nsave > 0 and (k + 1) % decimate == 0
-            for jj in range(ng):
-                j = g0 + jj
+            for jj0 in range(ng):
+                jj = np.uint64(jj0)  # unsigned: no negative-index wraparound code
+                j = np.uint64(g0 + jj0)
                 # fast paths: a plain stick or slip step that crosses no switching condition,
                 # with the arithmetic of the first pass of _advance, committed only if no
                 # event occurs in the step (otherwise _advance redoes it from the state)
@@ -484,7 +485,7 @@ def run_fixed_step_batch(
                             fs[jj, _F_S] = s
                             done = True
                 if not done:
-                    _advance(jj, j, k, dt, fs, ist, cs, shapes, lawp, white, contact, milstein,
+                    _advance(jj0, g0 + jj0, k, dt, fs, ist, cs, shapes, lawp, white, contact, milstein,
                              mass_path, noise, dw, proc, n_proc, xgh, tgh)
                 if save:
                     isave = ist[jj, _I_ISAVE]
