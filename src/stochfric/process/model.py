@@ -423,6 +423,24 @@ def process_model_from_dict(data: dict[str, Any]) -> FrictionProcessModel:
     raise ValueError(f"unknown process model kind {kind!r}; known: ['band_limited']")
 
 
+def load_process_model(path: str | os.PathLike[str]) -> FrictionProcessModel:
+    """Load any friction-process model file written by a model's ``save`` (JSON).
+
+    Raises ``ValueError`` with the file name for a file that is not a process model.
+    """
+    try:
+        with open(path, encoding="utf-8") as fh:
+            data = json.load(fh)
+    except (OSError, json.JSONDecodeError) as exc:
+        raise ValueError(f"cannot read friction-process model {path}: {exc}") from None
+    if not isinstance(data, dict):
+        raise ValueError(f"{path} is not a friction-process model file")
+    try:
+        return process_model_from_dict(data)
+    except (KeyError, TypeError) as exc:
+        raise ValueError(f"{path} is not a valid friction-process model: missing {exc}") from None
+
+
 def _atomic_write_json(path: Path, payload: dict[str, Any]) -> Path:
     directory = path.parent if str(path.parent) else Path(".")
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
