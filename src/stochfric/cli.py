@@ -188,7 +188,7 @@ def simulate(
     friction_law: Annotated[
         LawChoice | None,
         typer.Option(help="Table 4.1 law or the pressure law (4.13); default: pressure with a "
-                     "preset, III otherwise."),
+                     "preset or process model, III otherwise."),
     ] = None,
     normal_force: Annotated[
         float | None, typer.Option(help="Normal force N [newtons] (needs stiffness).")
@@ -233,6 +233,11 @@ def simulate(
     path_coordinate: Annotated[
         PathChoice, typer.Option(help="Where the contact process is read (METHOD §7.7).")
     ] = PathChoice.mass,
+    process_file: Annotated[
+        Path | None,
+        typer.Option("--process", help="Friction-process model file (JSON, `stochfric "
+                     "friction-process`); replaces the preset's model."),
+    ] = None,
     process_length: Annotated[
         float | None, typer.Option(help="Length of the generated process [m].")
     ] = None,
@@ -260,15 +265,24 @@ def simulate(
         )
         if forcing_frequency is not None and eta is not None and forcing_frequency != eta:
             raise ParameterError("--forcing-frequency and --eta are the same η; give one")
-        process = pre.process if pre is not None else None
+        process: Any = pre.process if pre is not None else None
+        if process_file is not None:
+            from .process.model import load_process_model
+
+            process = load_process_model(process_file)
         if process is not None and process_length is not None:
-            process = replace(process, length=process_length)
-        law_name = friction_law.value if friction_law else ("pressure" if pre else "III")
+            # keep the grid spanning whole periods: n = round(length/dx) points of dx = length/n
+            npts = max(2, round(process_length / process.dx))
+            process = replace(process, length=process_length, dx=process_length / npts)
+        # default: the pressure law (4.13) whenever a process model gives E[μ](p)
+        law_name = friction_law.value if friction_law else (
+            "pressure" if process is not None and params.pressure is not None else "III")
         if law_name == "pressure":
             if process is None or params.pressure is None:
                 raise ParameterError(
                     "the pressure law (4.13) needs E[μ](p) from a friction-process model and the "
-                    "pressure p = N/A: use --preset (a user's model file arrives with issue 4)"
+                    "pressure p = N/A: use --preset, or --process FILE with physical parameters and "
+                    "--contact-area"
                 )
             law = pressure_law(process.mean(params.pressure))
         else:
@@ -277,7 +291,7 @@ def simulate(
             model is ModelChoice.white and sigma_zeta is not None
         ):
             raise ParameterError(
-                f"the {model.value} model needs a friction-process model: use --preset"
+                f"the {model.value} model needs a friction-process model: use --preset or --process FILE"
                 + (" or --sigma-zeta" if model is ModelChoice.white else "")
             )
         te = tau_end if tau_end is not None else (pre.tau_end if pre else 50.0)
