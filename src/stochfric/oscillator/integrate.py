@@ -309,8 +309,6 @@ def simulate(
     law_spec: LawSpec = law_III() if law is None else law
     plan = _plan(plist, model, law_spec, process, sigma_zeta, x0, tau_end, dt)
     root = as_seed_sequence(seed)
-    if model == "deterministic" and runs > 1:
-        pass  # identical runs; allowed (cheap) so that studies can treat models alike
 
     npar = len(plist)
     n_traj = npar * runs
