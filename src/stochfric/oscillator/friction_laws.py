@@ -41,7 +41,9 @@ N_PARAMS = {SHAPE_CONSTANT: 1, SHAPE_RATIONAL: 4, SHAPE_TABULATED: -1}
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def mu_kinetic_row(shape: int, v_abs: float, p: npt.NDArray[np.float64], r: int) -> float:  # pragma: no cover
+def mu_kinetic_row(
+    shape: int, v_abs: float, p: npt.NDArray[np.float64], r: int | np.uint64
+) -> float:  # pragma: no cover
     """Kinetic friction coefficient μ(|v_rel|) for ``|v_rel|`` in m/s, parameters ``p[r, :]``.
 
     * ``constant``: ``μ = p0`` (laws I and II).

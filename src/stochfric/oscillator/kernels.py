@@ -84,7 +84,7 @@ N_DIAG = 9
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def process_value_row(
-    proc: npt.NDArray[np.float64], r: int, n_proc: int, dx: float, path: float
+    proc: npt.NDArray[np.float64], r: int | np.uint64, n_proc: int, dx: float, path: float
 ) -> float:  # pragma: no cover
     """μ̂ of realisation ``proc[r]`` at path coordinate ``path``: linear interpolation between
     grid points ``j·dx`` and periodic continuation with period ``n_proc·dx`` (thesis 4.1.3)."""
@@ -432,68 +432,68 @@ def run_fixed_step_batch(
         for k in range(nsteps):
             save = nsave > 0 and (k + 1) % decimate == 0
             for jj0 in range(ng):
-                jj = np.uint64(jj0)  # unsigned: no negative-index wraparound code
-                j = np.uint64(g0 + jj0)
+                uj = np.uint64(jj0)  # unsigned indices: no negative-index wrap-around code
+                u = np.uint64(g0 + jj0)
                 # fast paths: a plain stick or slip step that crosses no switching condition,
                 # with the arithmetic of the first pass of _advance, committed only if no
                 # event occurs in the step (otherwise _advance redoes it from the state)
                 done = False
-                if ist[jj, _I_STICK] != 0:
-                    gamma0 = cs[jj, _C_GAMMA0]
-                    x1n = fs[jj, _F_X1] + gamma0 * dt
-                    fn = _stick_force_hoisted(x1n, fs[jj, _F_TAU] + dt, cs[jj, _C_C2],
-                                              cs[jj, _C_QQ], cs[jj, _C_X30], cs[jj, _C_ETA],
-                                              cs[jj, _C_FORCED] != 0.0)
-                    if abs(fn) <= fs[jj, _F_LIMB]:
-                        fs[jj, _F_X1] = x1n
-                        fs[jj, _F_X2] = gamma0
-                        fs[jj, _F_TAU] = (k + 1) * dt
+                if ist[uj, _I_STICK] != 0:
+                    gamma0 = cs[uj, _C_GAMMA0]
+                    x1n = fs[uj, _F_X1] + gamma0 * dt
+                    fn = _stick_force_hoisted(x1n, fs[uj, _F_TAU] + dt, cs[uj, _C_C2],
+                                              cs[uj, _C_QQ], cs[uj, _C_X30], cs[uj, _C_ETA],
+                                              cs[uj, _C_FORCED] != 0.0)
+                    if abs(fn) <= fs[uj, _F_LIMB]:
+                        fs[uj, _F_X1] = x1n
+                        fs[uj, _F_X2] = gamma0
+                        fs[uj, _F_TAU] = (k + 1) * dt
                         done = True
                 else:
-                    gamma0 = cs[jj, _C_GAMMA0]
-                    x1 = fs[jj, _F_X1]
-                    x2 = fs[jj, _F_X2]
+                    gamma0 = cs[uj, _C_GAMMA0]
+                    x1 = fs[uj, _F_X1]
+                    x2 = fs[uj, _F_X2]
                     vr = gamma0 - x2
                     if vr != 0.0:
                         s = 1.0 if vr > 0.0 else -1.0
                         avr = abs(vr)
-                        nn = cs[jj, _C_NN]
-                        path = fs[jj, _F_PATH]
-                        mu = mu_kinetic_row(shapes[j], cs[jj, _C_VSCALE] * avr, lawp, j)
+                        nn = cs[uj, _C_NN]
+                        path = fs[uj, _F_PATH]
+                        mu = mu_kinetic_row(shapes[u], cs[uj, _C_VSCALE] * avr, lawp, u)
                         if contact:
-                            mu += process_value_row(proc, j, n_proc[j], cs[jj, _C_PDX], path)
-                        drift = -x1 - cs[jj, _C_DD2] * x2 + nn * mu * s
-                        if cs[jj, _C_FORCED] != 0.0:
-                            drift += cs[jj, _C_QQ] * math.cos(cs[jj, _C_X30]
-                                                             + cs[jj, _C_ETA] * fs[jj, _F_TAU])
+                            mu += process_value_row(proc, u, n_proc[u], cs[uj, _C_PDX], path)
+                        drift = -x1 - cs[uj, _C_DD2] * x2 + nn * mu * s
+                        if cs[uj, _C_FORCED] != 0.0:
+                            drift += cs[uj, _C_QQ] * math.cos(cs[uj, _C_X30]
+                                                             + cs[uj, _C_ETA] * fs[uj, _F_TAU])
                         x1n = x1 + x2 * dt
                         if white:
-                            ito = cs[jj, _C_ITO]
-                            b = nn * s * math.sqrt(cs[jj, _C_SIGMA] * avr)
+                            ito = cs[uj, _C_ITO]
+                            b = nn * s * math.sqrt(cs[uj, _C_SIGMA] * avr)
                             if milstein:
                                 x2n = milstein_step(x2, drift + s * ito, b, 2.0 * s * ito,
-                                                    dw[j, k], dt)
+                                                    dw[u, k], dt)
                             else:
-                                x2n = em_step(x2, drift + s * ito, b, dw[j, k], dt)
+                                x2n = em_step(x2, drift + s * ito, b, dw[u, k], dt)
                         else:
                             x2n = x2 + drift * dt
                         if (gamma0 - x2n) * s > 0.0:
-                            fs[jj, _F_X1] = x1n
-                            fs[jj, _F_X2] = x2n
-                            fs[jj, _F_PATH] = path + (abs(x1n - x1) if mass_path else avr * dt)
-                            fs[jj, _F_TAU] = (k + 1) * dt
-                            fs[jj, _F_S] = s
+                            fs[uj, _F_X1] = x1n
+                            fs[uj, _F_X2] = x2n
+                            fs[uj, _F_PATH] = path + (abs(x1n - x1) if mass_path else avr * dt)
+                            fs[uj, _F_TAU] = (k + 1) * dt
+                            fs[uj, _F_S] = s
                             done = True
                 if not done:
                     _advance(jj0, g0 + jj0, k, dt, fs, ist, cs, shapes, lawp, white, contact, milstein,
                              mass_path, noise, dw, proc, n_proc, xgh, tgh)
                 if save:
-                    isave = ist[jj, _I_ISAVE]
+                    isave = ist[uj, _I_ISAVE]
                     if isave < nsave:
-                        traj[j, isave, 0] = fs[jj, _F_TAU]
-                        traj[j, isave, 1] = fs[jj, _F_X1]
-                        traj[j, isave, 2] = fs[jj, _F_X2]
-                        ist[jj, _I_ISAVE] = isave + 1
+                        traj[u, isave, 0] = fs[uj, _F_TAU]
+                        traj[u, isave, 1] = fs[uj, _F_X1]
+                        traj[u, isave, 2] = fs[uj, _F_X2]
+                        ist[uj, _I_ISAVE] = isave + 1
         for jj in range(ng):
             j = g0 + jj
             counts[j] = ist[jj, _I_M]
