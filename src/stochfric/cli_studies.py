@@ -1,0 +1,326 @@
+"""Command line for the studies: ``stochfric study {normal-force,damping,forcing,lyapunov}``,
+``stochfric run study.toml`` and ``stochfric reproduce``.  Parse, call, print; no physics.
+
+Input errors end with a one-line message and exit code 2.  ``--json`` prints one JSON
+object (no progress bar); otherwise a rich progress bar with the time remaining runs on
+stderr and a short table is printed.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import time
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Annotated, Any
+
+import typer
+from pydantic import ValidationError
+
+from .studies.common import StudyError
+
+ModelsOpt = Annotated[str | None, typer.Option("--models", help="Comma-separated: deterministic,white,contact.")]
+PresetOpt = Annotated[str, typer.Option("--preset", help="Thesis case: brake | sheet.")]
+ProcessOpt = Annotated[Path | None, typer.Option("--process", help="Friction-process model file (JSON).")]
+RunsOpt = Annotated[int | None, typer.Option("--runs", help="Monte Carlo runs per cell.")]
+SeedOpt = Annotated[int, typer.Option("--seed", min=0, help="Root seed.")]
+TauOpt = Annotated[float | None, typer.Option("--tau-end", help="Simulated time τ_end (default: preset).")]
+DtOpt = Annotated[float | None, typer.Option("--dt", help="Time step Δτ (default: preset).")]
+IntOpt = Annotated[str, typer.Option("--integrator", help="euler | accurate (deterministic, contact).")]
+WinOpt = Annotated[float, typer.Option("--stick-window", help="Stick window: τ > w·τ_end counts (default 0.5).")]
+ExecOpt = Annotated[str, typer.Option("--executor", help="serial | processes (local) ; see --scheduler.")]
+WorkersOpt = Annotated[int | None, typer.Option("--workers", help="Processes (or threads for serial).")]
+SchedOpt = Annotated[str | None, typer.Option("--scheduler", help="Dask scheduler address (uses Dask).")]
+CkptOpt = Annotated[Path | None, typer.Option("--checkpoint", help="Checkpoint directory (resume).")]
+OutOpt = Annotated[Path | None, typer.Option("--out", help="Write <study>.nc and <study>.json here.")]
+ReportOpt = Annotated[Path | None, typer.Option("--report", help="Write an HTML report into this directory.")]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON object.")]
+
+
+def _fail(message: str) -> typer.Exit:
+    typer.echo(f"error: {message}", err=True)
+    return typer.Exit(code=2)
+
+
+@contextlib.contextmanager
+def _progress(enabled: bool, label: str) -> Iterator[Callable[[int, int], None] | None]:
+    if not enabled:
+        yield None
+        return
+    from rich.console import Console
+    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+    prog = Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total} tasks"),
+                    TimeElapsedColumn(), TimeRemainingColumn(), console=Console(stderr=True), transient=True)
+    task = prog.add_task(label, total=None)
+
+    def cb(done: int, total: int) -> None:
+        prog.update(task, completed=done, total=total)
+
+    with prog:
+        yield cb
+
+
+def _models(spec: str | None) -> dict[str, Any]:
+    if spec is None:
+        return {}
+    return {"models": tuple(m.strip() for m in spec.split(",") if m.strip())}
+
+
+def _common(preset: str, process: Path | None, runs: int | None, seed: int, tau_end: float | None,
+            dt: float | None, integrator: str, stick_window: float, models: str | None) -> dict[str, Any]:
+    d: dict[str, Any] = {"preset": preset, "seed": seed, "integrator": integrator, "stick_window": stick_window,
+                         **_models(models)}
+    if process is not None:
+        d["process_file"] = str(process)
+    if runs is not None:
+        d["runs"] = runs
+    if tau_end is not None:
+        d["tau_end"] = tau_end
+    if dt is not None:
+        d["dt"] = dt
+    return d
+
+
+def _validate(kind: str, fields: dict[str, Any]) -> Any:
+    from .studies import config as c
+    from .studies.run_config import _format_errors
+
+    cls = {"damping": c.DampingConfig, "forcing": c.ForcingConfig, "lyapunov": c.LyapunovConfig,
+           "normal-force": c.NormalForceConfig}[kind]
+    try:
+        return cls(**{k: v for k, v in fields.items() if v is not None})
+    except ValidationError as exc:
+        raise StudyError(_format_errors(exc)) from None
+
+
+def _execute(cfg: Any, executor: str, workers: int | None, scheduler: str | None, checkpoint: Path | None,
+             out: Path | None, report: Path | None, json_out: bool) -> None:
+    from .studies.executors import make_executor
+    from .studies.reproduce import run_study
+
+    try:
+        ex = make_executor(executor, workers=workers, scheduler=scheduler)
+        t0 = time.perf_counter()
+        with _progress(not json_out, f"{cfg.kind} ({cfg.preset})") as cb:
+            res = run_study(cfg, executor=ex, checkpoint=str(checkpoint) if checkpoint else None, progress=cb)
+        wall = time.perf_counter() - t0
+        files: list[str] = []
+        if out is not None:
+            files += [str(p) for p in res.save(out)]
+        if report is not None:
+            from .report.html import write_report
+
+            files.append(str(write_report([res], report, contact=False)))
+    except (StudyError, ValueError, OSError) as exc:
+        raise _fail(str(exc)) from None
+    payload = res.to_json_dict()
+    payload["wall_time_s"] = wall
+    payload["tasks"] = {"computed": res.stats.computed, "loaded_from_checkpoint": res.stats.loaded}
+    payload["files"] = files
+    if json_out:
+        typer.echo(json.dumps(payload, allow_nan=False))
+        return
+    _print_summary(res.kind, payload)
+
+
+def _print_summary(kind: str, s: dict[str, Any]) -> None:
+    from rich.console import Console
+    from rich.table import Table
+
+    from .report.html import READERS
+
+    con = Console()
+    con.print(f"[bold]stochfric study {kind}[/] preset={s.get('preset')} runs={s.get('runs')} seed={s.get('seed')} "
+              f"({s['wall_time_s']:.1f} s; tasks computed {s['tasks']['computed']}, "
+              f"from checkpoint {s['tasks']['loaded_from_checkpoint']})")
+    if kind == "damping":
+        t = Table(title="largest damping with stick-slip")
+        for col in ["N [N]", "D_H", "D_max^d", *[f"D_max^s {m} [lo, hi]" for m in s["d_max_stochastic"]]]:
+            t.add_column(col, justify="right")
+        for i, nf in enumerate(s["normal_force"]):
+            row = [f"{nf:g}", f"{s['d_hopf'][i]:.4g}", str(s.get("d_max_deterministic", ["—"] * 99)[i])]
+            for m in s["d_max_stochastic"]:
+                e = s["d_max_stochastic"][m][i]
+                row.append(f"{e['value']} [{e['interval'][0]}, {e['interval'][1] or '> grid'}]")
+            t.add_row(*row)
+        con.print(t)
+    _, reading = READERS[kind](s)
+    con.print(reading)
+    for w in s.get("warnings", []):
+        con.print(f"[yellow]warning[/] {w['code']} ×{w['count']}")
+    for f in s.get("files", []):
+        con.print(f"wrote {f}")
+
+
+def damping_command(
+    preset: PresetOpt = "brake",
+    normal_force: Annotated[str | None, typer.Option("--normal-force", help="N [N]: value, list or A:B:NUM.")] = None,
+    damping: Annotated[str, typer.Option("--damping", help="D grid START:STOP:NUM or list.")] = "0.05:0.25:41",
+    runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
+    tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler", stick_window: WinOpt = 0.5,
+    confidence: Annotated[float, typer.Option("--confidence", help="Clopper–Pearson level.")] = 0.95,
+    p_detect: Annotated[float, typer.Option("--p-detect", help="Tolerated stick probability for D_hi.")] = 0.1,
+    x0: Annotated[tuple[float, float] | None, typer.Option("--x0", help="Initial X1 X2 (default (0, γ0)).")] = None,
+    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
+    out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
+) -> None:
+    """Damping study: D_max^d, D_max^s (with interval), D_H, M_diff, M_quot (METHOD §6.2)."""
+    try:
+        cfg = _validate("damping", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
+                                              models),
+                                    "normal_forces": normal_force, "damping": damping, "confidence": confidence,
+                                    "p_detect": p_detect, "x0": x0})
+    except StudyError as exc:
+        raise _fail(str(exc)) from None
+    _execute(cfg, executor, workers, scheduler, checkpoint, out, report, json_out)
+
+
+def forcing_command(
+    preset: PresetOpt = "brake",
+    normal_force: Annotated[float | None, typer.Option("--normal-force", help="N [N] (default: preset).")] = None,
+    q: Annotated[str, typer.Option("--q", help="Forcing amplitudes q = Q/(cL), list.")] = "5e-5,5e-4",
+    eta: Annotated[str, typer.Option("--eta", help="η grid START:STOP:NUM or list.")] = "0:3:61",
+    damping: Annotated[float | None, typer.Option("--damping", help="D (default 5e-6).")] = None,
+    runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
+    tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler", stick_window: WinOpt = 0.5,
+    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
+    out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
+) -> None:
+    """Forcing study: bifurcation data, E[X_gh] ± σ over η, σ_contact/σ_white (METHOD §6.3)."""
+    try:
+        cfg = _validate("forcing", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
+                                              models),
+                                    "normal_force": normal_force, "forcing_q": q, "eta": eta, "damping": damping})
+    except StudyError as exc:
+        raise _fail(str(exc)) from None
+    _execute(cfg, executor, workers, scheduler, checkpoint, out, report, json_out)
+
+
+def lyapunov_command(
+    preset: PresetOpt = "brake",
+    normal_force: Annotated[str | None, typer.Option("--normal-force", help="N [N] list (default: preset).")] = None,
+    q: Annotated[str, typer.Option("--q", help="Forcing amplitudes q, list.")] = "5e-5,5e-4",
+    eta: Annotated[str, typer.Option("--eta", help="η grid.")] = "0.1:3:30",
+    perturbation: Annotated[float, typer.Option("--perturbation", help="δ added to x1(0) of the comparison run.")
+                            ] = 1e-6,
+    damping: Annotated[float | None, typer.Option("--damping", help="D (default 5e-6).")] = None,
+    runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
+    tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler",
+    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
+    out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
+) -> None:
+    """Largest Lyapunov exponent λ (4.43) / E[Λ] (4.44) over η and N (METHOD §6.4)."""
+    try:
+        cfg = _validate("lyapunov", {**_common(preset, process, runs, seed, tau_end, dt, integrator, 0.5, models),
+                                     "normal_forces": normal_force, "forcing_q": q, "eta": eta,
+                                     "perturbation": perturbation, "damping": damping})
+    except StudyError as exc:
+        raise _fail(str(exc)) from None
+    _execute(cfg, executor, workers, scheduler, checkpoint, out, report, json_out)
+
+
+def normal_force_command(
+    preset: PresetOpt = "brake",
+    normal_force: Annotated[str | None, typer.Option("--normal-force", help="N [N] list (default: preset).")] = None,
+    damping: Annotated[str | None, typer.Option("--damping", help="D list (default 5e-6 and the damped D).")] = None,
+    phase_runs: Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for phase diagrams.")] = 5,
+    runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
+    tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler", stick_window: WinOpt = 0.5,
+    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
+    out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
+) -> None:
+    """Normal-force study: phase diagrams, PDFs, E[X_gh] ± σ, VarK with SEs (METHOD §6.1)."""
+    try:
+        cfg = _validate("normal-force", {**_common(preset, process, runs, seed, tau_end, dt, integrator,
+                                                   stick_window, models),
+                                         "normal_forces": normal_force, "dampings": damping,
+                                         "phase_runs": phase_runs})
+    except StudyError as exc:
+        raise _fail(str(exc)) from None
+    _execute(cfg, executor, workers, scheduler, checkpoint, out, report, json_out)
+
+
+def run_command(
+    file: Annotated[Path, typer.Argument(help="Study file (TOML), see examples/study.toml.")],
+    json_out: JsonOpt = False,
+) -> None:
+    """Run the studies of a TOML file (validated; results, checkpoints and report as configured)."""
+    from .report.html import write_report
+    from .studies.executors import make_executor
+    from .studies.reproduce import run_study
+    from .studies.run_config import load_run_file
+
+    try:
+        rf = load_run_file(file)
+        ex = make_executor(rf.execution.executor if rf.execution.scheduler is None else "dask",
+                           workers=rf.execution.workers, scheduler=rf.execution.scheduler)
+        results = []
+        out = Path(rf.output.dir)
+        for i, cfg in enumerate(rf.study):
+            with _progress(not json_out, f"study[{i}] {cfg.kind} ({cfg.preset})") as cb:
+                res = run_study(cfg, executor=ex, checkpoint=rf.execution.checkpoint, progress=cb)
+            res.save(out / f"{i:02d}_{cfg.kind}_{cfg.preset}")
+            results.append(res)
+        index = write_report(results, out, contact=False) if rf.output.report else None
+    except (StudyError, ValueError, OSError) as exc:
+        raise _fail(str(exc)) from None
+    payload = {"studies": [r.to_json_dict() for r in results], "out": str(out),
+               "report": str(index) if index else None}
+    if json_out:
+        typer.echo(json.dumps(payload, allow_nan=False))
+        return
+    for r in results:
+        from .report.html import READERS
+
+        typer.echo(f"{r.kind} ({r.summary.get('preset')}): {READERS[r.kind](r.summary)[1]}")
+    typer.echo(f"results in {out}" + (f", report {index}" if index else ""))
+
+
+def reproduce_command(
+    quick: Annotated[bool, typer.Option("--quick", help="Coarse grids and few runs (< 3 min).")] = False,
+    out: Annotated[Path, typer.Option("--out", help="Output directory.")] = Path("reproduce"),
+    seed: SeedOpt = 2013,
+    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """All studies of thesis chapter 4 for brake and sheet, results and DIR/index.html."""
+    from .studies.executors import make_executor
+    from .studies.reproduce import reproduce
+
+    try:
+        ex = make_executor(executor, workers=workers, scheduler=scheduler)
+        if json_out:
+            results, timings = reproduce(out, quick=quick, seed=seed, executor=ex)
+        else:
+            with _progress(True, "reproduce") as cb:
+                def prog(label: str, d: int, n: int) -> None:
+                    if cb is not None:
+                        cb(d, n)
+                results, timings = reproduce(out, quick=quick, seed=seed, executor=ex, progress=prog)
+    except (StudyError, ValueError, OSError) as exc:
+        raise _fail(str(exc)) from None
+    payload = {"out": str(out), "report": str(out / "index.html"), "timings_s": timings,
+               "studies": [{"study": r.kind, "preset": r.summary.get("preset")} for r in results]}
+    if json_out:
+        typer.echo(json.dumps(payload))
+        return
+    from .report.html import READERS
+
+    for r in results:
+        typer.echo(f"{r.kind} ({r.summary.get('preset')}): {READERS[r.kind](r.summary)[1]}")
+    typer.echo(f"report {out / 'index.html'}; total {timings['total']:.1f} s")
+
+
+def register(app: typer.Typer) -> None:
+    """Add ``study {normal-force,damping,forcing,lyapunov}``, ``run`` and ``reproduce`` to ``app``."""
+    study = typer.Typer(help="Studies of thesis chapter 4 (METHOD §6): three friction models side by side.",
+                        no_args_is_help=True)
+    study.command("damping")(damping_command)
+    study.command("forcing")(forcing_command)
+    study.command("lyapunov")(lyapunov_command)
+    study.command("normal-force")(normal_force_command)
+    app.add_typer(study, name="study")
+    app.command("run")(run_command)
+    app.command("reproduce")(reproduce_command)

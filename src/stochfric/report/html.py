@@ -1,0 +1,273 @@
+"""One-page HTML report of the studies: ``DIR/index.html`` with PNG figures next to it.
+
+:func:`write_report` draws every figure of every study result, writes tables of the key
+numbers, a short computed reading of the results, and the parameters, seeds and package
+versions of each study.  A chapter-3 section analyses the shipped real surface
+(:func:`stochfric.surface.io.default_surface_path`) with the surface and contact code
+(METHOD §1–2).  **Hook for issue 4**: :func:`process_statistics_section` adds a section
+when a module ``stochfric.process.statistics`` with a ``report_section(directory)`` function
+exists (statistics of μ, a friction-process model from the surface); until then the
+report says that the section is pending.
+"""
+
+from __future__ import annotations
+
+import html
+import importlib
+import importlib.util
+import json
+import math
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from ..io_utils import package_versions, write_text_atomic
+from .study_figures import FIGURES
+
+_CSS = """
+body{font-family:system-ui,sans-serif;max-width:1150px;margin:2em auto;padding:0 1em;color:#222}
+h1{font-size:1.6em}h2{border-bottom:1px solid #ccc;padding-bottom:.2em;margin-top:2em}
+figure{margin:1em 0}figure img{max-width:100%;border:1px solid #eee}figcaption{font-size:.9em;color:#444}
+table{border-collapse:collapse;font-size:.85em;margin:.8em 0}td,th{border:1px solid #ccc;padding:.2em .5em;
+text-align:right}th{background:#f4f4f4}pre{background:#f7f7f7;padding:.6em;overflow-x:auto;font-size:.8em}
+.reading{background:#f3f8ff;border-left:4px solid #4a90d9;padding:.5em 1em}
+"""
+
+
+def _fmt(v: Any, spec: str = ".4g") -> str:
+    if v is None:
+        return "—"
+    if isinstance(v, float | np.floating):
+        return "—" if not math.isfinite(float(v)) else format(float(v), spec)
+    return html.escape(str(v))
+
+
+def _table(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
+    h = "".join(f"<th>{html.escape(str(c))}</th>" for c in header)
+    body = "".join("<tr>" + "".join(f"<td>{_fmt(c)}</td>" for c in row) + "</tr>" for row in rows)
+    return f"<table><tr>{h}</tr>{body}</table>"
+
+
+def _figure(path: Path, caption: str, directory: Path) -> str:
+    rel = path.relative_to(directory).as_posix()
+    return (f'<figure><img src="{html.escape(rel)}" alt="{html.escape(caption[:80])}">'
+            f"<figcaption>{html.escape(caption)}</figcaption></figure>")
+
+
+def _provenance(result: Any) -> str:
+    a = result.dataset.attrs
+    parts = []
+    for key in ("config_json", "setup_json", "executor_json", "versions_json"):
+        if key in a:
+            try:
+                txt = json.dumps(json.loads(a[key]), indent=1)
+            except ValueError:
+                txt = str(a[key])
+            if key == "setup_json":
+                d = json.loads(a[key])
+                d.pop("process", None)
+                txt = json.dumps(d, indent=1)
+            parts.append(f"<details><summary>{key.replace('_json', '')}</summary><pre>{html.escape(txt)}</pre>"
+                         "</details>")
+    parts.append(f"<p>seed entropy: {html.escape(str(a.get('seed_entropy')))}; "
+                 f"{html.escape(str(a.get('seed_rule', '')))}</p>")
+    return "".join(parts)
+
+
+def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:
+    """(table HTML, reading text) for a damping study summary."""
+    forces = summary["normal_force"]
+    stoch = list(summary.get("d_max_stochastic", {}))
+    header = ["N [N]", "D_H", "D_max^d"] + [f"D_max^s {m} [lo, hi]" for m in stoch] + [
+        f"safe limit ({m})" for m in stoch]
+    rows = []
+    lines = []
+    for i, nf in enumerate(forces):
+        dd = summary.get("d_max_deterministic", [None] * len(forces))[i]
+        row: list[Any] = [nf, summary["d_hopf"][i], dd]
+        for m in stoch:
+            e = summary["d_max_stochastic"][m][i]
+            lo, hi = e["interval"]
+            row.append(f"{_fmt(e['value'])} [{_fmt(lo)}, {_fmt(hi) if hi is not None else '> grid'}]")
+        for m in stoch:
+            row.append(summary.get("d_safe", {}).get(m, [None] * len(forces))[i])
+        rows.append(row)
+        txt = f"N = {nf:g} N: D_H = {summary['d_hopf'][i]:.3g}, D_max^d = {_fmt(dd, '.3g')}"
+        for m in stoch:
+            v = summary["d_max_stochastic"][m][i]["value"]
+            rel = ""
+            if v is not None and dd is not None:
+                rel = " (above D_max^d: the deterministic limit is unsafe)" if v > dd else (
+                    " (equal to D_max^d)" if v == dd else " (below D_max^d)")
+            txt += f"; D_max^s({m}) = {_fmt(v, '.3g')}{rel}"
+        lines.append(txt + ".")
+    if summary.get("d_max_deterministic"):
+        ok = all(d is None or d >= h - 1e-12 for d, h in zip(summary["d_max_deterministic"], summary["d_hopf"],
+                                                              strict=True))
+        lines.append("D_max^d ≥ D_H at every force: the Hopf bifurcation is subcritical (stick-slip from a large "
+                     "start survives above the linear stability boundary)." if ok else
+                     "D_max^d < D_H at some force (check the grid and the stick window).")
+    return _table(header, rows), " ".join(lines)
+
+
+def forcing_reading(summary: dict[str, Any]) -> tuple[str, str]:
+    """(table, reading) for a forcing study summary."""
+    med = summary.get("sigma_ratio_median", {})
+    rows = [[q, med.get(f"{q:g}")] for q in summary["forcing_q"]]
+    txt = "; ".join(f"q = {q:g}: median σ_contact/σ_white over η = {_fmt(med.get(f'{q:g}'), '.3g')}"
+                    for q in summary["forcing_q"]) if med else "no white/contact pair"
+    txt += " (thesis brake: ≈ 1.2 small q, ≈ 1.05 large q; sheet ≈ 2.5)."
+    return _table(["q", "median σ_contact/σ_white"], rows), txt
+
+
+def lyapunov_reading(summary: dict[str, Any]) -> tuple[str, str]:
+    """(table, reading) for a Lyapunov study summary."""
+    rows = []
+    for m in summary["models"]:
+        c = summary["counts"][m]
+        rows.append([m, c.get("ok"), c.get("merged"), c.get("too-few-transitions"),
+                     summary["positive_fraction"].get(m)])
+    txt = "Fraction of (q, N, η) cells with a positive exponent (chaotic character): " + ", ".join(
+        f"{m} {_fmt(summary['positive_fraction'].get(m), '.2f')}" for m in summary["models"]) + \
+        f"; perturbation δ = {summary['perturbation']:g}, τ_end = {summary['tau_end']:g}."
+    return _table(["model", "ok", "merged (w = 0)", "too few transitions", "fraction λ > 0"], rows), txt
+
+
+def normal_force_reading(summary: dict[str, Any]) -> tuple[str, str]:
+    """(table, reading) for a normal-force study summary."""
+    rows = []
+    for m in summary["models"]:
+        for di, d in enumerate(summary["damping"]):
+            for ni, nf in enumerate(summary["normal_force"]):
+                mean = summary["x_gh_mean"][m][di][ni]
+                sd = summary["x_gh_std"][m][di][ni]
+                vk = summary["varK"][m][di][ni]
+                rows.append([m, d, nf, mean, summary["x_gh_mean_se"][m][di][ni], sd,
+                             summary["x_gh_std_se"][m][di][ni],
+                             None if vk is None else 100 * vk,
+                             None if summary["varK_se"][m][di][ni] is None else 100 * summary["varK_se"][m][di][ni],
+                             summary["n_events"][m][di][ni]])
+    txt = ""
+    if "white" in summary["models"] and "contact" in summary["models"]:
+        parts = []
+        for di, d in enumerate(summary["damping"]):
+            for ni, nf in enumerate(summary["normal_force"]):
+                sw = summary["x_gh_std"]["white"][di][ni]
+                sc = summary["x_gh_std"]["contact"][di][ni]
+                if sw is not None and sc is not None and math.isfinite(sw) and math.isfinite(sc) and sw > 0:
+                    parts.append(f"N = {nf:g} N, D = {d:g}: {sc / sw:.2g}")
+        txt = "σ(X_gh) contact/white: " + "; ".join(parts) + ". Empty cells: no stick-slip after the transient."
+    return _table(["model", "D", "N [N]", "E[X_gh]", "SE", "σ", "SE", "VarK %", "SE %", "events"], rows), txt
+
+
+READERS = {"damping": damping_reading, "forcing": forcing_reading, "lyapunov": lyapunov_reading,
+           "normal-force": normal_force_reading}
+TITLES = {"damping": "Damping: D_max^d, D_max^s and the Hopf boundary (METHOD §6.2)",
+          "forcing": "Forcing: bifurcation diagrams over η (METHOD §6.3)",
+          "lyapunov": "Largest Lyapunov exponent (METHOD §6.4)",
+          "normal-force": "Normal force: phase diagrams, PDFs, E[X_gh] ± σ, VarK (METHOD §6.1)"}
+
+
+def contact_section(directory: Path) -> str:
+    """Chapter-3 analysis of the shipped real surface: statistics, summits, GW contact (METHOD §1–2)."""
+    try:
+        from ..contact.asperity import asperity_contact
+        from ..contact.materials import load_material
+        from ..surface.figures import write_contact_figures, write_surface_figures
+        from ..surface.io import default_surface_path, read_surface
+        from ..surface.preprocess import Preparation, prepare
+        from ..surface.statistics import surface_statistics
+        from ..surface.summits import summits_of
+
+        path = default_surface_path()
+        raw = read_surface(path)
+        prep = Preparation(detrend="plane", median_radius=0, step=1)
+        fine, coarse = prepare(raw, prep)
+        fs = summits_of(fine, rule="thesis")
+        cs = fs if coarse is fine else summits_of(coarse, rule="thesis")
+        stats = surface_statistics(coarse, cs).to_dict()
+        mat = load_material("brake-pad")
+        res = asperity_contact(coarse, cs, mat, None, preparation=prep.to_dict())
+        sub = directory / "contact"
+        figs = [Path(p) for p in write_surface_figures(sub, fine=fine, coarse=coarse, fine_summits=fs,
+                                                       coarse_summits=cs, step=1)]
+        figs += [Path(p) for p in write_contact_figures(sub, [res])]
+    except Exception as exc:  # the report must not fail because of an optional section
+        return f"<p>The contact analysis of the shipped surface could not be run: {html.escape(str(exc))}</p>"
+    um = 1e-6
+    rows = [[res.approach_m[k] / um, res.contact_area_m2[k], res.area_fraction[k], res.pressure_pa[k] / 1e6,
+             int(res.n_contacts[k]), res.mu[k]] for k in range(res.approach_m.size)]
+    out = [f"<p>Surface {html.escape(Path(path).name)} (shipped, see data/NOTICE.md): grid "
+           f"{stats['grid'][0]}×{stats['grid'][1]}, Sq = {stats['sq_m'] / um:.4g} µm, {stats['n_summits']} summits, "
+           f"σ_S = {_fmt((stats['summit_height_std_m'] or math.nan) / um)} µm, β̄ = "
+           f"{_fmt((stats['summit_radius_mean_m'] or math.nan) / um)} µm; material {html.escape(mat.name)} "
+           f"(E* = {mat.e_star_pa / 1e9:.3g} GPa, τ_max = {mat.shear_strength_pa / 1e6:.3g} MPa).</p>",
+           _table(["u [µm]", "A_c [m²]", "A_c/A_nom", "p [MPa]", "contacts", "μ (3.16)"], rows)]
+    out += [_figure(p, f"Surface / contact analysis: {p.stem.replace('_', ' ')} (METHOD §1–2, thesis Fig. 3.9–3.11)",
+                    directory) for p in figs if p.suffix == ".png"]
+    return "".join(out)
+
+
+def process_statistics_section(directory: Path) -> str:
+    """HOOK (issue 4): statistics of μ and the friction-process model from the surface.
+
+    Calls ``stochfric.process.statistics.report_section(directory) -> str`` (HTML) when that
+    module and function exist; otherwise returns a note that the section is pending.
+    """
+    if importlib.util.find_spec("stochfric.process.statistics") is None:
+        return "<p><em>Pending (issue 4): statistics of μ and a friction-process model from the surface.</em></p>"
+    mod = importlib.import_module("stochfric.process.statistics")
+    fn = getattr(mod, "report_section", None)
+    if fn is None:
+        return ("<p><em>Pending (issue 4 hook): stochfric.process.statistics offers no "
+                "report_section(directory) yet.</em></p>")
+    try:
+        return str(fn(directory))
+    except Exception as exc:  # optional section
+        return f"<p>The friction-process statistics section failed: {html.escape(str(exc))}</p>"
+
+
+def write_report(
+    results: Sequence[Any],
+    directory: str | Path,
+    *,
+    title: str = "stochfric studies",
+    contact: bool = True,
+    extra_html: str = "",
+) -> Path:
+    """Write ``directory/index.html`` (and the PNG figures) for the study ``results``."""
+    d = Path(directory)
+    d.mkdir(parents=True, exist_ok=True)
+    body = [f"<h1>{html.escape(title)}</h1>",
+            "<p>Friction oscillator driven by deterministic, white-noise and contact-analysis friction, side by "
+            "side (N. Gaus, KIT 2013, chapter 4). Dimensionless x = y/L (L = 1 m), τ = ω0 t; forces in N.</p>"]
+    readings = []
+    for k, res in enumerate(results):
+        kind = res.kind
+        preset = res.summary.get("preset", "")
+        body.append(f"<h2 id='s{k}'>{html.escape(TITLES.get(kind, kind))} — {html.escape(str(preset))}</h2>")
+        table, reading = READERS[kind](res.summary)
+        readings.append(f"<li><b>{html.escape(kind)} ({html.escape(str(preset))})</b>: {html.escape(reading)}</li>")
+        body.append(f"<p class='reading'>{html.escape(reading)}</p>")
+        body.append(table)
+        for path, cap in FIGURES[kind](res.dataset, d, prefix=f"{k:02d}_{kind.replace('-', '_')}_{preset}"):
+            body.append(_figure(path, cap, d))
+        w = res.summary.get("warnings") or []
+        if w:
+            body.append("<p>Simulation warnings: " + html.escape(", ".join(f"{x['code']} ×{x['count']}" for x in w))
+                        + "</p>")
+        body.append(_provenance(res))
+    if readings:
+        body.insert(2, "<h2>Reading</h2><ul>" + "".join(readings) + "</ul>")
+    if contact:
+        body.append("<h2>Chapter 3: contact analysis of the shipped real surface</h2>")
+        body.append(contact_section(d))
+        body.append("<h2>Chapter 3: statistics of μ and the friction-process model (issue 4)</h2>")
+        body.append(process_statistics_section(d))
+    body.append(extra_html)
+    body.append("<h2>Versions</h2><pre>" + html.escape(json.dumps(package_versions(), indent=1)) + "</pre>")
+    page = (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{html.escape(title)}</title>"
+            f"<style>{_CSS}</style></head><body>{''.join(body)}</body></html>")
+    return write_text_atomic(d / "index.html", page)

@@ -1,0 +1,38 @@
+"""Studies of the friction oscillator (METHOD.md §6; thesis 4.2, 4.3).
+
+Each study is a function taking a validated config and returning a
+:class:`~stochfric.studies.base.StudyResult` (``to_dataset()``, ``to_json_dict()``):
+:func:`damping_study`, :func:`forcing_study`, :func:`lyapunov_study`,
+:func:`normal_force_study`.  Executors (serial, processes, Dask) and checkpoints never
+change the numbers.  Importing this package does no work.
+"""
+
+from .base import StudyResult
+from .config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
+from .damping import damping_study
+from .executors import DaskExecutor, ProcessExecutor, SerialExecutor, make_executor, run_tasks
+from .forcing import forcing_study
+from .lyapunov import lyapunov_study
+from .normal_force import normal_force_study
+from .reproduce import reproduce, run_study
+from .store import CheckpointStore
+
+__all__ = [
+    "CheckpointStore",
+    "DampingConfig",
+    "DaskExecutor",
+    "ForcingConfig",
+    "LyapunovConfig",
+    "NormalForceConfig",
+    "ProcessExecutor",
+    "SerialExecutor",
+    "StudyResult",
+    "damping_study",
+    "forcing_study",
+    "lyapunov_study",
+    "make_executor",
+    "normal_force_study",
+    "reproduce",
+    "run_study",
+    "run_tasks",
+]

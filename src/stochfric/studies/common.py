@@ -1,0 +1,284 @@
+"""Shared pieces of the studies (METHOD.md §6): setup, grids, the stick window, task specs.
+
+A study is a list of independent *tasks*; one task is one :func:`simulate` call that
+batches many parameter sets (e.g. every damping ratio D of one normal force N and one
+friction model).  A task is described completely by a picklable, frozen
+:class:`TaskSpec`, so that it can run in this process, in a local worker process or on
+a Dask worker and give the same numbers: its random numbers come from the seed sequence
+with spawn key ``(task_index,)`` of the study's root seed (:func:`task_seed`), never from
+the order of execution.
+
+The three friction models of METHOD §6 are run side by side: ``deterministic`` (the
+pressure law 4.13 alone), ``white`` (plus white noise of intensity σ_ζ = σ_μ(p), §5.1)
+and ``contact`` (plus a band-limited process from the friction-process model, §5.2).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import warnings
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from ..oscillator.friction_laws import FrictionLaw, pressure_law
+from ..oscillator.parameters import OscillatorParameters, PhysicalParameters
+from ..process.model import FrictionProcessModel, load_process_model
+from ..process.presets import Preset, get_preset
+
+MODELS: tuple[str, ...] = ("deterministic", "white", "contact")
+
+#: Default stick window: a run "has a stick-slip cycle" when it has at least one slip→stick
+#: transition with τ in (STICK_WINDOW · τ_end, τ_end] (after the transient, METHOD §7.9).
+STICK_WINDOW = 0.5
+
+
+class StudyError(ValueError):
+    """A study is configured wrongly; the message says what to change."""
+
+
+def parse_grid(spec: str | Sequence[float] | float) -> tuple[float, ...]:
+    """A grid from ``"START:STOP:NUM"`` (inclusive linspace), ``"a,b,c"``, a number or a list.
+
+    >>> parse_grid("0.05:0.25:5")
+    (0.05, 0.1, 0.15, 0.2, 0.25)
+    """
+    if isinstance(spec, int | float) and not isinstance(spec, bool):
+        vals: list[float] = [float(spec)]
+    elif isinstance(spec, str):
+        text = spec.strip()
+        if ":" in text:
+            parts = text.split(":")
+            if len(parts) != 3:
+                raise StudyError(f"grid {spec!r}: use START:STOP:NUM, e.g. 0.05:0.25:41")
+            try:
+                a, b, n = float(parts[0]), float(parts[1]), int(parts[2])
+            except ValueError:
+                raise StudyError(f"grid {spec!r}: START and STOP must be numbers, NUM an integer") from None
+            if n < 1:
+                raise StudyError(f"grid {spec!r}: NUM must be >= 1")
+            vals = [float(v) for v in np.linspace(a, b, n)] if n > 1 else [a]
+        else:
+            try:
+                vals = [float(v) for v in text.split(",") if v.strip()]
+            except ValueError:
+                raise StudyError(f"grid {spec!r}: use START:STOP:NUM or a comma-separated list") from None
+    else:
+        try:
+            vals = [float(v) for v in spec]  # type: ignore[union-attr]
+        except (TypeError, ValueError):
+            raise StudyError(f"grid {spec!r}: expected numbers") from None
+    if not vals:
+        raise StudyError(f"grid {spec!r} is empty")
+    if not all(math.isfinite(v) for v in vals):
+        raise StudyError(f"grid {spec!r} contains a value that is not finite")
+    # round away linspace noise (0.15000000000000002) so that labels and hashes are clean
+    return tuple(float(f"{v:.12g}") for v in vals)
+
+
+@dataclass(frozen=True)
+class StudySetup:
+    """The oscillator case of a study: preset (m, c, v0, A) and friction-process model."""
+
+    preset: Preset
+    process: FrictionProcessModel
+    process_source: str
+    tau_end: float
+    dt: float
+
+    def parameters(
+        self, normal_force: float, damping_ratio: float, forcing_amplitude: float = 0.0, eta: float = 0.0
+    ) -> OscillatorParameters:
+        """Dimensionless parameters (4.6/4.7) at N [N], D, Q [N] and η = Ω/ω0."""
+        pre = self.preset
+        phys = PhysicalParameters(
+            mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed, normal_force=normal_force,
+            damping_ratio=damping_ratio, forcing_amplitude=forcing_amplitude,
+            forcing_frequency=eta * math.sqrt(pre.stiffness / pre.mass), contact_area=pre.contact_area,
+        )
+        p = phys.to_dimensionless()
+        # η exactly as given (Ω = η ω0 and back may differ in the last bit)
+        return p.replace(eta=float(eta))
+
+    def describe(self) -> dict[str, Any]:
+        """JSON-compatible record of the case (for provenance)."""
+        pre = self.preset
+        return {
+            "preset": pre.name,
+            "mass_kg": pre.mass,
+            "stiffness_n_per_m": pre.stiffness,
+            "belt_speed_m_s": pre.belt_speed,
+            "contact_area_m2": pre.contact_area,
+            "omega0_rad_s": pre.omega0,
+            "gamma0": pre.gamma0,
+            "process_source": self.process_source,
+            "process": self.process.to_dict(),
+            "tau_end": self.tau_end,
+            "dt": self.dt,
+        }
+
+
+def make_setup(
+    preset: str = "brake",
+    process_file: str | Path | None = None,
+    tau_end: float | None = None,
+    dt: float | None = None,
+) -> StudySetup:
+    """Resolve a preset name and an optional friction-process model file (``--process FILE``)."""
+    try:
+        pre = get_preset(preset)
+    except ValueError as exc:
+        raise StudyError(str(exc)) from None
+    if process_file is not None:
+        process = load_process_model(process_file)
+        source = f"file:{process_file}"
+    else:
+        process = pre.process
+        source = f"preset:{pre.name}"
+    te = float(tau_end) if tau_end is not None else pre.tau_end
+    step = float(dt) if dt is not None else pre.dt
+    return StudySetup(preset=pre, process=process, process_source=source, tau_end=te, dt=step)
+
+
+def law_for(process: FrictionProcessModel, params: OscillatorParameters) -> FrictionLaw:
+    """The pressure law (4.13/4.33) with μ_fit = E[μ](p) of the process model, p = N/A."""
+    p = params.pressure
+    if p is None:
+        raise StudyError("the pressure law needs p = N/A: parameters without stiffness or contact area")
+    return pressure_law(process.mean(p))
+
+
+def check_models(models: Sequence[str]) -> tuple[str, ...]:
+    """Validate a list of model names (order kept, duplicates refused)."""
+    out = tuple(str(m) for m in models)
+    bad = [m for m in out if m not in MODELS]
+    if bad:
+        raise StudyError(f"unknown model(s) {bad}; choose from {list(MODELS)}")
+    if len(set(out)) != len(out):
+        raise StudyError(f"models listed twice: {list(out)}")
+    if not out:
+        raise StudyError("no model given")
+    return out
+
+
+def task_seed(root_entropy: int, task_index: int) -> np.random.SeedSequence:
+    """Seed sequence of task ``task_index``: spawn key ``(task_index,)`` of the root seed.
+
+    Depends only on the root seed and the task's position in the study grid, never on the
+    executor, the number of workers or the order in which tasks finish.
+    """
+    return np.random.SeedSequence(entropy=int(root_entropy), spawn_key=(int(task_index),))
+
+
+@dataclass(frozen=True)
+class TaskSpec:
+    """One independent unit of a study: a single batched :func:`simulate` call.
+
+    ``params`` are the parameter sets of the call; ``x0`` one initial state per set (or
+    ``None``: sticking at the origin, ``(0, γ0)``).  ``keep_trajectory_runs`` > 0 keeps the
+    decimated trajectories of that many runs (phase diagrams).
+    """
+
+    index: int
+    label: str
+    model: str
+    params: tuple[OscillatorParameters, ...]
+    runs: int
+    tau_end: float
+    dt: float
+    integrator: str
+    root_entropy: int
+    process: Any
+    x0: tuple[tuple[float, float], ...] | None = None
+    common_random_numbers: bool = False
+    path_coordinate: str = "mass"
+    keep_trajectory_runs: int = 0
+    save_every: int = 10
+    extra: dict[str, Any] = field(default_factory=dict, compare=False)
+
+
+def execute_task(spec: TaskSpec, threads: int | None = None) -> dict[str, npt.NDArray[Any]]:
+    """Run one task; returns plain arrays (``x_gh``, ``t_gh`` trimmed to the longest run,
+    ``stick_count``, ``n_belt_speed_without_stick``, optional ``trajectory``, ``warnings``).
+
+    ``threads`` only changes the speed of :func:`simulate`, never the numbers.
+    """
+    from ..oscillator.integrate import SimulationWarningCategory, simulate
+
+    process = spec.process
+
+    def law(p: OscillatorParameters) -> FrictionLaw:
+        return law_for(process, p)
+
+    keep = spec.keep_trajectory_runs > 0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SimulationWarningCategory)
+        res = simulate(
+            list(spec.params), model=spec.model, law=law, process=process,
+            x0=list(spec.x0) if spec.x0 is not None else None, tau_end=spec.tau_end, dt=spec.dt,
+            integrator=spec.integrator, runs=spec.runs, seed=task_seed(spec.root_entropy, spec.index),
+            path_coordinate=spec.path_coordinate, save_trajectory=keep, save_every=spec.save_every,
+            workers=threads, common_random_numbers=spec.common_random_numbers,
+        )
+    nev = int(max(1, np.max(np.sum(np.isfinite(res.x_gh), axis=2))))
+    out: dict[str, npt.NDArray[Any]] = {
+        "x_gh": res.x_gh[:, :, :nev].copy(),
+        "t_gh": res.t_gh[:, :, :nev].copy(),
+        "stick_count": res.stick_count.copy(),
+        "n_belt_speed_without_stick": res.diagnostics["n_belt_speed_without_stick"].copy(),
+        "sigma_zeta": np.asarray(res.sigma_zeta, dtype=float),
+        "warnings": np.asarray(json.dumps([w.to_dict() for w in res.warnings])),
+    }
+    if keep and res.trajectory is not None:
+        out["trajectory"] = res.trajectory[:, : spec.keep_trajectory_runs].copy()
+    return out
+
+
+def runs_for(model: str, runs: int) -> int:
+    """Monte Carlo runs of a model: one for the deterministic model (all runs would be equal)."""
+    return 1 if model == "deterministic" else int(runs)
+
+
+def integrator_for(model: str, integrator: str, sde_integrator: str) -> str:
+    """``integrator`` for the deterministic and contact models, ``sde_integrator`` for white noise."""
+    if model == "white":
+        if sde_integrator not in ("euler", "milstein"):
+            raise StudyError(f"sde_integrator must be 'euler' or 'milstein', got {sde_integrator!r}")
+        return sde_integrator
+    if integrator not in ("euler", "accurate"):
+        raise StudyError(f"integrator must be 'euler' or 'accurate', got {integrator!r}")
+    return integrator
+
+
+def window_mask(t_gh: npt.NDArray[np.float64], tau_end: float, window: float) -> npt.NDArray[np.bool_]:
+    """Events in the stick window τ ∈ (window · τ_end, τ_end] (NaN padding is outside)."""
+    if not 0.0 <= window < 1.0:
+        raise StudyError(f"stick window fraction must be in [0, 1), got {window}")
+    with np.errstate(invalid="ignore"):
+        return np.isfinite(t_gh) & (t_gh > window * tau_end)
+
+
+def warnings_of(arrays: dict[str, npt.NDArray[Any]]) -> list[dict[str, str]]:
+    """Decode the simulation warnings stored by :func:`execute_task`."""
+    w = arrays.get("warnings")
+    if w is None:
+        return []
+    out: list[dict[str, str]] = json.loads(str(w))
+    return out
+
+
+def pad_events(arrs: Sequence[npt.NDArray[np.float64]]) -> list[npt.NDArray[np.float64]]:
+    """NaN-pad arrays ``[..., event]`` to a common event length."""
+    nev = max(a.shape[-1] for a in arrs)
+    out = []
+    for a in arrs:
+        if a.shape[-1] < nev:
+            pad = np.full((*a.shape[:-1], nev - a.shape[-1]), np.nan)
+            a = np.concatenate([a, pad], axis=-1)
+        out.append(a)
+    return out

@@ -1,0 +1,133 @@
+"""Validated study configurations (pydantic; the boundary for the CLI and ``study.toml``).
+
+Every study takes one of these frozen models.  Fields left ``None`` take the thesis's
+values from the preset (METHOD §6 table): the study forces, D = 5·10⁻⁶ undamped, τ_end = 50,
+Δτ = 0.005.  Grids accept ``"START:STOP:NUM"`` (inclusive), ``"a,b,c"`` or a list.
+
+:meth:`StudyConfig.hash_config` is what the checkpoint hash covers: every field (they all
+change the numbers) plus the content of a ``process_file``.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Annotated, Any, Literal
+
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator
+
+from .common import MODELS, STICK_WINDOW, parse_grid
+
+Grid = Annotated[tuple[float, ...], BeforeValidator(parse_grid)]
+ModelName = Literal["deterministic", "white", "contact"]
+
+
+class StudyConfig(BaseModel):
+    """Fields shared by all studies."""
+
+    model_config = ConfigDict(frozen=True, extra="forbid")
+
+    preset: Literal["brake", "sheet"] = "brake"
+    process_file: str | None = Field(
+        default=None, description="friction-process model file (JSON) instead of the preset's"
+    )
+    models: tuple[ModelName, ...] = MODELS  # type: ignore[assignment]
+    runs: int = Field(default=10, ge=1, le=100_000)
+    seed: int = Field(default=0, ge=0)
+    tau_end: float | None = Field(default=None, gt=0)
+    dt: float | None = Field(default=None, gt=0)
+    integrator: Literal["euler", "accurate"] = "euler"
+    sde_integrator: Literal["euler", "milstein"] = "euler"
+    path_coordinate: Literal["mass", "relative"] = "mass"
+    stick_window: float = Field(default=STICK_WINDOW, ge=0.0, lt=1.0)
+    x0: tuple[float, float] | None = None
+
+    @field_validator("models")
+    @classmethod
+    def _unique_models(cls, v: tuple[str, ...]) -> tuple[str, ...]:
+        if not v:
+            raise ValueError("give at least one model")
+        if len(set(v)) != len(v):
+            raise ValueError(f"a model is listed twice: {list(v)}")
+        return v
+
+    def hash_config(self) -> dict[str, Any]:
+        """Everything that changes the numbers (for the checkpoint key)."""
+        d = self.model_dump(mode="json")
+        if self.process_file is not None:
+            try:
+                d["process_file_content"] = json.loads(Path(self.process_file).read_text(encoding="utf-8"))
+            except (OSError, ValueError):
+                d["process_file_content"] = None
+        return d
+
+
+class DampingConfig(StudyConfig):
+    """Damping study (METHOD §6.2, thesis 4.2.2/4.3.2): grid D × N."""
+
+    kind: Literal["damping"] = "damping"
+    normal_forces: Grid | None = None
+    damping: Grid = Field(default_factory=lambda: parse_grid("0.05:0.25:41"))
+    common_random_numbers: bool = True
+    confidence: float = Field(default=0.95, gt=0, lt=1)
+    p_detect: float = Field(default=0.1, gt=0, lt=1)
+
+    @field_validator("damping")
+    @classmethod
+    def _damping_range(cls, v: tuple[float, ...]) -> tuple[float, ...]:
+        if any(not 0 <= d < 1 for d in v):
+            raise ValueError("damping ratios must lie in [0, 1)")
+        if list(v) != sorted(v):
+            raise ValueError("the damping grid must be increasing")
+        return v
+
+
+class ForcingConfig(StudyConfig):
+    """Forcing study (METHOD §6.3, thesis 4.2.3/4.3.3): bifurcation data over η."""
+
+    kind: Literal["forcing"] = "forcing"
+    normal_force: float | None = Field(default=None, gt=0)
+    forcing_q: Grid = (5e-5, 5e-4)
+    eta: Grid = Field(default_factory=lambda: parse_grid("0:3:61"))
+    damping: float | None = Field(default=None, ge=0, lt=1)
+
+    @field_validator("eta", "forcing_q")
+    @classmethod
+    def _non_negative(cls, v: tuple[float, ...]) -> tuple[float, ...]:
+        if any(x < 0 for x in v):
+            raise ValueError("values must be >= 0")
+        return v
+
+
+class LyapunovConfig(StudyConfig):
+    """Largest Lyapunov exponent (METHOD §6.4, eq. 4.43/4.44) over η and N."""
+
+    kind: Literal["lyapunov"] = "lyapunov"
+    normal_forces: Grid | None = None
+    forcing_q: Grid = (5e-5, 5e-4)
+    eta: Grid = Field(default_factory=lambda: parse_grid("0.1:3:30"))
+    damping: float | None = Field(default=None, ge=0, lt=1)
+    perturbation: float = Field(default=1e-6, gt=0, description="shift of the initial x1 of the comparison run")
+
+    @field_validator("eta", "forcing_q")
+    @classmethod
+    def _non_negative(cls, v: tuple[float, ...]) -> tuple[float, ...]:
+        if any(x < 0 for x in v):
+            raise ValueError("values must be >= 0")
+        return v
+
+
+class NormalForceConfig(StudyConfig):
+    """Normal-force study (METHOD §6.1, thesis 4.2.1/4.3.1)."""
+
+    kind: Literal["normal-force"] = "normal-force"
+    normal_forces: Grid | None = None
+    dampings: Grid | None = None
+    runs: int = Field(default=30, ge=1, le=100_000)
+    phase_runs: int = Field(default=5, ge=0)
+    save_every: int = Field(default=10, ge=1)
+
+
+AnyStudyConfig = Annotated[
+    DampingConfig | ForcingConfig | LyapunovConfig | NormalForceConfig, Field(discriminator="kind")
+]

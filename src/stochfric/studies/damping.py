@@ -1,0 +1,296 @@
+"""Damping study (METHOD §6.2; thesis 4.2.2 brake, 4.3.2 sheet; Fig. 4.23–4.29, 4.54–4.60).
+
+Grid D × N, three models.  Per cell: deterministic X_gh and M_d; stochastic (R runs)
+E[X_gh], σ(X_gh), E[M_s]; M_diff = M_d − E[M_s] (4.41), M_quot = E[M_s]/M_d (4.42).
+
+**How D_max is read off** (METHOD §7.9, our choice, ``docs/studies.md``):
+
+* a run *has a stick-slip cycle* when it has at least one slip→stick transition with
+  τ ∈ (w τ_end, τ_end] (the *stick window*, default w = 0.5: after the transient);
+* D_max^d(N) = the largest grid D at which the deterministic run has a cycle; the true
+  boundary lies in [D_max^d, next grid D);
+* P(D) = probability of a cycle, estimated by k/R with a Clopper–Pearson interval;
+  D_max^s(N) = the largest grid D with k > 0.  The interval for D_max^s is
+  [D_max^s, D_hi]: at D_max^s a cycle was seen (P > 0 for certain); D_hi is the first grid
+  D above it at which — assuming P(D) does not increase with D — the one-sided upper
+  confidence bound on P, pooled over the zero-count grid points in (D_max^s, D], falls
+  below ``p_detect``; ``None`` if the grid ends first.
+* D_H(N) from the linearisation (:func:`~stochfric.oscillator.reference.hopf_damping`);
+  the Hopf bifurcation is subcritical, so D_max^d ≥ D_H (stick-slip from a large start).
+* safe limit = max(D_max^d, D_max^s) per stochastic model (thesis headline).
+
+X_gh maps use the thesis convention (0 where no stick occurs, ``x_gh_mean``) and NaN-aware
+variants (``x_gh_mean_nan``).  Initial state: sticking at the origin, (0, γ0), unless ``x0``.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import xarray as xr
+
+from ..oscillator.reference import hopf_damping
+from .base import StudyResult, provenance_attrs, sweep
+from .common import (
+    TaskSpec,
+    integrator_for,
+    law_for,
+    make_setup,
+    pad_events,
+    runs_for,
+    warnings_of,
+    window_mask,
+)
+from .config import DampingConfig
+from .executors import Executor
+from .stats import clopper_pearson
+
+
+def d_max_deterministic(damping: npt.ArrayLike, has_cycle: npt.ArrayLike) -> float:
+    """Largest D with a cycle (NaN if none)."""
+    d = np.asarray(damping, dtype=float)
+    h = np.asarray(has_cycle, dtype=bool)
+    return float(d[h].max()) if h.any() else math.nan
+
+
+def d_max_stochastic(
+    damping: npt.ArrayLike, k: npt.ArrayLike, n: int, *, confidence: float = 0.95, p_detect: float = 0.1
+) -> tuple[float, float, float]:
+    """(D_max^s, low, high): see the module docstring; NaN where undefined.
+
+    ``high`` pools the zero-count grid points above D_max^s: after m of them (m·n runs,
+    no cycle) the one-sided bound is 1 − (1 − confidence)^{1/(m n)}; ``high`` is the first
+    D where that is < ``p_detect`` (NaN when the grid ends before).
+    """
+    d = np.asarray(damping, dtype=float)
+    kk = np.asarray(k, dtype=float)
+    hit = kk > 0
+    if not hit.any():
+        return math.nan, math.nan, math.nan
+    j = int(np.max(np.nonzero(hit)[0]))
+    point = float(d[j])
+    high = math.nan
+    for m, jj in enumerate(range(j + 1, d.size), start=1):
+        bound = 1.0 - (1.0 - confidence) ** (1.0 / (m * n))
+        if bound < p_detect:
+            high = float(d[jj])
+            break
+    return point, point, high
+
+
+def damping_tasks(config: DampingConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
+    """One task per (model, N): all D of that N batched into one simulate call."""
+    setup = make_setup(config.preset, config.process_file, config.tau_end, config.dt)
+    forces = config.normal_forces or (float(setup.preset.study_parameters["damping_study_force"]),)
+    tasks = []
+    idx = 0
+    for model in config.models:
+        for nf in forces:
+            params = tuple(setup.parameters(nf, d) for d in config.damping)
+            tasks.append(TaskSpec(
+                index=idx, label=f"{model} N={nf:g}", model=model, params=params,
+                runs=runs_for(model, config.runs), tau_end=setup.tau_end, dt=setup.dt,
+                integrator=integrator_for(model, config.integrator, config.sde_integrator),
+                root_entropy=config.seed, process=setup.process,
+                x0=None if config.x0 is None else tuple(config.x0 for _ in params),
+                common_random_numbers=config.common_random_numbers, path_coordinate=config.path_coordinate,
+            ))
+            idx += 1
+    return tasks, {"setup": setup, "forces": forces}
+
+
+def damping_study(
+    config: DampingConfig,
+    *,
+    executor: Executor | None = None,
+    checkpoint: str | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> StudyResult:
+    """Run the damping study and analyse it (see the module docstring)."""
+    tasks, info = damping_tasks(config)
+    setup, forces = info["setup"], info["forces"]
+    results, stats, chash = sweep("damping", config, tasks, executor, checkpoint, progress)
+    models: list[str] = list(config.models)
+    dgrid = np.asarray(config.damping)
+    nm, nn, nd, nr = len(models), len(forces), len(dgrid), config.runs
+    tiles_x, tiles_t = [], []
+    sc = np.full((nm, nn, nd, nr), np.nan)
+    nbs = np.full((nm, nn, nd, nr), np.nan)
+    sig = np.full((nm, nn), np.nan)
+    warns: list[dict[str, str]] = []
+    for t in tasks:
+        r = results[t.index]
+        warns += warnings_of(r)
+    for mi, _model in enumerate(models):
+        xs, ts = [], []
+        for ni in range(nn):
+            t = tasks[mi * nn + ni]
+            r = results[t.index]
+            xs.append(r["x_gh"])
+            ts.append(r["t_gh"])
+            sc[mi, ni, :, : t.runs] = r["stick_count"]
+            nbs[mi, ni, :, : t.runs] = r["n_belt_speed_without_stick"]
+            sig[mi, ni] = float(r["sigma_zeta"][0])
+        tiles_x.append(xs)
+        tiles_t.append(ts)
+    flat_x = pad_events([a for row in tiles_x for a in row])
+    flat_t = pad_events([a for row in tiles_t for a in row])
+    nev = flat_x[0].shape[-1]
+    x_gh = np.full((nm, nn, nd, nr, nev), np.nan)
+    t_gh = np.full((nm, nn, nd, nr, nev), np.nan)
+    for mi in range(nm):
+        for ni in range(nn):
+            a, b = flat_x[mi * nn + ni], flat_t[mi * nn + ni]
+            x_gh[mi, ni, :, : a.shape[1]] = a
+            t_gh[mi, ni, :, : b.shape[1]] = b
+    valid = np.isfinite(sc)  # which runs exist (deterministic: run 0 only)
+    inwin = window_mask(t_gh, setup.tau_end, config.stick_window)
+    late = np.where(valid, inwin.any(axis=-1), np.nan)
+    m_late = np.where(valid, inwin.sum(axis=-1), np.nan)
+    n_runs = valid.sum(axis=-1)
+    k = np.nansum(late, axis=-1)
+    prob = k / n_runs
+    lo, hi = clopper_pearson(k, n_runs, config.confidence)
+    xw = np.where(inwin, x_gh, np.nan)
+    with np.errstate(invalid="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        xmean_nan = np.nanmean(xw, axis=(-2, -1))
+        xstd_nan = np.nanstd(xw, axis=(-2, -1), ddof=1)
+        m_mean = np.nanmean(sc, axis=-1)
+    xmean = np.where(np.isfinite(xmean_nan), xmean_nan, 0.0)
+    xstd = np.where(np.isfinite(xstd_nan), xstd_nan, 0.0)
+    # D_max per model and force
+    dmax = np.full((nm, nn), np.nan)
+    dlo = np.full((nm, nn), np.nan)
+    dhi = np.full((nm, nn), np.nan)
+    for mi, model in enumerate(models):
+        for ni in range(nn):
+            if model == "deterministic":
+                v = d_max_deterministic(dgrid, k[mi, ni] > 0)
+                dmax[mi, ni] = v
+                dlo[mi, ni] = v
+                above = dgrid[dgrid > v] if math.isfinite(v) else dgrid
+                dhi[mi, ni] = float(above.min()) if above.size else math.nan
+            else:
+                dmax[mi, ni], dlo[mi, ni], dhi[mi, ni] = d_max_stochastic(
+                    dgrid, k[mi, ni], int(n_runs[mi, ni, 0]), confidence=config.confidence,
+                    p_detect=config.p_detect)
+    d_hopf = np.array([hopf_damping(p0, law_for(setup.process, p0))
+                       for p0 in (setup.parameters(nf, float(dgrid[0])) for nf in forces)])
+    coords: dict[str, Any] = {
+        "model": models,
+        "normal_force": ("normal_force", np.asarray(forces, float), {"units": "N", "long_name": "normal force N"}),
+        "damping_ratio": ("damping_ratio", dgrid, {"units": "1", "long_name": "damping ratio D"}),
+        "run": np.arange(nr),
+        "event": np.arange(nev),
+    }
+    dims5 = ("model", "normal_force", "damping_ratio", "run", "event")
+    dims4 = dims5[:4]
+    dims3 = dims5[:3]
+    data: dict[str, Any] = {
+        "x_gh": (dims5, x_gh, {"units": "1", "long_name": "slip->stick position X_gh = y/L"}),
+        "t_gh": (dims5, t_gh, {"units": "1", "long_name": "tau of slip->stick"}),
+        "stick_count": (dims4, sc, {"units": "1", "long_name": "M: slip->stick transitions in (0, tau_end]"}),
+        "stick_count_window": (dims4, m_late, {"units": "1", "long_name": "transitions in the stick window"}),
+        "n_belt_speed_without_stick": (dims4, nbs, {"units": "1"}),
+        "has_cycle": (dims4, late, {"units": "1", "long_name": "1 if a slip->stick transition in the stick window"}),
+        "n_runs": (dims3, n_runs, {"units": "1"}),
+        "stick_probability": (dims3, prob, {"units": "1", "long_name": "fraction of runs with a cycle"}),
+        "stick_probability_low": (dims3, lo, {"units": "1", "long_name": "Clopper-Pearson lower bound"}),
+        "stick_probability_high": (dims3, hi, {"units": "1", "long_name": "Clopper-Pearson upper bound"}),
+        "m_mean": (dims3, m_mean, {"units": "1", "long_name": "E[M] (deterministic: M_d)"}),
+        "x_gh_mean": (dims3, xmean, {"units": "1", "long_name": "E[X_gh] in the window, 0 where no stick (thesis)"}),
+        "x_gh_std": (dims3, xstd, {"units": "1", "long_name": "sigma(X_gh) in the window, 0 where none"}),
+        "x_gh_mean_nan": (dims3, xmean_nan, {"units": "1", "long_name": "E[X_gh] in the window, NaN where none"}),
+        "x_gh_std_nan": (dims3, xstd_nan, {"units": "1", "long_name": "sigma(X_gh), NaN where undefined"}),
+        "sigma_zeta": (("model", "normal_force"), sig, {"units": "1", "long_name": "white-noise intensity"}),
+        "d_max": (("model", "normal_force"), dmax, {"units": "1", "long_name": "D_max^d / D_max^s"}),
+        "d_max_low": (("model", "normal_force"), dlo, {"units": "1"}),
+        "d_max_high": (("model", "normal_force"), dhi, {"units": "1",
+                                                         "long_name": "det: next grid D; stoch: D_hi"}),
+        "d_hopf": (("normal_force",), d_hopf, {"units": "1", "long_name": "D_H = -n mu'(v0) v0/(2 gamma0)"}),
+    }
+    if "deterministic" in models:
+        di = models.index("deterministic")
+        md = m_mean[di]
+        stoch = [m for m in models if m != "deterministic"]
+        if stoch:
+            ms = np.stack([m_mean[models.index(m)] for m in stoch])
+            with np.errstate(invalid="ignore", divide="ignore"):
+                quot = np.where(md > 0, ms / np.where(md > 0, md, 1.0), np.nan)
+            coords["stochastic_model"] = stoch
+            data["m_diff"] = (("stochastic_model", "normal_force", "damping_ratio"), md[None] - ms,
+                              {"units": "1", "long_name": "M_diff = M_d - E[M_s] (4.41)"})
+            data["m_quot"] = (("stochastic_model", "normal_force", "damping_ratio"), quot,
+                              {"units": "1", "long_name": "M_quot = E[M_s]/M_d (4.42), NaN where M_d = 0"})
+            safe = np.stack([np.fmax(dmax[di], dmax[models.index(m)]) for m in stoch])
+            data["d_safe"] = (("stochastic_model", "normal_force"), safe,
+                              {"units": "1", "long_name": "safe limit max(D_max^d, D_max^s)"})
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update(provenance_attrs("damping", config, setup, config.seed, executor))
+    ds.attrs["stick_window"] = config.stick_window
+    ds.attrs["checkpoint_hash"] = chash or ""
+    summary = _summary(config, setup, ds, models, forces, warns)
+    return StudyResult("damping", ds, summary, stats)
+
+
+def _none(v: float) -> float | None:
+    return float(v) if math.isfinite(v) else None
+
+
+def _summary(config: DampingConfig, setup: Any, ds: xr.Dataset, models: list[str], forces: tuple[float, ...],
+             warns: list[dict[str, str]]) -> dict[str, Any]:
+    from ..io_utils import package_versions
+
+    out: dict[str, Any] = {
+        "study": "damping",
+        "preset": setup.preset.name,
+        "process_source": setup.process_source,
+        "normal_force": list(forces),
+        "damping": list(config.damping),
+        "d_hopf": [float(v) for v in ds["d_hopf"].values],
+        "runs": config.runs,
+        "seed": config.seed,
+        "tau_end": setup.tau_end,
+        "dt": setup.dt,
+        "stick_window": [config.stick_window * setup.tau_end, setup.tau_end],
+        "confidence": config.confidence,
+        "p_detect": config.p_detect,
+        "models": models,
+    }
+    if "deterministic" in models:
+        out["d_max_deterministic"] = [_none(v) for v in ds["d_max"].sel(model="deterministic").values]
+        out["d_max_deterministic_next_grid"] = [_none(v) for v in ds["d_max_high"].sel(model="deterministic").values]
+    out["d_max_stochastic"] = {
+        m: [
+            {"value": _none(float(ds["d_max"].sel(model=m).values[i])),
+             "interval": [_none(float(ds["d_max_low"].sel(model=m).values[i])),
+                          _none(float(ds["d_max_high"].sel(model=m).values[i]))]}
+            for i in range(len(forces))
+        ]
+        for m in models if m != "deterministic"
+    }
+    if "d_safe" in ds:
+        out["d_safe"] = {m: [_none(v) for v in ds["d_safe"].sel(stochastic_model=m).values]
+                         for m in ds["stochastic_model"].values.tolist()}
+    out["stick_probability"] = {
+        m: {"value": ds["stick_probability"].sel(model=m).values.tolist(),
+            "low": ds["stick_probability_low"].sel(model=m).values.tolist(),
+            "high": ds["stick_probability_high"].sel(model=m).values.tolist()}
+        for m in models
+    }
+    out["m_mean"] = {m: ds["m_mean"].sel(model=m).values.tolist() for m in models}
+    if "m_diff" in ds:
+        out["m_diff"] = {m: ds["m_diff"].sel(stochastic_model=m).values.tolist()
+                         for m in ds["stochastic_model"].values.tolist()}
+    out["sigma_zeta"] = [float(v) for v in ds["sigma_zeta"].sel(model=models[0]).values]
+    codes = sorted({w["code"] for w in warns})
+    out["warnings"] = [{"code": c, "count": sum(w["code"] == c for w in warns)} for c in codes]
+    out["versions"] = package_versions()
+    out["checkpoint_hash"] = ds.attrs.get("checkpoint_hash") or None
+    return out

@@ -1,0 +1,200 @@
+"""Executors for study sweeps: serial, local processes, Dask (METHOD §0 randomness rule).
+
+A sweep is a list of independent :class:`~stochfric.studies.common.TaskSpec`; an executor
+runs :func:`~stochfric.studies.common.execute_task` on each and yields ``(task, arrays)``
+as tasks finish, in any order.  Every task draws its random numbers from the stream fixed
+by the root seed and its grid index (:func:`~stochfric.studies.common.task_seed`), so the
+same seed gives identical arrays on every executor and with any number of workers.
+
+:func:`run_tasks` adds checkpointing (:class:`~stochfric.studies.store.CheckpointStore`):
+finished tasks are saved as they arrive and skipped on a rerun; a Ctrl-C or a crash loses at
+most the tasks that were running.
+"""
+
+from __future__ import annotations
+
+import os
+from abc import ABC, abstractmethod
+from collections.abc import Callable, Iterator, Sequence
+from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
+from dataclasses import dataclass
+from multiprocessing import get_context
+from typing import Any
+
+import numpy.typing as npt
+
+from .common import StudyError, TaskSpec, execute_task
+from .store import CheckpointStore
+
+TaskResult = dict[str, npt.NDArray[Any]]
+TaskFunction = Callable[[TaskSpec, int | None], TaskResult]
+
+
+class Executor(ABC):
+    """Runs tasks and yields ``(task, result)`` as they finish."""
+
+    name: str = "executor"
+
+    @abstractmethod
+    def run(self, fn: TaskFunction, tasks: Sequence[TaskSpec]) -> Iterator[tuple[TaskSpec, TaskResult]]:
+        """Yield ``(task, fn(task, threads))`` for every task, in completion order."""
+
+    def describe(self) -> dict[str, Any]:
+        """Record of the executor (not part of the config hash: it never changes the numbers)."""
+        return {"executor": self.name}
+
+
+class SerialExecutor(Executor):
+    """One task after the other in this process; each task uses ``threads`` threads."""
+
+    name = "serial"
+
+    def __init__(self, threads: int | None = None) -> None:
+        self.threads = threads
+
+    def run(self, fn: TaskFunction, tasks: Sequence[TaskSpec]) -> Iterator[tuple[TaskSpec, TaskResult]]:
+        for t in tasks:
+            yield t, fn(t, self.threads)
+
+    def describe(self) -> dict[str, Any]:
+        return {"executor": self.name, "threads": self.threads}
+
+
+class ProcessExecutor(Executor):
+    """Local worker processes (``concurrent.futures.ProcessPoolExecutor``, spawn start method).
+
+    ``workers`` defaults to all cores; each task runs single-threaded in its worker.
+    """
+
+    name = "processes"
+
+    def __init__(self, workers: int | None = None) -> None:
+        n = workers if workers is not None else (os.cpu_count() or 1)
+        if n < 1:
+            raise StudyError(f"workers must be >= 1, got {workers}")
+        self.workers = int(n)
+
+    def run(self, fn: TaskFunction, tasks: Sequence[TaskSpec]) -> Iterator[tuple[TaskSpec, TaskResult]]:
+        if not tasks:
+            return
+        pool = ProcessPoolExecutor(max_workers=min(self.workers, len(tasks)), mp_context=get_context("spawn"))
+        futures: dict[Future[TaskResult], TaskSpec] = {}
+        try:
+            for t in tasks:
+                futures[pool.submit(fn, t, 1)] = t
+            pending = set(futures)
+            while pending:
+                done, pending = wait(pending, return_when=FIRST_COMPLETED)
+                for f in done:
+                    yield futures[f], f.result()
+        finally:
+            pool.shutdown(wait=True, cancel_futures=True)
+
+    def describe(self) -> dict[str, Any]:
+        return {"executor": self.name, "workers": self.workers}
+
+
+class DaskExecutor(Executor):
+    """Tasks on a Dask cluster: an existing scheduler ``address`` or a given ``client``.
+
+    Needs ``dask[distributed]`` (``pip install 'stochfric[dask]'``).
+    """
+
+    name = "dask"
+
+    def __init__(self, address: str | None = None, client: Any = None) -> None:
+        if address is None and client is None:
+            raise StudyError("the Dask executor needs a scheduler address (--scheduler tcp://HOST:PORT)")
+        self.address = address
+        self._client = client
+
+    def run(self, fn: TaskFunction, tasks: Sequence[TaskSpec]) -> Iterator[tuple[TaskSpec, TaskResult]]:
+        try:
+            from distributed import Client, as_completed
+        except ImportError:  # pragma: no cover - depends on the environment
+            raise StudyError(
+                "the Dask executor needs dask.distributed: pip install 'dask[distributed]'"
+            ) from None
+        client = self._client
+        own = client is None
+        if own:
+            client = Client(self.address)
+        try:
+            futs = {}
+            for t in tasks:
+                f = client.submit(fn, t, 1, pure=False)
+                futs[f.key] = (f, t)
+            ac = as_completed([f for f, _ in futs.values()])
+            try:
+                for f in ac:
+                    yield futs[f.key][1], f.result()
+            finally:
+                for f, _ in futs.values():
+                    if not f.done():
+                        f.cancel()
+        finally:
+            if own:
+                client.close()
+
+    def describe(self) -> dict[str, Any]:
+        return {"executor": self.name, "address": self.address}
+
+
+def make_executor(kind: str = "serial", *, workers: int | None = None, scheduler: str | None = None) -> Executor:
+    """``serial`` | ``processes`` | ``dask`` (``scheduler`` given implies ``dask``)."""
+    if scheduler is not None:
+        return DaskExecutor(address=scheduler)
+    if kind == "serial":
+        return SerialExecutor(threads=workers)
+    if kind == "processes":
+        return ProcessExecutor(workers=workers)
+    if kind == "dask":
+        raise StudyError("the dask executor needs --scheduler ADDRESS")
+    raise StudyError(f"unknown executor {kind!r}; choose serial, processes or dask")
+
+
+@dataclass
+class SweepStats:
+    """What :func:`run_tasks` did: tasks computed now and tasks loaded from checkpoints."""
+
+    computed: int = 0
+    loaded: int = 0
+
+
+def run_tasks(
+    tasks: Sequence[TaskSpec],
+    *,
+    executor: Executor | None = None,
+    store: CheckpointStore | None = None,
+    progress: Callable[[int, int], None] | None = None,
+    fn: TaskFunction = execute_task,
+) -> tuple[dict[int, TaskResult], SweepStats]:
+    """Run ``tasks`` (skipping those finished in ``store``), saving each as it finishes.
+
+    Returns the results by task index and the counts.  ``progress(done, total)`` is called
+    after every finished (or loaded) task.
+    """
+    indices = [t.index for t in tasks]
+    if len(set(indices)) != len(indices):
+        raise StudyError("task indices must be unique")
+    ex = executor if executor is not None else SerialExecutor()
+    results: dict[int, TaskResult] = {}
+    stats = SweepStats()
+    todo: list[TaskSpec] = []
+    for t in tasks:
+        if store is not None and store.has(t.index):
+            results[t.index] = store.load(t.index)
+            stats.loaded += 1
+        else:
+            todo.append(t)
+    total = len(tasks)
+    if progress is not None:
+        progress(len(results), total)
+    for t, arrays in ex.run(fn, todo):
+        if store is not None:
+            store.save(t.index, arrays)
+        results[t.index] = arrays
+        stats.computed += 1
+        if progress is not None:
+            progress(len(results), total)
+    return results, stats

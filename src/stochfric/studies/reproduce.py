@@ -1,0 +1,97 @@
+"""``stochfric reproduce``: every study of thesis chapter 4 for both presets, plus the report.
+
+``quick=True`` uses coarse grids and few runs (< 3 min on 2 cores); the full plan uses the
+thesis's resolution (D 0.05 … 0.25 × 41, 7 forces, 10 runs; 30 runs for the normal-force
+study; η 0 … 3 in steps of 0.05; Lyapunov τ = 200, 30 η, 3 forces, 10 runs).
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+from .base import StudyResult
+from .common import parse_grid
+from .config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
+from .damping import damping_study
+from .executors import Executor
+from .forcing import forcing_study
+from .lyapunov import lyapunov_study
+from .normal_force import normal_force_study
+
+STUDIES: dict[str, Callable[..., StudyResult]] = {
+    "damping": damping_study,
+    "forcing": forcing_study,
+    "lyapunov": lyapunov_study,
+    "normal-force": normal_force_study,
+}
+
+_DAMPING_FORCES = {"brake": (1800.0, 2800.0, 3800.0, 4800.0, 5600.0, 6800.0, 8000.0),
+                   "sheet": (400.0, 700.0, 1000.0, 1200.0, 1400.0, 1700.0, 2000.0)}
+_LYAP_FORCES = {"brake": (2000.0, 4000.0, 8000.0), "sheet": (500.0, 1100.0, 1750.0)}
+
+
+def run_study(config: Any, **kwargs: Any) -> StudyResult:
+    """Dispatch a config to its study function."""
+    return STUDIES[config.kind](config, **kwargs)
+
+
+def plan(quick: bool, seed: int = 2013) -> list[Any]:
+    """The study configs of ``reproduce`` (both presets)."""
+    out: list[Any] = []
+    g = parse_grid
+    for pre in ("brake", "sheet"):
+        forces = _DAMPING_FORCES[pre]
+        if quick:
+            out += [
+                NormalForceConfig(preset=pre, runs=10, seed=seed, phase_runs=3),
+                DampingConfig(preset=pre, normal_forces=forces[::3], damping=g("0.05:0.25:21"), runs=5, seed=seed),
+                ForcingConfig(preset=pre, eta=g("0:3:16"), runs=5, seed=seed),
+                LyapunovConfig(preset=pre, normal_forces=_LYAP_FORCES[pre][1:2], eta=g("0.2:3:8"), runs=4, seed=seed),
+            ]
+        else:
+            out += [
+                NormalForceConfig(preset=pre, runs=30, seed=seed),
+                DampingConfig(preset=pre, normal_forces=forces, damping=g("0.05:0.25:41"), runs=10, seed=seed),
+                ForcingConfig(preset=pre, eta=g("0:3:61"), runs=10, seed=seed),
+                LyapunovConfig(preset=pre, normal_forces=_LYAP_FORCES[pre], eta=g("0.1:3:30"), runs=10, seed=seed),
+            ]
+    return out
+
+
+def reproduce(
+    out: str | Path,
+    *,
+    quick: bool = False,
+    seed: int = 2013,
+    executor: Executor | None = None,
+    checkpoint: str | Path | None = None,
+    progress: Callable[[str, int, int], None] | None = None,
+    report: bool = True,
+) -> tuple[list[StudyResult], dict[str, float]]:
+    """Run :func:`plan`, save every result under ``out/<preset>/``, write ``out/index.html``."""
+    from ..report.html import write_report
+
+    base = Path(out)
+    ck = str(checkpoint) if checkpoint is not None else str(base / "checkpoints")
+    results: list[StudyResult] = []
+    timings: dict[str, float] = {}
+    t0 = time.perf_counter()
+    for cfg in plan(quick, seed):
+        label = f"{cfg.preset}/{cfg.kind}"
+        t = time.perf_counter()
+        cb = (lambda d, n, label=label: progress(label, d, n)) if progress is not None else None
+        res = run_study(cfg, executor=executor, checkpoint=ck, progress=cb)
+        res.save(base / cfg.preset)
+        timings[label] = time.perf_counter() - t
+        results.append(res)
+    timings["studies_total"] = time.perf_counter() - t0
+    if report:
+        t = time.perf_counter()
+        write_report(results, base, title="stochfric: reproduction of thesis chapter 4"
+                     + (" (quick)" if quick else ""))
+        timings["report"] = time.perf_counter() - t
+    timings["total"] = time.perf_counter() - t0
+    return results, timings

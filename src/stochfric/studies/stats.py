@@ -1,0 +1,110 @@
+"""Estimators with uncertainty for the studies (METHOD §6: "give their uncertainty").
+
+* :func:`clopper_pearson` — exact binomial interval for a probability (stick-slip
+  probability at a damping ratio, §6.2), from the beta distribution.
+* :func:`sample_summary` — E[X_gh], σ(X_gh) and VarK = |σ|/|E| (eq. 4.40) with standard
+  errors, both the closed forms for independent samples and a bootstrap over *runs*
+  (the X_gh of one run are correlated, so the run is the independent unit).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import asdict, dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+from scipy.stats import beta
+
+
+def clopper_pearson(k: npt.ArrayLike, n: npt.ArrayLike, confidence: float = 0.95) -> tuple[
+        npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Two-sided Clopper–Pearson interval for a binomial probability (k successes in n).
+
+    lower = B(α/2; k, n − k + 1) (0 for k = 0), upper = B(1 − α/2; k + 1, n − k) (1 for
+    k = n), α = 1 − confidence.  Closed forms: k = 0 → upper = 1 − (α/2)^{1/n}.
+    """
+    if not 0.0 < confidence < 1.0:
+        raise ValueError(f"confidence must be in (0, 1), got {confidence}")
+    kk = np.asarray(k, dtype=float)
+    nn = np.asarray(n, dtype=float)
+    a = 1.0 - confidence
+    with np.errstate(invalid="ignore", divide="ignore"):
+        lo = np.where(kk > 0, beta.ppf(a / 2, np.maximum(kk, 1e-300), nn - kk + 1), 0.0)
+        hi = np.where(kk < nn, beta.ppf(1 - a / 2, kk + 1, np.maximum(nn - kk, 1e-300)), 1.0)
+    bad = ~(nn > 0)
+    lo = np.where(bad, np.nan, lo)
+    hi = np.where(bad, np.nan, hi)
+    return np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+
+
+def zero_count_upper_bound(n: int, confidence: float = 0.95) -> float:
+    """One-sided upper bound on p after 0 successes in n trials: 1 − (1 − confidence)^{1/n}."""
+    if n <= 0:
+        return 1.0
+    return 1.0 - (1.0 - confidence) ** (1.0 / n)
+
+
+@dataclass(frozen=True)
+class SampleSummary:
+    """E, σ (ddof 1), VarK = |σ|/|E| with standard errors; NaN where undefined."""
+
+    n: int
+    n_runs: int
+    mean: float
+    std: float
+    vark: float
+    se_mean_iid: float
+    se_std_iid: float
+    se_vark_iid: float
+    se_mean_boot: float
+    se_std_boot: float
+    se_vark_boot: float
+
+    def to_dict(self) -> dict[str, Any]:
+        return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in asdict(self).items()}
+
+
+def _stats(x: npt.NDArray[np.float64]) -> tuple[float, float, float]:
+    if x.size == 0:
+        return math.nan, math.nan, math.nan
+    m = float(np.mean(x))
+    s = float(np.std(x, ddof=1)) if x.size > 1 else math.nan
+    v = abs(s) / abs(m) if m != 0 and math.isfinite(s) else math.nan
+    return m, s, v
+
+
+def sample_summary(
+    per_run: list[npt.NDArray[np.float64]], *, n_boot: int = 400, rng: np.random.Generator | None = None
+) -> SampleSummary:
+    """Pool the samples of all runs; SEs in closed form (iid) and by resampling runs.
+
+    Closed forms for n independent samples: SE(E) = σ/√n, SE(σ) ≈ σ/√(2(n − 1)),
+    SE(VarK) ≈ VarK √(1/(2(n − 1)) + VarK²/n) (delta method, normal data).
+    """
+    runs = [np.asarray(r, dtype=float)[np.isfinite(r)] for r in per_run]
+    pooled = np.concatenate(runs) if runs else np.zeros(0)
+    n = int(pooled.size)
+    m, s, v = _stats(pooled)
+    se_m = s / math.sqrt(n) if n > 1 else math.nan
+    se_s = s / math.sqrt(2 * (n - 1)) if n > 1 else math.nan
+    se_v = v * math.sqrt(1 / (2 * (n - 1)) + v * v / n) if n > 1 and math.isfinite(v) else math.nan
+    bm = bs = bv = math.nan
+    nonempty = [r for r in runs if r.size]
+    if len(nonempty) > 1 and n_boot > 1:
+        g = rng if rng is not None else np.random.default_rng(0)
+        ms, ss, vs = [], [], []
+        for _ in range(n_boot):
+            pick = g.integers(0, len(nonempty), len(nonempty))
+            x = np.concatenate([nonempty[i] for i in pick])
+            a, b, c = _stats(x)
+            ms.append(a)
+            ss.append(b)
+            vs.append(c)
+        bm = float(np.nanstd(ms, ddof=1))
+        bs = float(np.nanstd(ss, ddof=1))
+        vv = np.asarray(vs)
+        bv = float(np.nanstd(vv, ddof=1)) if np.sum(np.isfinite(vv)) > 1 else math.nan
+    return SampleSummary(n=n, n_runs=len(nonempty), mean=m, std=s, vark=v, se_mean_iid=se_m, se_std_iid=se_s,
+                         se_vark_iid=se_v, se_mean_boot=bm, se_std_boot=bs, se_vark_boot=bv)

@@ -1,0 +1,68 @@
+"""Regression tier: numbers the project itself produced with fixed seeds (numpy 2.4, numba 0.68).
+
+The simulations are deterministic given the seed (per-task and per-trajectory streams), so
+grid-valued results (D_max) are pinned exactly and real numbers to a relative 1e-6 (room
+for compiler/libm differences only).  If an intended change of the numerics moves them,
+re-pin and say why in the commit.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+
+from stochfric.studies.config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
+from stochfric.studies.damping import damping_study
+from stochfric.studies.forcing import forcing_study
+from stochfric.studies.lyapunov import lyapunov_study
+from stochfric.studies.normal_force import normal_force_study
+
+RTOL = 1e-6
+
+
+def test_damping_brake_5600() -> None:
+    s = damping_study(DampingConfig(normal_forces=(5600.0,), runs=10, seed=0)).to_json_dict()
+    assert s["d_hopf"][0] == pytest.approx(0.09461801564752419, rel=1e-9)
+    assert s["d_max_deterministic"] == [PIN["damping"]["det"]]
+    assert s["d_max_stochastic"]["white"][0] == PIN["damping"]["white"]
+    assert s["d_max_stochastic"]["contact"][0] == PIN["damping"]["contact"]
+    assert np.sum(s["m_mean"]["white"][0]) == pytest.approx(PIN["damping"]["sum_m_white"], rel=RTOL)
+
+
+def test_normal_force_brake() -> None:
+    s = normal_force_study(NormalForceConfig(runs=8, seed=1, phase_runs=0)).to_json_dict()
+    for m in ("deterministic", "white", "contact"):
+        got = np.array(s["x_gh_mean"][m][0], dtype=float)
+        np.testing.assert_allclose(got, PIN["normal_force"][m], rtol=RTOL)
+    np.testing.assert_allclose(np.array(s["x_gh_std"]["contact"][0], dtype=float), PIN["normal_force"]["std_contact"],
+                               rtol=RTOL)
+
+
+def test_forcing_and_lyapunov_brake() -> None:
+    f = forcing_study(ForcingConfig(eta="0.5:2.5:5", runs=4, seed=2)).to_json_dict()
+    np.testing.assert_allclose([f["sigma_ratio_median"]["5e-05"], f["sigma_ratio_median"]["0.0005"]],
+                               PIN["forcing"], rtol=RTOL)
+    ly = lyapunov_study(LyapunovConfig(normal_forces=(4000.0,), eta=(1.2, 2.0), runs=3, seed=2, tau_end=100.0))
+    s = ly.to_json_dict()
+    got = np.array(s["lyapunov"]["deterministic"], dtype=float).ravel()
+    np.testing.assert_allclose(got, PIN["lyapunov_det"], rtol=RTOL)
+    got = np.array(s["lyapunov"]["white"], dtype=float).ravel()
+    np.testing.assert_allclose(got, PIN["lyapunov_white"], rtol=RTOL)
+
+
+#: generated once with the calls above (seeded), numpy 2.4.6, numba 0.68.1, Python 3.11.7
+PIN: dict[str, Any] = {
+    "damping": {"det": 0.14, "white": {"value": 0.16, "interval": [0.16, 0.175]},
+                "contact": {"value": 0.23, "interval": [0.23, 0.245]}, "sum_m_white": 127.6},
+    "normal_force": {
+        "deterministic": [-2.0643135547601296e-05, -0.0005630499940741167, -5.490876691743714e-05],
+        "white": [-2.2365100050269126e-05, -0.0005521440444876676, -4.761759853900252e-05],
+        "contact": [-6.796352665626462e-05, -0.0005539321926340158, -0.00013705560790913413],
+        "std_contact": [0.0001284877655100797, 0.00029426787224859585, 0.0005429621594891059],
+    },
+    "forcing": [3.5357434330194595, 1.6863379187880756],
+    "lyapunov_det": [-0.5802061689723017, -0.4636999537294596, -4.419318557414908, 0.02844660735234296],
+    "lyapunov_white": [0.07605526541534263, -0.3473766049300899, -0.3600396912901815, 0.2393829529824888],
+}

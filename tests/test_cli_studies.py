@@ -1,0 +1,137 @@
+"""CLI contract of ``stochfric study …``, ``run`` and ``reproduce`` (JSON keys, errors)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+import typer
+from typer.testing import CliRunner
+
+from stochfric.cli_studies import register
+
+
+@pytest.fixture(scope="module")
+def app() -> typer.Typer:
+    a = typer.Typer()
+    register(a)
+
+    @a.callback()
+    def _root() -> None:
+        """test root"""
+
+    return a
+
+
+runner = CliRunner()
+
+
+def _json(app: typer.Typer, args: list[str]) -> dict:
+    r = runner.invoke(app, args)
+    assert r.exit_code == 0, r.output
+    return json.loads(r.stdout)
+
+
+def test_damping_json_contract(app: typer.Typer) -> None:
+    d = _json(app, ["study", "damping", "--preset", "brake", "--normal-force", "5600", "--damping", "0.05:0.25:41",
+                    "--runs", "10", "--json"])
+    for key in ("normal_force", "damping", "d_max_deterministic", "d_max_stochastic", "d_hopf", "d_safe",
+                "stick_probability", "m_diff", "seed", "versions"):
+        assert key in d, key
+    assert d["normal_force"] == [5600.0] and len(d["damping"]) == 41
+    assert d["d_max_deterministic"] == [0.14]
+    assert d["d_hopf"][0] == pytest.approx(0.0946, abs=1e-4)
+    for m in ("white", "contact"):
+        e = d["d_max_stochastic"][m][0]
+        assert set(e) == {"value", "interval"} and e["interval"][0] == e["value"]
+    assert d["tasks"]["computed"] == 3
+
+
+def test_other_studies_json(app: typer.Typer, tmp_path: Path) -> None:
+    f = _json(app, ["study", "forcing", "--eta", "0.5,1.5", "--runs", "3", "--json", "--out", str(tmp_path)])
+    assert {"x_gh_mean", "x_gh_std", "sigma_ratio", "sigma_ratio_median"} <= set(f)
+    assert (tmp_path / "forcing.nc").exists() and (tmp_path / "forcing.json").exists()
+    ly = _json(app, ["study", "lyapunov", "--normal-force", "4000", "--q", "5e-4", "--eta", "1.2", "--runs", "2",
+                     "--tau-end", "60", "--json"])
+    assert {"lyapunov", "status", "n_transitions", "perturbation"} <= set(ly)
+    assert ly["status"]["deterministic"][0][0][0] in ("ok", "merged", "too-few-transitions")
+    nf = _json(app, ["study", "normal-force", "--preset", "sheet", "--runs", "3", "--phase-runs", "1", "--json"])
+    assert {"x_gh_mean", "x_gh_std", "varK", "varK_se", "x_gh_mean_se"} <= set(nf)
+    assert nf["normal_force"] == [400.0, 880.0, 1750.0] and nf["damping"] == [5e-6, 0.17]
+
+
+def test_human_output_and_report(app: typer.Typer, tmp_path: Path) -> None:
+    r = runner.invoke(app, ["study", "damping", "--normal-force", "4000,6000", "--damping", "0.1:0.2:3", "--runs", "2",
+                            "--report", str(tmp_path / "rep"), "--checkpoint", str(tmp_path / "ck")])
+    assert r.exit_code == 0, r.output
+    assert "D_max^d" in r.output and "D_H" in r.output
+    assert (tmp_path / "rep" / "index.html").exists()
+    r2 = runner.invoke(app, ["study", "damping", "--normal-force", "4000,6000", "--damping", "0.1:0.2:3", "--runs",
+                             "2", "--checkpoint", str(tmp_path / "ck"), "--json"])
+    assert json.loads(r2.stdout)["tasks"] == {"computed": 0, "loaded_from_checkpoint": 6}
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        (["study", "damping", "--damping", "0.3:0.1:x"], "START and STOP"),
+        (["study", "damping", "--runs", "0"], "runs"),
+        (["study", "damping", "--models", "white,pink"], "models"),
+        (["study", "forcing", "--preset", "car"], "preset"),
+        (["study", "damping", "--process", "/nonexistent/model.json"], "cannot read"),
+        (["study", "damping", "--executor", "mpi"], "unknown executor"),
+    ],
+)
+def test_errors_exit_2(app: typer.Typer, args: list[str], needle: str) -> None:
+    r = runner.invoke(app, args)
+    assert r.exit_code == 2
+    assert "error:" in r.output and needle in r.output
+    assert "Traceback" not in r.output
+
+
+def test_process_file(app: typer.Typer, tmp_path: Path) -> None:
+    from stochfric.process.presets import get_preset
+
+    path = tmp_path / "model.json"
+    get_preset("brake").process.save(path)
+    a = _json(app, ["study", "damping", "--damping", "0.1,0.15", "--runs", "2", "--json"])
+    b = _json(app, ["study", "damping", "--damping", "0.1,0.15", "--runs", "2", "--process", str(path), "--json"])
+    assert b["process_source"].startswith("file:")
+    assert a["stick_probability"] == b["stick_probability"]
+
+
+def test_run_toml(app: typer.Typer, tmp_path: Path) -> None:
+    f = tmp_path / "study.toml"
+    f.write_text(f"""
+[defaults]
+seed = 4
+runs = 2
+[execution]
+executor = "serial"
+checkpoint = "{(tmp_path / 'ck').as_posix()}"
+[output]
+dir = "{(tmp_path / 'out').as_posix()}"
+report = true
+[[study]]
+kind = "damping"
+normal_forces = [5600]
+damping = "0.1:0.2:3"
+[[study]]
+kind = "forcing"
+eta = [1.0]
+""")
+    d = _json(app, ["run", str(f), "--json"])
+    assert [s["study"] for s in d["studies"]] == ["damping", "forcing"]
+    assert (tmp_path / "out" / "index.html").exists()
+    assert (tmp_path / "out" / "00_damping_brake" / "damping.nc").exists()
+    bad = tmp_path / "bad.toml"
+    bad.write_text("[[study]]\nkind = 'damping'\nrunz = 3\n")
+    r = runner.invoke(app, ["run", str(bad)])
+    assert r.exit_code == 2 and "study[0].runz" in r.output
+
+
+def test_reproduce_quick(app: typer.Typer, tmp_path: Path) -> None:
+    d = _json(app, ["reproduce", "--quick", "--out", str(tmp_path), "--json"])
+    assert d["timings_s"]["total"] < 180
+    assert (tmp_path / "index.html").exists()

@@ -1,0 +1,135 @@
+"""Executors (serial / processes / Dask) give identical numbers; checkpoints resume a sweep."""
+
+from __future__ import annotations
+
+from collections.abc import Iterator, Sequence
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from stochfric.studies.common import TaskSpec
+from stochfric.studies.config import DampingConfig, LyapunovConfig
+from stochfric.studies.damping import damping_study, damping_tasks
+from stochfric.studies.executors import (
+    DaskExecutor,
+    Executor,
+    ProcessExecutor,
+    SerialExecutor,
+    TaskFunction,
+    TaskResult,
+    make_executor,
+    run_tasks,
+)
+from stochfric.studies.lyapunov import lyapunov_study
+from stochfric.studies.store import CheckpointStore, config_hash
+
+SMALL = DampingConfig(normal_forces=(4000.0, 6000.0), damping=(0.1, 0.14, 0.18), runs=3, seed=5, tau_end=12.0)
+
+
+def _arrays(ds: xr.Dataset) -> dict[str, np.ndarray]:
+    return {k: ds[k].values for k in ("x_gh", "t_gh", "stick_count", "stick_probability", "d_max")}
+
+
+def _assert_same(a: xr.Dataset, b: xr.Dataset) -> None:
+    for k, v in _arrays(a).items():
+        np.testing.assert_array_equal(v, _arrays(b)[k], err_msg=k)
+
+
+class CountingExecutor(Executor):
+    """Serial executor that counts computed tasks and can raise KeyboardInterrupt after k."""
+
+    name = "counting"
+
+    def __init__(self, interrupt_after: int | None = None) -> None:
+        self.calls: list[int] = []
+        self.interrupt_after = interrupt_after
+
+    def run(self, fn: TaskFunction, tasks: Sequence[TaskSpec]) -> Iterator[tuple[TaskSpec, TaskResult]]:
+        for t in tasks:
+            if self.interrupt_after is not None and len(self.calls) >= self.interrupt_after:
+                raise KeyboardInterrupt
+            self.calls.append(t.index)
+            yield t, fn(t, 1)
+
+
+def test_serial_threads_and_processes_identical() -> None:
+    ref = damping_study(SMALL).to_dataset()
+    _assert_same(ref, damping_study(SMALL, executor=SerialExecutor(threads=1)).to_dataset())
+    _assert_same(ref, damping_study(SMALL, executor=ProcessExecutor(workers=2)).to_dataset())
+
+
+def test_dask_local_cluster_identical() -> None:
+    distributed = pytest.importorskip("distributed")
+    ref = damping_study(SMALL).to_dataset()
+    with distributed.LocalCluster(n_workers=2, processes=True, threads_per_worker=1, dashboard_address=None) as cl, \
+            distributed.Client(cl) as client:
+        got = damping_study(SMALL, executor=DaskExecutor(client=client)).to_dataset()
+        got2 = damping_study(SMALL, executor=DaskExecutor(address=cl.scheduler_address)).to_dataset()
+    _assert_same(ref, got)
+    _assert_same(ref, got2)
+
+
+def test_seed_is_per_task_not_per_order() -> None:
+    tasks, _ = damping_tasks(SMALL)
+    forward, _ = run_tasks(tasks)
+    backward, _ = run_tasks(list(reversed(tasks)))
+    for t in tasks:
+        np.testing.assert_array_equal(forward[t.index]["x_gh"], backward[t.index]["x_gh"])
+    other = damping_study(SMALL.model_copy(update={"seed": 6})).to_dataset()
+    assert not np.array_equal(other["x_gh"].sel(model="white").values,
+                              damping_study(SMALL).to_dataset()["x_gh"].sel(model="white").values, equal_nan=True)
+
+
+def test_resume_after_interrupt_and_deleted_files(tmp_path: Path) -> None:
+    ref = damping_study(SMALL).to_dataset()
+    n_tasks = len(damping_tasks(SMALL)[0])
+    assert n_tasks == 6
+    ex = CountingExecutor(interrupt_after=2)
+    with pytest.raises(KeyboardInterrupt):
+        damping_study(SMALL, executor=ex, checkpoint=str(tmp_path))
+    store = CheckpointStore(tmp_path, SMALL.hash_config(), kind="damping")
+    assert store.finished() == {0, 1}
+    ex2 = CountingExecutor()
+    res = damping_study(SMALL, executor=ex2, checkpoint=str(tmp_path))
+    assert sorted(ex2.calls) == [2, 3, 4, 5]  # finished tasks not recomputed
+    assert res.stats.loaded == 2 and res.stats.computed == 4
+    _assert_same(ref, res.to_dataset())
+    # delete two task files: exactly those are recomputed
+    store.path(1).unlink()
+    store.path(4).unlink()
+    ex3 = CountingExecutor()
+    _assert_same(ref, damping_study(SMALL, executor=ex3, checkpoint=str(tmp_path)).to_dataset())
+    assert sorted(ex3.calls) == [1, 4]
+    # a complete checkpoint computes nothing; no temporary files are left behind
+    ex4 = CountingExecutor()
+    damping_study(SMALL, executor=ex4, checkpoint=str(tmp_path))
+    assert ex4.calls == []
+    assert not list(store.directory.glob(".*.tmp"))
+
+
+def test_checkpoint_key_changes_with_config(tmp_path: Path) -> None:
+    a = CheckpointStore(tmp_path, SMALL.hash_config(), kind="damping")
+    b = CheckpointStore(tmp_path, SMALL.model_copy(update={"runs": 4}).hash_config(), kind="damping")
+    assert a.directory != b.directory
+    assert config_hash({"x": 1.0, "y": [1, 2]}) == config_hash({"y": (1, 2), "x": 1.0})
+    assert (a.directory / "config.json").exists()
+
+
+def test_make_executor() -> None:
+    assert isinstance(make_executor("serial"), SerialExecutor)
+    assert isinstance(make_executor("processes", workers=2), ProcessExecutor)
+    assert isinstance(make_executor("serial", scheduler="tcp://x:1"), DaskExecutor)
+    with pytest.raises(ValueError):
+        make_executor("mpi")
+    with pytest.raises(ValueError):
+        make_executor("dask")
+
+
+def test_lyapunov_identical_across_executors() -> None:
+    cfg = LyapunovConfig(normal_forces=(4000.0,), forcing_q=(5e-4,), eta=(1.2, 2.0), runs=2, tau_end=40.0, seed=1)
+    a = lyapunov_study(cfg).to_dataset()
+    b = lyapunov_study(cfg, executor=ProcessExecutor(workers=2)).to_dataset()
+    np.testing.assert_array_equal(a["w"].values, b["w"].values)
+    np.testing.assert_array_equal(a["lyapunov"].values, b["lyapunov"].values)

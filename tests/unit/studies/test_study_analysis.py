@@ -1,0 +1,100 @@
+"""Unit tests of the study analysis functions (pure functions, closed forms)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from stochfric.studies.common import StudyError, parse_grid, task_seed, window_mask
+from stochfric.studies.damping import d_max_deterministic, d_max_stochastic
+from stochfric.studies.lyapunov import lyapunov_exponent
+from stochfric.studies.stats import clopper_pearson, sample_summary, zero_count_upper_bound
+
+
+def test_parse_grid_forms() -> None:
+    assert parse_grid("0.05:0.25:5") == (0.05, 0.1, 0.15, 0.2, 0.25)
+    assert parse_grid("1, 2,3") == (1.0, 2.0, 3.0)
+    assert parse_grid(5600) == (5600.0,)
+    assert parse_grid([1, 2]) == (1.0, 2.0)
+    assert len(parse_grid("0.05:0.25:41")) == 41
+    for bad in ("1:2", "a:b:3", "1:2:0", "x,y", "", "nan"):
+        with pytest.raises(StudyError):
+            parse_grid(bad)
+
+
+def test_task_seed_depends_on_index_only() -> None:
+    a = np.random.default_rng(task_seed(7, 3)).random(4)
+    b = np.random.default_rng(task_seed(7, 3)).random(4)
+    c = np.random.default_rng(task_seed(7, 4)).random(4)
+    assert np.array_equal(a, b)
+    assert not np.array_equal(a, c)
+
+
+def test_window_mask() -> None:
+    t = np.array([[10.0, 25.0, 25.5, np.nan]])
+    assert window_mask(t, 50.0, 0.5).tolist() == [[False, False, True, False]]
+    with pytest.raises(StudyError):
+        window_mask(t, 50.0, 1.0)
+
+
+def test_d_max_deterministic() -> None:
+    d = np.array([0.1, 0.2, 0.3, 0.4])
+    assert d_max_deterministic(d, [True, True, False, False]) == 0.2
+    assert math.isnan(d_max_deterministic(d, [False] * 4))
+
+
+def test_d_max_stochastic_interval_closed_form() -> None:
+    d = np.round(np.arange(0.1, 1.0, 0.05), 10)
+    k = np.zeros(d.size)
+    k[:5] = 3
+    k[6] = 1  # non-monotone: the largest D with k > 0 counts
+    point, lo, hi = d_max_stochastic(d, k, 10, confidence=0.95, p_detect=0.1)
+    assert point == lo == d[6]
+    # pooled bound after m zero-count points: 1 - 0.05^(1/(10 m)) < 0.1 first for m = 3
+    m = next(m for m in range(1, 20) if 1 - 0.05 ** (1 / (10 * m)) < 0.1)
+    assert m == 3
+    assert hi == d[6 + m]
+    # grid ends before the bound is reached
+    assert math.isnan(d_max_stochastic(d[:8], k[:8], 10)[2])
+    assert all(math.isnan(v) for v in d_max_stochastic(d, np.zeros(d.size), 10))
+
+
+def test_clopper_pearson_closed_forms() -> None:
+    n = 10
+    lo, hi = clopper_pearson([0, n, 4], [n, n, n], 0.95)
+    assert lo[0] == 0.0 and hi[1] == 1.0
+    assert hi[0] == pytest.approx(1 - 0.025 ** (1 / n), rel=1e-10)
+    assert lo[1] == pytest.approx(0.025 ** (1 / n), rel=1e-10)
+    assert lo[2] < 0.4 < hi[2]
+    assert zero_count_upper_bound(10, 0.95) == pytest.approx(1 - 0.05 ** 0.1)
+
+
+def test_lyapunov_formula_443() -> None:
+    a, k = 0.3, 12
+    w = 1e-6 * np.exp(a * np.arange(k))
+    lam, status, kk = lyapunov_exponent(w)
+    assert status == "ok" and kk == k
+    # (1/K) Σ ln(w(i)/w(1)) = a (K − 1)/2 for exponential growth
+    assert lam == pytest.approx(a * (k - 1) / 2, rel=1e-12)
+    assert lyapunov_exponent(1e-6 * np.exp(-a * np.arange(k)))[0] < 0
+    lam, status, _ = lyapunov_exponent([1e-6, 2e-6, 0.0, 0.0])
+    assert status == "merged" and math.isnan(lam)
+    assert lyapunov_exponent([1e-6, np.nan])[1] == "too-few-transitions"
+    assert lyapunov_exponent([0.0, 0.0, 0.0])[1] == "merged"
+
+
+def test_sample_summary_closed_forms() -> None:
+    x = [np.array([1.0, 2.0]), np.array([3.0, 4.0]), np.array([np.nan])]
+    s = sample_summary(x, n_boot=50)
+    assert s.n == 4 and s.n_runs == 2
+    assert s.mean == 2.5
+    sd = float(np.std([1, 2, 3, 4], ddof=1))
+    assert s.std == pytest.approx(sd)
+    assert s.vark == pytest.approx(sd / 2.5)
+    assert s.se_mean_iid == pytest.approx(sd / 2)
+    assert s.se_std_iid == pytest.approx(sd / math.sqrt(6))
+    empty = sample_summary([np.array([np.nan])])
+    assert empty.n == 0 and math.isnan(empty.mean)
+    assert empty.to_dict()["mean"] is None

@@ -1,0 +1,91 @@
+"""Config validation (pydantic) and the TOML run file: clear messages."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+from pydantic import ValidationError
+
+from stochfric.studies.common import StudyError
+from stochfric.studies.config import DampingConfig, LyapunovConfig
+from stochfric.studies.run_config import load_run_file, parse_run_file
+
+GOOD = """
+[defaults]
+preset = "sheet"
+seed = 3
+
+[execution]
+executor = "processes"
+workers = 2
+
+[output]
+dir = "out"
+
+[[study]]
+kind = "damping"
+normal_forces = [1400]
+damping = "0.1:0.2:3"
+runs = 2
+
+[[study]]
+kind = "lyapunov"
+preset = "brake"
+eta = [1.0, 1.2]
+"""
+
+
+def test_defaults_and_grids(tmp_path: Path) -> None:
+    f = tmp_path / "s.toml"
+    f.write_text(GOOD)
+    rf = load_run_file(f)
+    assert rf.execution.executor == "processes" and rf.execution.workers == 2
+    d, ly = rf.study
+    assert isinstance(d, DampingConfig) and isinstance(ly, LyapunovConfig)
+    assert d.preset == "sheet" and d.seed == 3 and d.damping == (0.1, 0.15, 0.2)
+    assert ly.preset == "brake" and ly.eta == (1.0, 1.2) and ly.perturbation == 1e-6
+
+
+@pytest.mark.parametrize(
+    ("text", "needle"),
+    [
+        ("[[study]]\nkind = 'damping'\ndampng = 0.1\n", "study[0].dampng: Extra inputs are not permitted"),
+        ("[[study]]\nkind = 'dumping'\n", "study[0]"),
+        ("[[study]]\nkind = 'damping'\ndamping = '0.3:0.1:x'\n", "START and STOP must be numbers"),
+        ("[[study]]\nkind = 'damping'\ndamping = [0.2, 0.1]\n", "increasing"),
+        ("[[study]]\nkind = 'damping'\nruns = 0\n", "study[0].runs: Input should be greater than or equal to 1"),
+        ("[[study]]\nkind = 'forcing'\npreset = 'car'\n", "study[0].preset"),
+        ("[[study]]\nkind = 'damping'\nmodels = ['white', 'white']\n", "listed twice"),
+        ("[[study]]\nruns = 3\n", "needs kind"),
+        ("[execution]\nexecutor = 'serial'\n", "no [[study]]"),
+        ("[execution]\nexecuter = 'serial'\n[[study]]\nkind = 'damping'\n", "execution.executer"),
+        ("study = 3\n", "array of tables"),
+    ],
+)
+def test_errors_are_clear(tmp_path: Path, text: str, needle: str) -> None:
+    f = tmp_path / "bad.toml"
+    f.write_text(text)
+    with pytest.raises(StudyError) as ei:
+        load_run_file(f)
+    assert needle in str(ei.value)
+    assert "bad.toml" in str(ei.value)
+
+
+def test_not_toml_and_missing(tmp_path: Path) -> None:
+    f = tmp_path / "x.toml"
+    f.write_text("this is = = not toml")
+    with pytest.raises(StudyError, match="not valid TOML"):
+        load_run_file(f)
+    with pytest.raises(StudyError, match="cannot read"):
+        load_run_file(tmp_path / "missing.toml")
+    with pytest.raises(StudyError):
+        parse_run_file({"study": [1]})
+
+
+def test_config_is_frozen_and_hashable_dict() -> None:
+    c = DampingConfig(runs=2)
+    with pytest.raises(ValidationError):
+        c.runs = 3  # type: ignore[misc]
+    h = c.hash_config()
+    assert h["runs"] == 2 and h["kind"] == "damping"
