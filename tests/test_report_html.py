@@ -68,25 +68,33 @@ def test_every_image_file_exists_and_decodes(report: Path) -> None:
         assert f.read_bytes()[:8] == PNG, src
         assert mpimg.imread(f).shape[0] > 50
     for needle in ("D_max^d", "D_H", "σ_contact/σ_white", "seed", "versions", "contact analysis of the shipped",
-                   "issue 4", "Reading"):
+                   "statistics of μ", "Reading"):
         assert needle in text, needle
 
 
-def test_issue4_hook(monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
-    import importlib
-    import sys
-    import types
+def test_friction_process_section(tmp_path: Path) -> None:
+    """METHOD §3–§4 on the shipped surface: tables, figures, and a model file simulate can use."""
+    from stochfric.oscillator.integrate import simulate
+    from stochfric.oscillator.parameters import PhysicalParameters
+    from stochfric.process.model import load_process_model
 
-    assert "issue 4" in process_statistics_section(tmp_path)
-    monkeypatch.setattr(importlib.util, "find_spec", lambda name: None)
-    assert "Pending (issue 4)" in process_statistics_section(tmp_path)
-    monkeypatch.undo()
-    fake = types.ModuleType("stochfric.process.statistics")
-    fake.report_section = lambda d: f"<p>mu statistics in {d}</p>"  # type: ignore[attr-defined]
-    monkeypatch.setitem(sys.modules, "stochfric.process.statistics", fake)
-    monkeypatch.setattr(importlib, "import_module", lambda name: sys.modules[name])
-    monkeypatch.setattr(importlib.util, "find_spec", lambda name: object())
-    assert process_statistics_section(tmp_path) == f"<p>mu statistics in {tmp_path}</p>"
+    text = process_statistics_section(tmp_path, quick=True)
+    for needle in ("Ergodicity", "E[μ]", "σ_μ", "ℓ_corr", "a p<sup>b</sup> + c"):
+        assert needle in text, needle
+    p = _Imgs()
+    p.feed(text)
+    assert len(p.src) >= 5
+    for src in p.src:
+        assert (tmp_path / src).read_bytes()[:8] == PNG
+    model = load_process_model(tmp_path / "friction_process" / "friction_process.json")
+    params = PhysicalParameters(mass=2.0, stiffness=1e6, belt_speed=1.0, normal_force=5600.0,
+                                contact_area=0.016).to_dimensionless()
+    from stochfric.oscillator.integrate import SimulationWarningCategory
+
+    # the measured surface is 1.2 mm long: a brake-like cycle exhausts it, and says so
+    with pytest.warns(SimulationWarningCategory, match="process exhausted"):
+        res = simulate(params, model="contact", process=model, runs=2, seed=1, tau_end=5.0)
+    assert res.process is not None and res.stick_count.shape == (1, 2)
 
 
 def test_report_renders_in_headless_chromium(report: Path, tmp_path: Path) -> None:

@@ -20,6 +20,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
 from . import __version__
+from .cli_process import register as register_process_commands
 from .cli_studies import register as register_study_commands
 from .cli_surface import register as register_surface_commands
 
@@ -383,6 +384,7 @@ def _print_summary(result: Any, summary: dict[str, Any], out: Path | None, plot:
 
 
 register_surface_commands(app)
+register_process_commands(app)
 register_study_commands(app)
 
 

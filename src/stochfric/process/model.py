@@ -18,6 +18,7 @@ serialises to a JSON-compatible dict with a ``"kind"`` tag so that later model t
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 import os
@@ -37,20 +38,48 @@ from stochfric.process.spectral import (
 from stochfric.random import SeedLike
 
 __all__ = [
+    "LOW_FREQUENCY_FRACTION",
     "BandLimitedProcessModel",
     "FrictionProcessModel",
     "ModelFunction",
+    "PressureRule",
     "SigmaZetaRule",
     "SpectrumShape",
+    "TabulatedProcessModel",
+    "VarianceRule",
+    "low_frequency_level",
     "process_model_from_dict",
 ]
 
 SpectrumShape = Literal["flat", "falling"]
-SigmaZetaRule = Literal["sigma_mu"]
+SigmaZetaRule = Literal["sigma_mu", "spectral_level"]
+PressureRule = Literal["nearest", "interpolate"]
+VarianceRule = Literal["sigma_mu", "tabulated"]
 
 _SPECTRUM_SHAPES: tuple[str, ...] = ("flat", "falling")
-_SIGMA_ZETA_RULES: tuple[str, ...] = ("sigma_mu",)
+_SIGMA_ZETA_RULES: tuple[str, ...] = ("sigma_mu", "spectral_level")
+_PRESSURE_RULES: tuple[str, ...] = ("nearest", "interpolate")
+_VARIANCE_RULES: tuple[str, ...] = ("sigma_mu", "tabulated")
 _SCHEMA_VERSION = 1
+
+#: Fraction of the band (lowest frequencies, at least one bin) over which the low-frequency
+#: level S0 of the ``"spectral_level"`` σ_ζ rule is averaged.
+LOW_FREQUENCY_FRACTION = 0.25
+
+
+def low_frequency_level(psd_over_band: ArrayLike) -> float:
+    """S0 [m]: mean one-sided PSD over the lowest quarter of the band (at least one bin).
+
+    ``psd_over_band`` is S(f_i) at the band's frequencies in increasing order.  For a flat
+    spectrum S0 is its level.  Used by the σ_ζ rule ``"spectral_level"``: σ_ζ = S0/2.
+    """
+    s = np.asarray(psd_over_band, dtype=np.float64)
+    if s.ndim != 1 or s.size == 0:
+        raise ValueError("the band spectrum must be a non-empty 1-D array")
+    k = max(1, math.floor(LOW_FREQUENCY_FRACTION * s.size))
+    return float(np.mean(s[:k]))
+
+
 
 
 def _finite(name: str, value: float) -> float:
@@ -202,7 +231,9 @@ class BandLimitedProcessModel:
     sigma_zeta_rule:
         How the white-noise intensity σ_ζ(p) of the white-noise model (§5.1, eq. 4.17)
         follows from this model; ``"sigma_mu"``: σ_ζ = σ_μ(p), the thesis's rule
-        (§4.1.2: "σ_ζ ist gleich der Standardabweichung des ortsabhängigen Prozesses").
+        (§4.1.2: "σ_ζ ist gleich der Standardabweichung des ortsabhängigen Prozesses");
+        ``"spectral_level"``: σ_ζ = S0/2, white noise with the process's low-frequency
+        one-sided PSD level S0 (see :meth:`sigma_zeta`).
 
     Notes
     -----
@@ -272,10 +303,14 @@ class BandLimitedProcessModel:
         """White-noise intensity σ_ζ(p) [-] for the white-noise model (METHOD §5.1, eq. 4.17).
 
         Rule ``"sigma_mu"`` (thesis §4.1.2): σ_ζ = σ_μ(p), the standard deviation of the
-        path-dependent process.
+        path-dependent process.  Rule ``"spectral_level"``: σ_ζ = S0/2 with S0 the mean
+        one-sided PSD over the lowest quarter of the band (:func:`low_frequency_level`; for
+        the flat shape the level σ_μ(p)²/(K Δf)); see ``docs/statistical_contact.md``.
         """
         if self.sigma_zeta_rule == "sigma_mu":
             return self.std(p_pa)
+        if self.sigma_zeta_rule == "spectral_level":
+            return 0.5 * low_frequency_level(self.spectrum(self.frequencies(), p_pa))
         raise AssertionError(f"unhandled sigma_zeta_rule {self.sigma_zeta_rule!r}")
 
     # --- the band and the spectrum -----------------------------------------------------
@@ -415,12 +450,301 @@ class BandLimitedProcessModel:
             return cls.from_dict(json.load(fh))
 
 
+def _float_tuple(name: str, values: Any) -> tuple[float, ...]:
+    try:
+        arr = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a sequence of numbers") from None
+    if arr.ndim != 1 or arr.size == 0 or not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be a non-empty 1-D sequence of finite numbers")
+    return tuple(float(v) for v in arr)
+
+
+@dataclass(frozen=True, kw_only=True)
+class TabulatedProcessModel:
+    """Friction process with spectra tabulated at the analysed pressures (METHOD §4d/e).
+
+    Built from the statistical contact analysis (``stochfric friction-process``): the mean and
+    standard deviation follow fitted model functions, the spectrum shape comes from the one-sided
+    PSDs of μ along the path (METHOD §0) measured at the analysed mean pressures.
+
+    Parameters
+    ----------
+    name:
+        Label.
+    mu_mean, mu_std:
+        Fitted model functions E[μ](p), σ_μ(p) (eq. 3.21), p in Pa.
+    dx, length:
+        Process grid spacing Δx and length ℓ [m]; the band is f_k = k/ℓ < 1/(2Δx).  The analysis
+        uses Δx = a_y and ℓ = (number of windows) · a_y, so the band equals the measured one.
+    pressures_pa:
+        The analysed mean pressures p_j [Pa] (> 0, strictly increasing).
+    table_frequencies:
+        Path frequencies of the tabulated spectra [1/m] (> 0, strictly increasing).
+    table_psd:
+        One-sided PSD S_j(f) [m] (METHOD §0), one row per pressure, one column per frequency.
+    pressure_rule:
+        ``"nearest"`` (thesis §3.3.4: the spectrum of the analysed pressure nearest to p, nearest
+        in log p) or ``"interpolate"`` (pressure-continuous, missing in the thesis): log S is
+        interpolated linearly in log p for every tabulated frequency, clamped to the end rows
+        outside [p_1, p_n].
+    variance_rule:
+        ``"sigma_mu"`` (default): only the *shape* of the chosen spectrum is used; it is scaled so
+        that Σ_band S Δf = σ_μ(p)² from the fitted model function (METHOD §4d; the fit smooths
+        the scatter and excludes the high-pressure outliers).  ``"tabulated"``: the tabulated
+        levels are used as they are (variance = the measured path variance at that pressure).
+    sigma_zeta_rule:
+        ``"sigma_mu"`` or ``"spectral_level"`` (see :meth:`sigma_zeta`).
+    psd_level:
+        Optional fitted E[S](p) [m] (METHOD §0 convention), recorded as metadata.
+
+    Notes
+    -----
+    Between tabulated frequencies S is interpolated linearly in f; below the first tabulated
+    frequency the first value is used (clamped), above the last S = 0 (nothing was measured
+    there).  This matters only when ``dx``/``length`` differ from the analysis (e.g. a longer
+    process through ``dataclasses.replace``).
+    """
+
+    name: str
+    mu_mean: ModelFunction
+    mu_std: ModelFunction
+    dx: float
+    length: float
+    pressures_pa: tuple[float, ...]
+    table_frequencies: tuple[float, ...]
+    table_psd: tuple[tuple[float, ...], ...]
+    pressure_rule: PressureRule = "nearest"
+    variance_rule: VarianceRule = "sigma_mu"
+    sigma_zeta_rule: SigmaZetaRule = "sigma_mu"
+    psd_level: ModelFunction | None = None
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not self.name:
+            raise ValueError(f"name must be a non-empty string, got {self.name!r}")
+        for attr in ("mu_mean", "mu_std"):
+            if not isinstance(getattr(self, attr), ModelFunction):
+                raise TypeError(f"{attr} must be a ModelFunction, got {getattr(self, attr)!r}")
+        if self.psd_level is not None and not isinstance(self.psd_level, ModelFunction):
+            raise TypeError(f"psd_level must be a ModelFunction or None, got {self.psd_level!r}")
+        dx = _positive("dx", self.dx, "m")
+        length = _positive("length", self.length, "m")
+        if length <= 2.0 * dx:
+            raise ValueError(f"length {length!r} m must exceed 2·dx = {2 * dx!r} m")
+        object.__setattr__(self, "dx", dx)
+        object.__setattr__(self, "length", length)
+        p = _float_tuple("pressures_pa", self.pressures_pa)
+        f = _float_tuple("table_frequencies", self.table_frequencies)
+        if min(p) <= 0.0 or any(b <= a for a, b in itertools.pairwise(p)):
+            raise ValueError("pressures_pa must be > 0 Pa and strictly increasing")
+        if min(f) <= 0.0 or any(b <= a for a, b in itertools.pairwise(f)):
+            raise ValueError("table_frequencies must be > 0 [1/m] and strictly increasing")
+        try:
+            table = np.asarray(self.table_psd, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError("table_psd must be a (pressures × frequencies) table of numbers") from None
+        if table.shape != (len(p), len(f)):
+            raise ValueError(
+                f"table_psd has shape {table.shape}, expected ({len(p)}, {len(f)}) = (pressures, frequencies)"
+            )
+        if not (np.all(np.isfinite(table)) and np.all(table >= 0.0)):
+            raise ValueError("table_psd must be finite and >= 0 [m]")
+        object.__setattr__(self, "pressures_pa", p)
+        object.__setattr__(self, "table_frequencies", f)
+        object.__setattr__(self, "table_psd", tuple(tuple(float(v) for v in row) for row in table))
+        for attr, allowed in (
+            ("pressure_rule", _PRESSURE_RULES),
+            ("variance_rule", _VARIANCE_RULES),
+            ("sigma_zeta_rule", _SIGMA_ZETA_RULES),
+        ):
+            if getattr(self, attr) not in allowed:
+                raise ValueError(f"{attr} must be one of {allowed}, got {getattr(self, attr)!r}")
+
+    # --- statistics over pressure ------------------------------------------------------
+
+    def mean(self, p_pa: float) -> float:
+        """E[μ](p) from the fitted model function (eq. 3.21), p [Pa] > 0."""
+        return self.mu_mean(_pressure_scalar(p_pa))
+
+    def std(self, p_pa: float) -> float:
+        """σ_μ(p) from the fitted model function; ValueError where it is negative."""
+        s = self.mu_std(_pressure_scalar(p_pa))
+        if s < 0.0:
+            raise ValueError(
+                f"the σ_μ model function of {self.name!r} is negative ({s:.4g}) at p = {p_pa:.6g} Pa: "
+                "the fit is used outside its range of validity"
+            )
+        return s
+
+    # --- the band and the spectrum -----------------------------------------------------
+
+    @property
+    def frequency_step(self) -> float:
+        """Δf = 1/ℓ [1/m]."""
+        return 1.0 / self.length
+
+    @property
+    def n_points(self) -> int:
+        """Number of grid points n = round(ℓ/Δx) of a realisation."""
+        return round(self.length / self.dx)
+
+    @property
+    def grid_is_periodic(self) -> bool:
+        """Whether ℓ/Δx is an integer (to 1e-9 relative): the grid spans one period."""
+        ratio = self.length / self.dx
+        return abs(ratio - round(ratio)) <= 1e-9 * ratio
+
+    def grid(self) -> NDArray[np.float64]:
+        """Grid positions x_j = j Δx [m], j = 0..n−1."""
+        return np.arange(self.n_points, dtype=np.float64) * self.dx
+
+    def frequencies(self) -> NDArray[np.float64]:
+        """Band f_k = k/ℓ [1/m], k = 1..K, f_K < 1/(2Δx)."""
+        return band_limited_frequencies(self.dx, self.length)
+
+    def table_spectrum(self, p_pa: float) -> NDArray[np.float64]:
+        """The tabulated spectrum at pressure p by :attr:`pressure_rule` [m], at the table's frequencies."""
+        p = _pressure_scalar(p_pa)
+        table = np.asarray(self.table_psd, dtype=np.float64)
+        logp = np.log(np.asarray(self.pressures_pa))
+        if self.pressure_rule == "nearest" or len(self.pressures_pa) == 1:
+            return np.asarray(table[int(np.argmin(np.abs(logp - math.log(p))))])
+        tiny = np.finfo(np.float64).tiny
+        logs = np.log(np.maximum(table, tiny))
+        x = min(max(math.log(p), float(logp[0])), float(logp[-1]))
+        j = int(np.clip(np.searchsorted(logp, x, side="right") - 1, 0, len(logp) - 2))
+        t = (x - logp[j]) / (logp[j + 1] - logp[j])
+        out = np.exp((1.0 - t) * logs[j] + t * logs[j + 1])
+        return np.asarray(np.where(out <= tiny * 1.0001, 0.0, out))
+
+    def _shape(self, f: NDArray[np.float64], p_pa: float) -> NDArray[np.float64]:
+        tf = np.asarray(self.table_frequencies)
+        row = self.table_spectrum(p_pa)
+        vals = np.interp(f, tf, row, left=float(row[0]), right=0.0)
+        return np.asarray(np.where(f > tf[-1] * (1.0 + 1e-9), 0.0, vals))
+
+    def spectrum(self, f: ArrayLike, p_pa: float) -> NDArray[np.float64]:
+        """One-sided PSD S(f; p) [m] at path frequencies f [1/m] (METHOD §0), 0 outside the band.
+
+        ``variance_rule = "sigma_mu"``: S = σ_μ(p)² g(f) / (Δf Σ_band g), g the tabulated shape at
+        p (:meth:`table_spectrum`, interpolated in f); ``"tabulated"``: S = g.
+        """
+        freq = np.asarray(f, dtype=np.float64)
+        if not np.all(np.isfinite(freq)):
+            raise ValueError("frequencies f must be finite [1/m]")
+        band = self.frequencies()
+        g = self._shape(freq, p_pa)
+        if self.variance_rule == "sigma_mu":
+            total = float(np.sum(self._shape(band, p_pa)))
+            if total <= 0.0:
+                raise ValueError(
+                    f"the tabulated spectrum is zero over the band {band[0]:.4g} … {band[-1]:.4g} 1/m; "
+                    "dx/length do not overlap the measured frequencies"
+                )
+            g = g * (self.std(p_pa) ** 2 / (self.frequency_step * total))
+        inside = (freq >= band[0] * (1.0 - 1e-9)) & (freq <= band[-1] * (1.0 + 1e-9))
+        return np.asarray(np.where(inside, g, 0.0))
+
+    def variance(self, p_pa: float) -> float:
+        """Σ_band S(f_i; p) Δf: σ_μ(p)² under ``"sigma_mu"``, the tabulated variance otherwise."""
+        return float(np.sum(self.spectrum(self.frequencies(), p_pa)) * self.frequency_step)
+
+    def sigma_zeta(self, p_pa: float) -> float:
+        """White-noise intensity σ_ζ(p) for the white-noise model (METHOD §5.1, eq. 4.17).
+
+        ``"sigma_mu"`` (thesis §4.1.2): σ_ζ = σ_μ(p).  ``"spectral_level"``: the noise term of
+        eq. (4.17) has E[η(x)η(x')] = σ_ζ δ(x − x') (a path increment of variance σ_ζ|dx|), so its
+        two-sided PSD is σ_ζ at every f and its one-sided PSD (METHOD §0) is 2σ_ζ; matching it to
+        the process's low-frequency level S0 (:func:`low_frequency_level`) gives σ_ζ = S0/2.
+        """
+        if self.sigma_zeta_rule == "sigma_mu":
+            return self.std(p_pa)
+        return 0.5 * low_frequency_level(self.spectrum(self.frequencies(), p_pa))
+
+    # --- realisations ------------------------------------------------------------------
+
+    def generate(self, p_pa: float, rng: np.random.Generator | SeedLike) -> NDArray[np.float64]:
+        """One realisation of μ̂_SD on :meth:`grid` (eq. 2.48/4.32): n = round(ℓ/Δx) points."""
+        f = self.frequencies()
+        return generate_process(f, self.spectrum(f, p_pa), self.dx, self.length, rng)
+
+    # --- serialisation -----------------------------------------------------------------
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-compatible dict (``kind = "tabulated"``, SI units recorded)."""
+        return {
+            "kind": "tabulated",
+            "schema_version": _SCHEMA_VERSION,
+            "name": self.name,
+            "mu_mean": self.mu_mean.to_dict(),
+            "mu_std": self.mu_std.to_dict(),
+            "dx": self.dx,
+            "length": self.length,
+            "pressures_pa": list(self.pressures_pa),
+            "table_frequencies": list(self.table_frequencies),
+            "table_psd": [list(row) for row in self.table_psd],
+            "pressure_rule": self.pressure_rule,
+            "variance_rule": self.variance_rule,
+            "sigma_zeta_rule": self.sigma_zeta_rule,
+            "psd_level": None if self.psd_level is None else self.psd_level.to_dict(),
+            "units": {
+                "dx": "m",
+                "length": "m",
+                "pressure": "Pa",
+                "frequency": "1/m",
+                "psd": "m (one-sided, METHOD §0)",
+            },
+            "nyquist_frequency": nyquist_frequency(self.dx),
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> TabulatedProcessModel:
+        """Inverse of :meth:`to_dict`; ValueError naming the missing fields otherwise."""
+        kind = data.get("kind", "tabulated")
+        if kind != "tabulated":
+            raise ValueError(f"not a tabulated process model: kind = {kind!r}")
+        version = data.get("schema_version", _SCHEMA_VERSION)
+        if version != _SCHEMA_VERSION:
+            raise ValueError(f"unsupported schema_version {version!r} (this version reads {_SCHEMA_VERSION})")
+        required = ("name", "mu_mean", "mu_std", "dx", "length", "pressures_pa", "table_frequencies", "table_psd")
+        missing = [k for k in required if k not in data]
+        if missing:
+            raise ValueError(f"a process model of kind 'tabulated' needs the field(s) {', '.join(missing)}")
+        level = data.get("psd_level")
+        return cls(
+            name=data["name"],
+            mu_mean=ModelFunction.from_dict(data["mu_mean"]),
+            mu_std=ModelFunction.from_dict(data["mu_std"]),
+            dx=data["dx"],
+            length=data["length"],
+            pressures_pa=tuple(data["pressures_pa"]),
+            table_frequencies=tuple(data["table_frequencies"]),
+            table_psd=tuple(tuple(row) for row in data["table_psd"]),
+            pressure_rule=data.get("pressure_rule", "nearest"),
+            variance_rule=data.get("variance_rule", "sigma_mu"),
+            sigma_zeta_rule=data.get("sigma_zeta_rule", "sigma_mu"),
+            psd_level=None if level is None else ModelFunction.from_dict(level),
+        )
+
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Write :meth:`to_dict` as JSON to ``path`` atomically; returns the path."""
+        return _atomic_write_json(Path(path), self.to_dict())
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> TabulatedProcessModel:
+        """Read a model written by :meth:`save`."""
+        with open(path, encoding="utf-8") as fh:
+            return cls.from_dict(json.load(fh))
+
+
 def process_model_from_dict(data: dict[str, Any]) -> FrictionProcessModel:
     """Rebuild any process model from its ``to_dict`` output, dispatching on ``"kind"``."""
     kind = data.get("kind")
     if kind == "band_limited":
         return BandLimitedProcessModel.from_dict(data)
-    raise ValueError(f"unknown process model kind {kind!r}; known: ['band_limited']")
+    if kind == "tabulated":
+        return TabulatedProcessModel.from_dict(data)
+    raise ValueError(f"unknown process model kind {kind!r}; known: ['band_limited', 'tabulated']")
 
 
 def load_process_model(path: str | os.PathLike[str]) -> FrictionProcessModel:

@@ -4,17 +4,13 @@
 numbers, a short computed reading of the results, and the parameters, seeds and package
 versions of each study.  A chapter-3 section analyses the shipped real surface
 (:func:`stochfric.surface.io.default_surface_path`) with the surface and contact code
-(METHOD §1–2).  **Hook for issue 4**: :func:`process_statistics_section` adds a section
-when a module ``stochfric.process.statistics`` with a ``report_section(directory)`` function
-exists (statistics of μ, a friction-process model from the surface); until then the
-report says that the section is pending.
+(METHOD §1–2) and :func:`process_statistics_section` the statistics of μ and the
+friction-process model from that surface (METHOD §3–§4; module ``process_section``).
 """
 
 from __future__ import annotations
 
 import html
-import importlib
-import importlib.util
 import json
 import math
 from collections.abc import Sequence
@@ -210,22 +206,13 @@ def contact_section(directory: Path) -> str:
     return "".join(out)
 
 
-def process_statistics_section(directory: Path) -> str:
-    """HOOK (issue 4): statistics of μ and the friction-process model from the surface.
+def process_statistics_section(directory: Path, *, quick: bool = False) -> str:
+    """Statistics of μ and the friction-process model of the shipped surface (METHOD §3–§4)."""
+    from .process_section import friction_process_section
 
-    Calls ``stochfric.process.statistics.report_section(directory) -> str`` (HTML) when that
-    module and function exist; otherwise returns a note that the section is pending.
-    """
-    if importlib.util.find_spec("stochfric.process.statistics") is None:
-        return "<p><em>Pending (issue 4): statistics of μ and a friction-process model from the surface.</em></p>"
-    mod = importlib.import_module("stochfric.process.statistics")
-    fn = getattr(mod, "report_section", None)
-    if fn is None:
-        return ("<p><em>Pending (issue 4 hook): stochfric.process.statistics offers no "
-                "report_section(directory) yet.</em></p>")
     try:
-        return str(fn(directory))
-    except Exception as exc:  # optional section
+        return friction_process_section(directory, quick=quick)
+    except Exception as exc:  # an optional section must not lose the rest of the report
         return f"<p>The friction-process statistics section failed: {html.escape(str(exc))}</p>"
 
 
@@ -236,6 +223,7 @@ def write_report(
     title: str = "stochfric studies",
     contact: bool = True,
     extra_html: str = "",
+    quick: bool = False,
 ) -> Path:
     """Write ``directory/index.html`` (and the PNG figures) for the study ``results``."""
     d = Path(directory)
@@ -264,8 +252,8 @@ def write_report(
     if contact:
         body.append("<h2>Chapter 3: contact analysis of the shipped real surface</h2>")
         body.append(contact_section(d))
-        body.append("<h2>Chapter 3: statistics of μ and the friction-process model (issue 4)</h2>")
-        body.append(process_statistics_section(d))
+        body.append("<h2>Chapter 3: statistics of μ and the friction-process model</h2>")
+        body.append(process_statistics_section(d, quick=quick))
     body.append(extra_html)
     body.append("<h2>Versions</h2><pre>" + html.escape(json.dumps(package_versions(), indent=1)) + "</pre>")
     page = (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{html.escape(title)}</title>"

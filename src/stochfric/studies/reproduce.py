@@ -91,7 +91,7 @@ def reproduce(
     if report:
         t = time.perf_counter()
         write_report(results, base, title="stochfric: reproduction of thesis chapter 4"
-                     + (" (quick)" if quick else ""))
+                     + (" (quick)" if quick else ""), quick=quick)
         timings["report"] = time.perf_counter() - t
     timings["total"] = time.perf_counter() - t0
     return results, timings

@@ -1,0 +1,299 @@
+"""Command ``friction-process``: statistical contact analysis → friction-process model.
+
+Parse, call, print (no physics): the work is :func:`stochfric.process.statistics.analyse`.
+``register(app)`` adds the command to a :class:`typer.Typer` application.  Lengths on the
+command line are in µm; everything inside and in the JSON is SI.  Bad input ends with one line
+``error: …`` on stderr and exit status 2.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from enum import StrEnum
+from pathlib import Path
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+from stochfric.cli_surface import (
+    DetrendOpt,
+    FileArg,
+    FillOpt,
+    MedianOpt,
+    RuleOpt,
+    SizeOpt,
+    StepOpt,
+    SummitRuleChoice,
+    UnitOpt,
+    _load_and_prepare,
+    parse_approach_um,
+)
+from stochfric.contact.asperity import ContactError, default_approach_m
+from stochfric.contact.materials import MaterialError, load_material, material_names
+from stochfric.surface.io import SurfaceError
+from stochfric.surface.preprocess import Preparation
+from stochfric.units import MICROMETRE
+
+__all__ = ["DEFAULT_SHIFT_FRACTION", "default_window_shift_points", "register"]
+
+_INPUT_ERRORS = (SurfaceError, ContactError, MaterialError)
+
+#: The thesis's window shift relative to the window length: a_y = 0.3 mm of ℓ_Fl = 5.3 mm.
+DEFAULT_SHIFT_FRACTION = 0.3 / 5.3
+
+MODEL_FILE = "friction_process.json"
+STATISTICS_FILE = "friction_process_statistics.nc"
+
+
+class SurrogateChoice(StrEnum):
+    """Surrogate methods offered on the command line."""
+
+    phase = "phase"
+    iaaft = "iaaft"
+
+
+class PressureRuleChoice(StrEnum):
+    """How the spectrum at a pressure between the analysed ones is chosen."""
+
+    nearest = "nearest"
+    interpolate = "interpolate"
+
+
+class VarianceRuleChoice(StrEnum):
+    """How the process variance is set."""
+
+    sigma_mu = "sigma_mu"
+    tabulated = "tabulated"
+
+
+class SigmaZetaChoice(StrEnum):
+    """White-noise intensity rules."""
+
+    sigma_mu = "sigma_mu"
+    spectral_level = "spectral_level"
+
+
+def default_window_shift_points(window_points: int) -> int:
+    """a_y in grid points: ⌊0.0566 · window length⌋ (the thesis's 0.3 mm of 5.3 mm), at least 1."""
+    return max(1, math.floor(DEFAULT_SHIFT_FRACTION * window_points))
+
+
+def _fail(message: str) -> typer.Exit:
+    typer.echo(f"error: {message}", err=True)
+    return typer.Exit(code=2)
+
+
+def friction_process_command(
+    material: Annotated[
+        str,
+        typer.Option("--material", help=f"Pairing: {', '.join(material_names())} or a JSON file (SI units)."),
+    ],
+    file: FileArg = None,
+    realizations: Annotated[int, typer.Option("--realizations", help="Similar surfaces of original size (§4a).")] = 100,
+    long_surfaces: Annotated[
+        int, typer.Option("--long-surfaces", help="Long surfaces for μ along the path (§4c).")
+    ] = 10,
+    length_factor: Annotated[
+        int, typer.Option("--length-factor", help="Length of a long surface in original lengths (thesis 10).")
+    ] = 10,
+    window_shift_um: Annotated[
+        float | None,
+        typer.Option("--window-shift-um", help="Window shift a_y [µm], rounded to whole grid points; "
+                     "default 0.0566 × the window length (thesis 0.3 of 5.3 mm)."),
+    ] = None,
+    ergodic_windows: Annotated[
+        int, typer.Option("--ergodic-windows", help="Windows on the one long surface of the ergodicity check.")
+    ] = 50,
+    approach_um: Annotated[
+        str | None,
+        typer.Option("--approach-um", help="START:STOP:NUM in µm; default σ_S/4 … 3σ_S in 12 steps."),
+    ] = None,
+    surrogate: Annotated[
+        SurrogateChoice, typer.Option("--surrogate", help="phase (thesis, Gaussian) or iaaft (keeps the heights).")
+    ] = SurrogateChoice.phase,
+    max_area_fraction: Annotated[
+        float, typer.Option("--max-area-fraction", help="Fits use points with mean A_c/A_nom up to this.")
+    ] = 0.015,
+    pressure_rule: Annotated[
+        PressureRuleChoice, typer.Option("--pressure-rule", help="nearest (thesis) or interpolate (log-log in p).")
+    ] = PressureRuleChoice.nearest,
+    variance_rule: Annotated[
+        VarianceRuleChoice, typer.Option("--variance-rule", help="sigma_mu (scale to the σ_μ fit) or tabulated.")
+    ] = VarianceRuleChoice.sigma_mu,
+    sigma_zeta_rule: Annotated[
+        SigmaZetaChoice, typer.Option("--sigma-zeta-rule", help="sigma_mu (thesis) or spectral_level (S0/2).")
+    ] = SigmaZetaChoice.sigma_mu,
+    seed: Annotated[int | None, typer.Option("--seed", min=0, help="Root seed (recorded).")] = None,
+    out: Annotated[
+        Path | None,
+        typer.Option("--out", help=f"Directory for {MODEL_FILE} (the model) and {STATISTICS_FILE}."),
+    ] = None,
+    plot: Annotated[
+        bool, typer.Option("--plot", help="Also write the figures into DIR/figures (needs --out).")
+    ] = False,
+    median_radius: MedianOpt = 0,
+    step: StepOpt = 1,
+    detrend: DetrendOpt = "plane",
+    fill_undefined: FillOpt = False,
+    summit_rule: RuleOpt = SummitRuleChoice.thesis,
+    size_um: SizeOpt = None,
+    height_unit: UnitOpt = None,
+    as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
+) -> None:
+    """Statistical contact analysis of similar surfaces → friction-process model (METHOD.md §3–§4)."""
+    from stochfric.process.statistics import AnalysisConfig
+
+    try:
+        if plot and out is None:
+            raise ContactError("--plot writes into the output directory: give --out DIR")
+        mat = load_material(material)
+        prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
+        approach = parse_approach_um(approach_um) if approach_um is not None else None
+        _raw, _fine, coarse, _fs, cs, record = _load_and_prepare(
+            file, size_um=size_um, height_unit=height_unit, fill_undefined=fill_undefined,
+            preparation=prep, summit_rule=summit_rule.value,
+        )  # fmt: skip
+        if cs.count < 2:
+            raise ContactError(f"the prepared surface has {cs.count} summit(s); at least 2 are needed")
+        u = default_approach_m(cs) if approach is None else approach
+        ny = coarse.nb_grid_pts[1]
+        dy = coarse.grid_spacing_m[1]
+        if window_shift_um is None:
+            shift = default_window_shift_points(ny)
+        else:
+            if not (math.isfinite(window_shift_um) and window_shift_um > 0):
+                raise ContactError(f"--window-shift-um must be > 0, got {window_shift_um!r}")
+            shift = max(1, round(window_shift_um * MICROMETRE / dy))
+        if shift >= ny * length_factor - ny:
+            raise ContactError(
+                f"the window shift ({shift} points) leaves fewer than two windows on a long surface of "
+                f"{length_factor} × {ny} points; use a smaller --window-shift-um or a larger --length-factor"
+            )
+        cfg = AnalysisConfig(
+            realizations=realizations, long_surfaces=long_surfaces, length_factor=length_factor,
+            window_shift_points=shift, ergodic_windows=ergodic_windows, surrogate=surrogate.value,
+            summit_rule=summit_rule.value, max_area_fraction=max_area_fraction,
+            pressure_rule=pressure_rule.value, variance_rule=variance_rule.value,
+            sigma_zeta_rule=sigma_zeta_rule.value, seed=seed,
+        )  # fmt: skip
+        name = Path(record["file"]).stem
+        analysis = _run(coarse, mat, u, cfg, name, show_progress=not as_json)
+        payload = analysis.to_json_dict()
+        payload["preparation"] = record
+        if out is not None:
+            payload["model_file"] = str(analysis.model.save(_mkdir(out) / MODEL_FILE))
+            payload["statistics_file"] = str(analysis.to_netcdf(out / STATISTICS_FILE))
+        if plot and out is not None:
+            payload["figures"] = [str(p) for p in _figures(analysis, coarse.heights_m, out / "figures", seed)]
+    except _INPUT_ERRORS as exc:
+        raise _fail(str(exc)) from None
+    except ValueError as exc:  # e.g. a fit without enough points
+        raise _fail(str(exc)) from None
+    if as_json:
+        typer.echo(json.dumps(_clean(payload), indent=1, allow_nan=False))
+        return
+    _print(payload, analysis)
+
+
+def _mkdir(path: Path) -> Path:
+    path.mkdir(parents=True, exist_ok=True)
+    return path
+
+
+def _run(coarse: Any, mat: Any, u: Any, cfg: Any, name: str, *, show_progress: bool) -> Any:
+    from stochfric.process.statistics import analyse
+
+    if not show_progress:
+        return analyse(coarse, mat, u, cfg, name=name)
+    from rich.console import Console
+    from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
+
+    with Progress(
+        TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
+        TimeRemainingColumn(), console=Console(stderr=True), transient=True,
+    ) as prog:  # fmt: skip
+        tasks: dict[str, Any] = {}
+
+        def report(stage: str, done: int, total: int) -> None:
+            if stage not in tasks:
+                tasks[stage] = prog.add_task(stage, total=total)
+            prog.update(tasks[stage], completed=done)
+
+        return analyse(coarse, mat, u, cfg, name=name, progress=report)
+
+
+def _figures(analysis: Any, heights: Any, directory: Path, seed: int | None) -> list[Path]:
+    from stochfric.process.figures import plot_surrogates, write_process_figures
+    from stochfric.surface.synthesis import iaaft_heights, random_phase_heights
+
+    paths = write_process_figures(analysis, directory)
+    sur = {
+        "phase": random_phase_heights(heights, seed),
+        "iaaft": iaaft_heights(heights, seed, tol=1e-3).heights,
+    }
+    paths.append(plot_surrogates(heights, sur, directory / "surrogates.png"))
+    return paths
+
+
+def _clean(obj: Any) -> Any:
+    if isinstance(obj, dict):
+        return {k: _clean(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_clean(v) for v in obj]
+    if isinstance(obj, float | np.floating):
+        return float(obj) if math.isfinite(float(obj)) else None
+    if isinstance(obj, np.integer):
+        return int(obj)
+    return obj
+
+
+def _num(v: Any, fmt: str) -> str:
+    return "n/a" if v is None or not math.isfinite(float(v)) else format(float(v), fmt)
+
+
+def _print(payload: dict[str, Any], analysis: Any) -> None:
+    um = MICROMETRE
+    cfg = analysis.config
+    typer.echo(f"surface   {payload['preparation']['file']}  surrogate={cfg.surrogate} seed={payload['seed_entropy']}")
+    typer.echo(
+        f"ensemble  {cfg.realizations} realisations; path: {cfg.long_surfaces} long surfaces × "
+        f"{analysis.path.samples.mu.shape[1]} windows, a_y = {analysis.path.window_shift_m / um:.4g} µm"
+    )
+    used = analysis.fits["mu_mean"].used
+    typer.echo(f"{'u [µm]':>8} {'p [MPa]':>9} {'Ac/Anom':>9} {'E[μ]':>7} {'σ_μ':>7} {'ℓ_corr[µm]':>10} "
+               f"{'E[S] [m]':>10} {'fit':>4}")
+    for k in range(len(payload["pressure_pa"])):
+        typer.echo(
+            f"{payload['approach_m'][k] / um:8.4g} {payload['pressure_pa'][k] / 1e6:9.4g} "
+            f"{payload['area_fraction'][k]:9.3g} {payload['mu_mean'][k]:7.4f} {payload['mu_std'][k]:7.4f} "
+            f"{_num(analysis.correlation_length_m[k] / um, '10.4g')} {payload['psd_level_m'][k]:10.3g} "
+            f"{'yes' if used[k] else 'no':>4}"
+        )
+    for key, label in (("mu_mean", "E[μ]"), ("mu_std", "σ_μ"), ("psd_level", "E[S]")):
+        f = payload["fit"][key]
+        typer.echo(
+            f"fit {label:<5} a = {f['a']:.5g} ± {_num(f['a_se'], '.2g')}, b = {f['b']:.4g} ± "
+            f"{_num(f['b_se'], '.2g')}, c = {f['c']:.5g} ± {_num(f['c_se'], '.2g')} ({f['n_points']} points)"
+        )
+    erg = payload["ergodicity"]
+    typer.echo(f"ergodicity: max |z| = {erg['max_abs_z']:.2f} (threshold {erg['threshold']:.2f}) → {erg['verdict']}")
+    sz = payload["sigma_zeta"]
+    typer.echo("σ_ζ       p [MPa]: " + " ".join(f"{p / 1e6:.3g}" for p in sz["pressure_pa"]))
+    typer.echo("  sigma_mu       : " + " ".join(_num(v, ".3g") for v in sz["sigma_mu"]))
+    typer.echo("  spectral_level : " + " ".join(_num(v, ".3g") for v in sz["spectral_level"]))
+    pc = payload["process_check"]
+    typer.echo(f"process check: generated σ within {pc['max_std_z']:.2f} standard errors of the target")
+    for key in ("model_file", "statistics_file"):
+        if key in payload:
+            typer.echo(f"wrote     {payload[key]}")
+    for f in payload.get("figures", []):
+        typer.echo(f"figure    {f}")
+    for n in payload.get("notes", []):
+        typer.echo(f"note      {n}")
+
+
+def register(app: typer.Typer) -> None:
+    """Add the ``friction-process`` command to ``app``."""
+    app.command("friction-process")(friction_process_command)

@@ -1,0 +1,390 @@
+"""Contact analysis of many similar surfaces and of sliding windows (METHOD.md §4a–c).
+
+Thesis 3.1.4, 3.2.4, 3.2.5.  Three kinds of samples, each an array over (sample, approach):
+
+* :func:`ensemble_contact` — R realisations of original size (random-phase or IAAFT
+  surrogates, :mod:`stochfric.surface.synthesis`), each analysed over the approach range
+  (GW/Hertz + Bowden–Tabor, :func:`stochfric.contact.asperity.asperity_sums`), §4a.
+* :func:`window_contact` — windows of original size shifted by ``shift`` grid points over one
+  long surface, §4b (shift = window length) and §4c (shift = a_y).  **Each window's contact is
+  referenced to its own highest summit** (METHOD §4c): the flat starts at the window's highest
+  summit and the approach u is measured from there, exactly as if the window were analysed on
+  its own.
+* :func:`path_contact` — §4c over K long surfaces: μ(y) per approach, shape (K, W, U).
+
+Fast windows.  The summits of a long surface are found **once**; a window analysed on its own
+finds exactly the long surface's summits whose column lies at least the rule's margin (2 points
+for the thesis rule, 1 for the 8-neighbour rule) inside the window, with the same radii (the
+summit test and the curvature only look 1–2 points around a summit).  So the summits are sorted
+by column once, every window is a contiguous slice found by :func:`numpy.searchsorted`, the
+slices are gathered into a padded (window × summit) matrix, the reference is its row maximum
+and the GW sums are formed by broadcasting over (window, approach, summit) in blocks.
+:func:`naive_window_contact` does the same window by window (crop, find summits, GW sums) and is
+kept as the reference for the tests and the benchmark (``benchmarks/bench_process.py``).
+
+Randomness: every function takes ``seed``; realisation / long surface k uses the k-th spawned
+child stream (:func:`stochfric.random.spawn_generators`), so results do not depend on how the
+work is split.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from stochfric.contact.asperity import ContactError, asperity_sums
+from stochfric.contact.materials import Material
+from stochfric.random import SeedLike, spawn_generators
+from stochfric.surface.io import Surface
+from stochfric.surface.summits import find_summits
+from stochfric.surface.synthesis import SURROGATE_METHODS, similar_surface
+
+__all__ = [
+    "SUMMIT_MARGIN",
+    "ContactSamples",
+    "PathContact",
+    "ensemble_contact",
+    "ergodic_contact",
+    "naive_window_contact",
+    "path_contact",
+    "window_contact",
+    "window_starts",
+]
+
+FloatArray = npt.NDArray[np.float64]
+IntArray = npt.NDArray[np.int64]
+Progress = Callable[[int, int], None]
+
+#: Points a summit must lie inside the grid border, per summit rule.
+SUMMIT_MARGIN: dict[str, int] = {"thesis": 2, "8-neighbour": 1}
+
+#: Elements of the (window, approach, summit) broadcast formed at once.
+_BLOCK_ELEMENTS = 1 << 22
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class ContactSamples:
+    """GW/Hertz contact of many samples (realisations or windows) over the approach.
+
+    Arrays have shape ``(..., U)``: leading axes index the samples, the last the approach.
+    SI units; every sample has the nominal area ``nominal_area_m2``.
+    """
+
+    approach_m: FloatArray
+    contact_area_m2: FloatArray
+    normal_force_n: FloatArray
+    n_contacts: IntArray
+    nominal_area_m2: float
+    shear_strength_pa: float
+    info: dict[str, Any] = field(default_factory=dict)
+
+    @property
+    def pressure_pa(self) -> FloatArray:
+        """Nominal pressure p = N / A_nom [Pa] (3.14)."""
+        return self.normal_force_n / self.nominal_area_m2
+
+    @property
+    def area_fraction(self) -> FloatArray:
+        """A_c / A_nom [-]."""
+        return self.contact_area_m2 / self.nominal_area_m2
+
+    @property
+    def mu(self) -> FloatArray:
+        """Bowden–Tabor μ = A_c τ_max / N (3.16); NaN where N = 0."""
+        with np.errstate(divide="ignore", invalid="ignore"):
+            out = self.contact_area_m2 * self.shear_strength_pa / self.normal_force_n
+        return np.where(self.normal_force_n > 0.0, out, np.nan)
+
+
+def _check_count(name: str, value: int, low: int = 1) -> int:
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < low:
+        raise ContactError(f"{name} must be an integer >= {low}, got {value!r}")
+    return int(value)
+
+
+def _approach(approach_m: npt.ArrayLike) -> FloatArray:
+    u = np.atleast_1d(np.asarray(approach_m, dtype=np.float64))
+    if u.ndim != 1 or u.size == 0 or not np.all(np.isfinite(u)) or np.any(u <= 0.0):
+        raise ContactError("approaches must be a non-empty 1-D sequence of finite values > 0 m")
+    return u
+
+
+def _one_surface(
+    heights: FloatArray, spacing: tuple[float, float], material: Material, u: FloatArray, rule: str
+) -> tuple[FloatArray, FloatArray, IntArray]:
+    s = find_summits(heights, spacing, rule=rule)
+    if s.count == 0:
+        raise ContactError(f"a {heights.shape[0]}×{heights.shape[1]} sample has no summit (rule {rule!r})")
+    return asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=material.e_star_pa)
+
+
+def ensemble_contact(
+    surface: Surface,
+    material: Material,
+    approach_m: npt.ArrayLike,
+    *,
+    realizations: int,
+    method: str = "phase",
+    seed: SeedLike = None,
+    rule: str = "thesis",
+    iaaft_tol: float = 1e-3,
+    progress: Progress | None = None,
+) -> ContactSamples:
+    """Contact of R similar surfaces of original size over ``approach_m`` (METHOD §4a).
+
+    Realisation r is :func:`~stochfric.surface.synthesis.similar_surface` with the r-th child
+    stream of ``seed``; each is referenced to its own highest summit.  Shape (R, U).
+    """
+    r_count = _check_count("realizations", realizations)
+    if method not in SURROGATE_METHODS:
+        raise ContactError(f"unknown surrogate method {method!r}; use one of {', '.join(SURROGATE_METHODS)}")
+    u = _approach(approach_m)
+    area = np.empty((r_count, u.size))
+    force = np.empty((r_count, u.size))
+    count = np.empty((r_count, u.size), dtype=np.int64)
+    for r, gen in enumerate(spawn_generators(seed, r_count)):
+        sim = similar_surface(surface, gen, method=method, tol=iaaft_tol)
+        area[r], force[r], count[r] = _one_surface(sim.heights_m, sim.grid_spacing_m, material, u, rule)
+        if progress is not None:
+            progress(r + 1, r_count)
+    return ContactSamples(
+        approach_m=u,
+        contact_area_m2=area,
+        normal_force_n=force,
+        n_contacts=count,
+        nominal_area_m2=surface.nominal_area_m2,
+        shear_strength_pa=material.shear_strength_pa,
+        info={"kind": "ensemble", "surrogate": method, "realizations": r_count, "summit_rule": rule},
+    )
+
+
+def window_starts(total_points: int, window_points: int, shift_points: int) -> IntArray:
+    """First column of every window: 0, shift, 2·shift, … while the window fits."""
+    total = _check_count("total_points", total_points)
+    win = _check_count("window_points", window_points)
+    shift = _check_count("shift_points", shift_points)
+    if win > total:
+        raise ContactError(f"the window ({win} points) is longer than the surface ({total} points)")
+    return np.arange(0, total - win + 1, shift, dtype=np.int64)
+
+
+def window_contact(
+    heights_m: npt.ArrayLike,
+    grid_spacing_m: tuple[float, float],
+    material: Material,
+    approach_m: npt.ArrayLike,
+    *,
+    window_points: int,
+    shift_points: int,
+    rule: str = "thesis",
+) -> tuple[FloatArray, FloatArray, IntArray]:
+    """GW contact of every window of a long surface (windows along y, axis 1), fast path.
+
+    Windows cover columns ``[s, s + window_points)`` for ``s`` in :func:`window_starts`; each is
+    referenced to its own highest summit.  Returns ``(A_c, N, n_contacts)`` of shape (W, U),
+    equal (to round-off) to :func:`naive_window_contact`.
+    """
+    z = np.asarray(heights_m, dtype=np.float64)
+    u = _approach(approach_m)
+    if rule not in SUMMIT_MARGIN:
+        raise ContactError(f"unknown summit rule {rule!r}; use one of {', '.join(SUMMIT_MARGIN)}")
+    margin = SUMMIT_MARGIN[rule]
+    starts = window_starts(z.shape[1], window_points, shift_points)
+    summits = find_summits(z, grid_spacing_m, rule=rule)
+    order = np.argsort(summits.j, kind="stable")
+    col = summits.j[order]
+    zs = summits.heights_m[order]
+    beta = summits.radius_m[order]
+    lo = np.searchsorted(col, starts + margin, side="left")
+    hi = np.searchsorted(col, starts + window_points - margin, side="left")
+    n_in = hi - lo
+    if np.any(n_in == 0):
+        bad = int(np.argmin(n_in))
+        raise ContactError(f"window {bad} (columns {int(starts[bad])}…) has no summit; use larger windows")
+    s_max = int(n_in.max())
+    idx = lo[:, None] + np.arange(s_max)[None, :]
+    valid = np.arange(s_max)[None, :] < n_in[:, None]
+    idx = np.where(valid, idx, 0)
+    h = np.where(valid, zs[idx], -np.inf)
+    sqrt_b = np.where(valid, np.sqrt(beta[idx]), 0.0)
+    b = np.where(valid, beta[idx], 0.0)
+    ref = h.max(axis=1)
+    n_win = starts.size
+    area = np.empty((n_win, u.size))
+    force = np.empty((n_win, u.size))
+    count = np.empty((n_win, u.size), dtype=np.int64)
+    rows = max(1, _BLOCK_ELEMENTS // max(1, u.size * s_max))
+    for a in range(0, n_win, rows):
+        sl = slice(a, a + rows)
+        # d[w, k, i] = z_i − (z_ref,w − u_k) (3.11)
+        d = h[sl, None, :] - (ref[sl, None, None] - u[None, :, None])
+        np.maximum(d, 0.0, out=d)
+        area[sl] = np.pi * np.einsum("wki,wi->wk", d, b)  # (3.12)
+        force[sl] = np.einsum("wki,wi->wk", d * np.sqrt(d), sqrt_b)  # (3.13) without (4/3)E*
+        count[sl] = np.count_nonzero(d > 0.0, axis=2)
+    force *= (4.0 / 3.0) * material.e_star_pa
+    return area, force, count
+
+
+def naive_window_contact(
+    heights_m: npt.ArrayLike,
+    grid_spacing_m: tuple[float, float],
+    material: Material,
+    approach_m: npt.ArrayLike,
+    *,
+    window_points: int,
+    shift_points: int,
+    rule: str = "thesis",
+) -> tuple[FloatArray, FloatArray, IntArray]:
+    """Reference for :func:`window_contact`: crop each window and analyse it on its own."""
+    z = np.asarray(heights_m, dtype=np.float64)
+    u = _approach(approach_m)
+    starts = window_starts(z.shape[1], window_points, shift_points)
+    area = np.empty((starts.size, u.size))
+    force = np.empty((starts.size, u.size))
+    count = np.empty((starts.size, u.size), dtype=np.int64)
+    for w, s in enumerate(starts):
+        area[w], force[w], count[w] = _one_surface(
+            np.ascontiguousarray(z[:, s : s + window_points]), grid_spacing_m, material, u, rule
+        )
+    return area, force, count
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class PathContact:
+    """μ along the path (METHOD §4c): K long surfaces × W windows × U approaches.
+
+    ``window_shift_m`` = a_y, the spacing of μ(y); ``samples`` holds A_c, N, counts of shape
+    (K, W, U).
+    """
+
+    samples: ContactSamples
+    window_shift_m: float
+    window_shift_points: int
+    window_length_m: float
+    surface_length_m: float
+
+    @property
+    def positions_m(self) -> FloatArray:
+        """Window positions y_w = w a_y [m] (start of each window)."""
+        return np.arange(self.samples.mu.shape[1], dtype=np.float64) * self.window_shift_m
+
+
+def _long_windows(
+    surface: Surface,
+    material: Material,
+    u: FloatArray,
+    *,
+    surfaces: int,
+    factor: int,
+    shift_points: int,
+    method: str,
+    seed: SeedLike,
+    rule: str,
+    iaaft_tol: float,
+    progress: Progress | None,
+) -> tuple[FloatArray, FloatArray, IntArray]:
+    ny = surface.nb_grid_pts[1]
+    out: list[tuple[FloatArray, FloatArray, IntArray]] = []
+    for k, gen in enumerate(spawn_generators(seed, surfaces)):
+        long = similar_surface(surface, gen, method=method, factor=factor, tol=iaaft_tol)
+        out.append(
+            window_contact(
+                long.heights_m,
+                long.grid_spacing_m,
+                material,
+                u,
+                window_points=ny,
+                shift_points=shift_points,
+                rule=rule,
+            )
+        )
+        if progress is not None:
+            progress(k + 1, surfaces)
+    return (
+        np.stack([o[0] for o in out]),
+        np.stack([o[1] for o in out]),
+        np.stack([o[2] for o in out]),
+    )
+
+
+def path_contact(
+    surface: Surface,
+    material: Material,
+    approach_m: npt.ArrayLike,
+    *,
+    long_surfaces: int = 10,
+    length_factor: int = 10,
+    shift_points: int,
+    method: str = "phase",
+    seed: SeedLike = None,
+    rule: str = "thesis",
+    iaaft_tol: float = 1e-3,
+    progress: Progress | None = None,
+) -> PathContact:
+    """μ(y) over K long surfaces of ``length_factor`` × the original length (METHOD §4c).
+
+    Windows of the original size are shifted by ``shift_points`` grid points (a_y) along y;
+    long surface k uses the k-th child stream of ``seed``.
+    """
+    k_count = _check_count("long_surfaces", long_surfaces)
+    factor = _check_count("length_factor", length_factor, 2)
+    shift = _check_count("shift_points", shift_points)
+    u = _approach(approach_m)
+    area, force, count = _long_windows(
+        surface, material, u, surfaces=k_count, factor=factor, shift_points=shift,
+        method=method, seed=seed, rule=rule, iaaft_tol=iaaft_tol, progress=progress,
+    )  # fmt: skip
+    dy = surface.grid_spacing_m[1]
+    samples = ContactSamples(
+        approach_m=u,
+        contact_area_m2=area,
+        normal_force_n=force,
+        n_contacts=count,
+        nominal_area_m2=surface.nominal_area_m2,
+        shear_strength_pa=material.shear_strength_pa,
+        info={"kind": "path", "surrogate": method, "long_surfaces": k_count, "length_factor": factor},
+    )
+    return PathContact(
+        samples=samples,
+        window_shift_m=shift * dy,
+        window_shift_points=shift,
+        window_length_m=surface.physical_size_m[1],
+        surface_length_m=factor * surface.physical_size_m[1],
+    )
+
+
+def ergodic_contact(
+    surface: Surface,
+    material: Material,
+    approach_m: npt.ArrayLike,
+    *,
+    windows: int,
+    method: str = "phase",
+    seed: SeedLike = None,
+    rule: str = "thesis",
+    iaaft_tol: float = 1e-3,
+) -> ContactSamples:
+    """Windows of original size, shifted by their own length, on ONE long surface (METHOD §4b).
+
+    The long surface is ``windows`` times the original length; shape (W, U).
+    """
+    w_count = _check_count("windows", windows, 2)
+    u = _approach(approach_m)
+    area, force, count = _long_windows(
+        surface, material, u, surfaces=1, factor=w_count, shift_points=surface.nb_grid_pts[1],
+        method=method, seed=seed, rule=rule, iaaft_tol=iaaft_tol, progress=None,
+    )  # fmt: skip
+    return ContactSamples(
+        approach_m=u,
+        contact_area_m2=area[0],
+        normal_force_n=force[0],
+        n_contacts=count[0],
+        nominal_area_m2=surface.nominal_area_m2,
+        shear_strength_pa=material.shear_strength_pa,
+        info={"kind": "ergodic", "surrogate": method, "windows": w_count},
+    )

@@ -1,0 +1,223 @@
+"""Figures of the statistical contact analysis, after thesis Fig. 3.16–3.23.
+
+Matplotlib's object API with the Agg canvas (no pyplot, no global state).  Every function
+writes one PNG and returns its path; pressures in MPa, lengths in µm (conversion only here).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from stochfric.units import MEGAPASCAL, MICROMETRE
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from stochfric.process.statistics import ProcessCheck, StatisticalContactAnalysis
+
+__all__ = [
+    "plot_contact_fraction",
+    "plot_ergodicity",
+    "plot_fits",
+    "plot_mu_path",
+    "plot_mu_pdfs",
+    "plot_process_check",
+    "plot_spectra",
+    "plot_surrogates",
+    "write_process_figures",
+]
+
+
+def _figure(width: float, height: float) -> Figure:
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(width, height), layout="constrained")
+    FigureCanvasAgg(fig)
+    return fig
+
+
+def _save(fig: Figure, path: str | Path) -> Path:
+    p = Path(path)
+    p.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(p, dpi=110)
+    return p
+
+
+def _selected(n: int) -> list[int]:
+    """Three approaches as in the thesis (2, 6, 12 of 1…12 µm): indices 1, n/2−1, n−1."""
+    return sorted({min(1, n - 1), max(0, n // 2 - 1), n - 1})
+
+
+def plot_mu_pdfs(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """PDFs of μ over the ensemble at three approaches (Fig. 3.16)."""
+    fig = _figure(9.0, 3.2)
+    idx = _selected(a.ensemble.approach_m.size)
+    axes = fig.subplots(1, len(idx))
+    for ax, k in zip(np.atleast_1d(axes), idx, strict=True):
+        e = a.pdf_edges[k]
+        ax.stairs(a.pdf_density[k], e, fill=True, alpha=0.6)
+        ax.set_title(
+            f"u = {a.ensemble.approach_m[k] / MICROMETRE:.3g} µm, p = {a.ensemble_pressure_pa[k] / MEGAPASCAL:.3g} MPa"
+        )
+        ax.set_xlabel("μ")
+    np.atleast_1d(axes)[0].set_ylabel("PDF")
+    fig.suptitle(f"μ over {a.config.realizations} realisations ({a.config.surrogate} surrogates)")
+    return _save(fig, path)
+
+
+def plot_contact_fraction(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """Mean A_c/A_nom over the mean pressure E[N]/A_nom with the linear fit (Fig. 3.17)."""
+    fig = _figure(5.0, 4.0)
+    ax = fig.subplots()
+    p = a.ensemble_pressure_pa
+    ax.plot(p / MEGAPASCAL, a.ensemble_area_fraction, "o", label="ensemble mean")
+    fit = a.contact_fraction_fit
+    ax.plot(p / MEGAPASCAL, fit["slope"] * p + fit["intercept"], "-", label=f"linear fit, R² = {fit['r_squared']:.4f}")
+    ax.set_xlabel("E[N]/A_nom [MPa]")
+    ax.set_ylabel("E[A_c]/A_nom")
+    ax.legend()
+    return _save(fig, path)
+
+
+def plot_ergodicity(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """μ of every realisation / window with mean ± σ: ensemble vs one long surface (Fig. 3.18)."""
+    fig = _figure(9.0, 3.6)
+    axes = fig.subplots(1, 2, sharey=True)
+    u = a.ensemble.approach_m / MICROMETRE
+    for ax, mu, title in (
+        (axes[0], a.ensemble.mu, f"{a.config.realizations} realisations"),
+        (axes[1], a.ergodic.mu, f"{a.ergodic.mu.shape[0]} windows of one long surface"),
+    ):
+        ax.plot(u, mu.T, color="0.8", lw=0.5)
+        m, s = mu.mean(axis=0), mu.std(axis=0, ddof=1)
+        ax.plot(u, m, "k-", label="E[μ]")
+        ax.plot(u, m + s, "k--", label="E[μ] ± σ")
+        ax.plot(u, m - s, "k--")
+        ax.set_xlabel("u [µm]")
+        ax.set_title(title)
+    axes[0].set_ylabel("μ")
+    axes[0].legend()
+    erg = a.ergodicity
+    fig.suptitle(
+        f"ergodicity: max |z| = {erg.max_abs_z:.2f} vs threshold {erg.threshold:.2f} → "
+        + ("consistent" if erg.consistent else "NOT consistent")
+    )
+    return _save(fig, path)
+
+
+def plot_mu_path(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """μ(y) along the first long surface for three approaches."""
+    fig = _figure(7.0, 3.6)
+    ax = fig.subplots()
+    y = a.path.positions_m / MICROMETRE
+    for k in _selected(a.ensemble.approach_m.size):
+        ax.plot(y, a.path.samples.mu[0, :, k], label=f"p = {a.pressure_pa[k] / MEGAPASCAL:.3g} MPa")
+    ax.set_xlabel(f"y [µm] (windows shifted by a_y = {a.path.window_shift_m / MICROMETRE:.3g} µm)")
+    ax.set_ylabel("μ(y)")
+    ax.legend()
+    return _save(fig, path)
+
+
+def plot_spectra(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """Averaged autocorrelation and one-sided PSD (METHOD §0) for three approaches (Fig. 3.19–3.21)."""
+    fig = _figure(10.0, 3.8)
+    ax1, ax2 = fig.subplots(1, 2)
+    for k in _selected(a.ensemble.approach_m.size):
+        lab = f"p = {a.pressure_pa[k] / MEGAPASCAL:.3g} MPa"
+        ax1.plot(a.lags_m / MICROMETRE, a.acf[k], label=lab)
+        ax2.plot(a.frequencies, a.psd[k], label=lab)
+    ax1.axhline(0.0, color="k", lw=0.5)
+    ax1.set_xlabel("lag [µm]")
+    ax1.set_ylabel("R(lag) (3.18)")
+    ax1.set_title(f"mean ℓ_corr = {np.nanmean(a.correlation_length_m) / MICROMETRE:.3g} µm")
+    ax2.set_yscale("log")
+    ax2.set_xlabel("f [1/m]")
+    ax2.set_ylabel("S [m] (one-sided)")
+    ax2.set_title(f"PSD averaged over {a.config.long_surfaces} surfaces")
+    ax1.legend()
+    return _save(fig, path)
+
+
+def plot_fits(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """E[μ], σ_μ and E[S] over the mean pressure with the model functions a p^b + c (Fig. 3.22)."""
+    fig = _figure(11.0, 3.6)
+    axes = fig.subplots(1, 3)
+    p = a.pressure_pa
+    data = (
+        ("mu_mean", a.mu_mean, a.mu_mean_se, "E[μ]"),
+        ("mu_std", a.mu_std, a.mu_std_se, "σ_μ"),
+        ("psd_level", a.psd_level, a.psd_level_se, "E[S] [m]"),
+    )
+    pp = np.geomspace(p.min(), p.max(), 200)
+    for ax, (key, y, se, label) in zip(axes, data, strict=True):
+        fit = a.fits[key]
+        used = np.asarray(fit.used)
+        ax.errorbar(p[used] / MEGAPASCAL, y[used], yerr=se[used], fmt="o", label="used")
+        ax.errorbar(p[~used] / MEGAPASCAL, y[~used], yerr=se[~used], fmt="x", color="0.5", label="excluded")
+        ax.plot(pp / MEGAPASCAL, fit(pp), "-", label=f"{fit.a:.3g} p^{fit.b:.3g} + {fit.c:.3g}")
+        ax.set_xscale("log")
+        ax.set_xlabel("p [MPa]")
+        ax.set_ylabel(label)
+        ax.legend(fontsize=7)
+    return _save(fig, path)
+
+
+def plot_process_check(check: ProcessCheck, path: str | Path) -> Path:
+    """Generated process vs target: standard deviation and spectrum (Fig. 3.23)."""
+    fig = _figure(10.0, 3.8)
+    ax1, ax2 = fig.subplots(1, 2)
+    p = np.asarray(check.pressure_pa) / MEGAPASCAL
+    ax1.plot(p, check.target_std, "k-o", label="target σ")
+    ax1.errorbar(p, check.std_pointwise, yerr=check.std_pointwise_se, fmt="s", label="generated (pointwise)")
+    ax1.plot(p, check.std_grid_mean, "x", label="generated (grid, mean)")
+    ax1.set_xscale("log")
+    ax1.set_xlabel("p [MPa]")
+    ax1.set_ylabel("σ of μ̂_SD")
+    ax1.legend(fontsize=7)
+    f = np.asarray(check.frequencies)
+    for j, pj in enumerate(p):
+        line = ax2.plot(f, check.target_psd[j], "-", label=f"target, {pj:.3g} MPa")[0]
+        ax2.plot(f, check.generated_psd[j], ".", color=line.get_color(), label=f"generated ({check.realizations})")
+    ax2.set_yscale("log")
+    ax2.set_xlabel("f [1/m]")
+    ax2.set_ylabel("S [m] (one-sided)")
+    ax2.legend(fontsize=6)
+    return _save(fig, path)
+
+
+def plot_surrogates(
+    original: np.ndarray, surrogates: dict[str, np.ndarray], path: str | Path, *, unit: float = MICROMETRE
+) -> Path:
+    """Original and surrogate height maps with their height PDFs (phase vs IAAFT)."""
+    n = 1 + len(surrogates)
+    fig = _figure(3.2 * n + 3.2, 3.2)
+    axes = fig.subplots(1, n + 1)
+    maps = {"original": original, **surrogates}
+    lo, hi = float(original.min()) / unit, float(original.max()) / unit
+    for ax, (label, z) in zip(axes[:n], maps.items(), strict=True):
+        ax.imshow(z.T / unit, origin="lower", cmap="viridis", vmin=lo, vmax=hi)
+        ax.set_title(label)
+        ax.set_axis_off()
+        axes[n].hist(z.ravel() / unit, bins=80, density=True, histtype="step", label=label)
+    axes[n].set_yscale("log")
+    axes[n].set_xlabel("z [µm]")
+    axes[n].legend(fontsize=7)
+    return _save(fig, path)
+
+
+def write_process_figures(a: StatisticalContactAnalysis, directory: str | Path) -> list[Path]:
+    """All figures of the analysis into ``directory`` (Fig. 3.16–3.23 analogues)."""
+    d = Path(directory)
+    return [
+        plot_mu_pdfs(a, d / "mu_pdfs.png"),
+        plot_contact_fraction(a, d / "contact_fraction.png"),
+        plot_ergodicity(a, d / "ergodicity.png"),
+        plot_mu_path(a, d / "mu_path.png"),
+        plot_spectra(a, d / "acf_psd.png"),
+        plot_fits(a, d / "model_functions.png"),
+        plot_process_check(a.process_check, d / "process_check.png"),
+    ]

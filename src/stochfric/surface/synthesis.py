@@ -1,0 +1,309 @@
+"""Stochastically similar surfaces (METHOD.md §3, thesis 3.1.2, eq. 3.2–3.6).
+
+Three generators, all pure functions of a height map and a random ``rng`` (a
+:class:`numpy.random.Generator` or a seed, normalised by :func:`stochfric.random.as_generator`):
+
+* :func:`random_phase_surface` — the thesis's random-phase surrogate (3.4–3.5): keep the
+  amplitude matrix ``|Z|`` of the 2-D DFT, replace the phases by random ones.  The phases are
+  those of the real-input FFT of a white Gaussian field: uniform on [−π, π), independent for
+  every conjugate pair ``(m, n) ↔ (−m, −n)``, Hermitian-symmetric by construction and 0 or π at
+  the self-conjugate frequencies (those coefficients are real).  The result is therefore real
+  and has exactly the amplitude spectrum, hence exactly the variance, of the original; the DC
+  coefficient (the mean) is kept as it is.  Anisotropy is kept because ``|Z(m, n)|`` is kept
+  element by element.
+* :func:`longer_surface` — the thesis's longer surfaces (3.6): the amplitude matrix is
+  interpolated onto a ``factor``-times finer frequency grid in y (linearly in the frequency,
+  periodically in the DFT index, so the interpolated matrix stays point-symmetric), rescaled
+  by ``√(M L)/√(M N)`` (3.6) and, beyond the thesis, rescaled once more so that the height
+  variance equals the original's **exactly** (linear interpolation of amplitudes changes
+  Σ|Z|² by a few per cent).  The DC coefficient does not take part in the interpolation (the
+  mean would otherwise leak into the new long wavelengths between f = 0 and f = Δf); the mean
+  is kept.  The thesis notes that the interpolation adds wavelengths longer than the original
+  (between 0 and Δf); they do not change the contact results (§3.2.3).
+* :func:`iaaft_surface` — beyond the thesis (its outlook): the iterative amplitude-adjusted
+  Fourier transform (Schreiber & Schmitz 1996) alternates "impose the amplitude matrix, keep
+  the phases" and "rank-order remap onto the measured heights".  It ends with the remap, so
+  the height distribution is kept **exactly** (the sorted heights equal the original's; for a
+  longer surface each original height is repeated ``factor`` times); the amplitude spectrum is
+  kept approximately.  :func:`amplitude_error` measures the deviation
+  ``ε = ‖|Z_s| − |Z|‖₂ / ‖|Z|‖₂`` over all non-DC coefficients; the iteration stops when ε
+  changes by less than ``tol`` (relative) or after ``max_iter`` iterations, and the result
+  records ε.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from stochfric.random import SeedLike, as_generator
+from stochfric.surface.io import Surface, SurfaceError
+
+__all__ = [
+    "SURROGATE_METHODS",
+    "IaaftResult",
+    "SurrogateMethod",
+    "amplitude_error",
+    "amplitude_spectrum",
+    "iaaft_heights",
+    "iaaft_surface",
+    "interpolate_amplitudes",
+    "longer_surface",
+    "random_phase_heights",
+    "random_phase_surface",
+    "similar_surface",
+]
+
+SurrogateMethod = Literal["phase", "iaaft"]
+SURROGATE_METHODS: tuple[str, ...] = ("phase", "iaaft")
+
+FloatArray = npt.NDArray[np.float64]
+ComplexArray = npt.NDArray[np.complex128]
+
+
+def _heights(z: npt.ArrayLike) -> FloatArray:
+    h = np.asarray(z, dtype=np.float64)
+    if h.ndim != 2 or min(h.shape) < 2:
+        raise SurfaceError(f"a surrogate needs a 2-D height map of at least 2×2 points, got shape {h.shape}")
+    if not np.all(np.isfinite(h)):
+        raise SurfaceError("heights contain NaN or infinity; fill undefined points first")
+    return h
+
+
+def _check_factor(factor: int) -> int:
+    if isinstance(factor, bool) or not isinstance(factor, int | np.integer) or factor < 1:
+        raise SurfaceError(f"the length factor must be an integer >= 1, got {factor!r}")
+    return int(factor)
+
+
+def amplitude_spectrum(heights: npt.ArrayLike) -> FloatArray:
+    """Normalised amplitude matrix ``|Z(m, n)| = |DFT2(z)| / √(MN)`` (eq. 3.2–3.3), full M × N."""
+    z = _heights(heights)
+    return np.asarray(np.abs(np.fft.fft2(z)) / np.sqrt(z.size))
+
+
+def _white_phases(shape: tuple[int, int], rng: np.random.Generator) -> ComplexArray:
+    """``exp(iφ)`` in the rfft2 layout, φ the phases of the rfft2 of a white Gaussian field.
+
+    Uniform on [−π, π) and independent for each conjugate pair, Hermitian where the rfft2
+    layout needs it (columns 0 and N/2), exactly ±1 at the self-conjugate frequencies.
+    """
+    w = np.fft.rfft2(rng.standard_normal(shape))
+    mag = np.abs(w)
+    mag[mag == 0.0] = 1.0  # probability zero; keeps the division finite
+    return np.asarray(w / mag)
+
+
+def _phase_from_half_amplitudes(
+    half_amp: FloatArray, shape: tuple[int, int], mean: float, rng: np.random.Generator
+) -> FloatArray:
+    """Inverse rfft2 of ``half_amp · exp(iφ)`` with the DC coefficient set to ``mean · size``."""
+    coef = half_amp * _white_phases(shape, rng)
+    coef[0, 0] = mean * shape[0] * shape[1]
+    return np.asarray(np.fft.irfft2(coef, s=shape))
+
+
+def random_phase_heights(heights: npt.ArrayLike, rng: np.random.Generator | SeedLike = None) -> FloatArray:
+    """Random-phase surrogate of a height map (eq. 3.4–3.5, METHOD §3).
+
+    Returns a real map of the same shape whose amplitude spectrum ``|DFT2|`` equals the
+    original's coefficient by coefficient (to round-off), hence the same mean and variance.
+    """
+    z = _heights(heights)
+    gen = as_generator(rng)
+    half = np.abs(np.fft.rfft2(z))
+    return _phase_from_half_amplitudes(half, z.shape, float(z.mean()), gen)
+
+
+def interpolate_amplitudes(amplitude: npt.ArrayLike, factor: int) -> FloatArray:
+    """Amplitude matrix on a ``factor``-times finer frequency grid in y (axis 1), eq. (3.6).
+
+    ``amplitude`` is the full M × N matrix ``|Z|`` (DC at [0, 0]); the result is M × (factor·N).
+    New column ``l`` sits at the original (fractional) index ``l/factor``; the value is the
+    linear interpolation between the neighbouring columns, periodic in the index (the DFT is
+    periodic), so ``A(−m, −l) = A(m, l)`` is kept.  The DC element [0, 0] is treated as 0 (the
+    mean is handled separately).  No rescaling here: see :func:`longer_surface`.
+    """
+    a = np.array(amplitude, dtype=np.float64)
+    factor = _check_factor(factor)
+    if a.ndim != 2:
+        raise SurfaceError("the amplitude matrix must be 2-D")
+    a[0, 0] = 0.0
+    n = a.shape[1]
+    pos = np.arange(factor * n, dtype=np.float64) / factor
+    lo = np.floor(pos).astype(np.intp)
+    t = pos - lo
+    hi = (lo + 1) % n
+    return np.asarray(a[:, lo] * (1.0 - t) + a[:, hi % n] * t)
+
+
+def _longer_half_amplitudes(z: FloatArray, factor: int) -> FloatArray:
+    """rfft2-layout amplitudes (unnormalised, for irfft2) of the longer surface, variance exact."""
+    m, n = z.shape
+    big_n = factor * n
+    amp = amplitude_spectrum(z)
+    a1 = interpolate_amplitudes(amp, factor) * np.sqrt(m * big_n)  # (3.6): Z1* = √(ML)|Z1|
+    half = a1[:, : big_n // 2 + 1].copy()
+    half[0, 0] = 0.0
+    # variance of irfft2(half·e^{iφ}) for the full point-symmetric matrix a1 (DC excluded)
+    target_var = float(z.var())
+    current_var = float(np.sum(a1**2)) / (m * big_n) ** 2
+    if current_var > 0.0:
+        half *= np.sqrt(target_var / current_var)
+    return half
+
+
+def longer_surface(
+    surface: Surface,
+    factor: int,
+    rng: np.random.Generator | SeedLike = None,
+    *,
+    method: str = "phase",
+    max_iter: int = 100,
+    tol: float = 1e-4,
+) -> Surface:
+    """A surface ``factor`` times longer in y, stochastically similar to ``surface`` (eq. 3.6).
+
+    ``method="phase"``: Gaussian random-phase synthesis from the interpolated amplitude matrix
+    (thesis); ``"iaaft"``: IAAFT towards the interpolated amplitude matrix and the measured
+    height distribution (each measured height repeated ``factor`` times).  The spacing stays
+    (Δx, Δy); the size becomes (ℓx, factor·ℓy).  Mean and variance equal the original's.
+    """
+    factor = _check_factor(factor)
+    z = _heights(surface.heights_m)
+    gen = as_generator(rng)
+    if method == "phase":
+        if factor == 1:
+            h = random_phase_heights(z, gen)
+        else:
+            shape = (z.shape[0], factor * z.shape[1])
+            h = _phase_from_half_amplitudes(_longer_half_amplitudes(z, factor), shape, float(z.mean()), gen)
+    elif method == "iaaft":
+        h = iaaft_heights(z, gen, factor=factor, max_iter=max_iter, tol=tol).heights
+    else:
+        raise SurfaceError(f"unknown surrogate method {method!r}; use one of {', '.join(SURROGATE_METHODS)}")
+    lx, ly = surface.physical_size_m
+    return Surface(
+        heights_m=h,
+        physical_size_m=(lx, factor * ly),
+        source=f"{method} surrogate (length factor {factor}) of {surface.source}",
+        n_undefined_filled=0,
+        info={"surrogate": method, "length_factor": factor, "original": surface.source},
+    )
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class IaaftResult:
+    """Result of :func:`iaaft_heights`: the map, its amplitude error ε, the iterations used."""
+
+    heights: FloatArray
+    amplitude_error: float
+    iterations: int
+
+
+def amplitude_error(heights: npt.ArrayLike, target_half_amplitude: npt.ArrayLike) -> float:
+    """``ε = ‖|rfft2(z)| − A‖₂ / ‖A‖₂`` over the non-DC coefficients (rfft2 layout, unnormalised).
+
+    The rfft2 half-plane counts every conjugate pair once (columns 0 and N/2 twice); the
+    measure is only used relative to its own scale, so that weighting does not matter.
+    """
+    a = np.asarray(target_half_amplitude, dtype=np.float64)
+    s = np.abs(np.fft.rfft2(np.asarray(heights, dtype=np.float64)))
+    diff = s - a
+    diff[0, 0] = 0.0
+    ref = a.copy()
+    ref[0, 0] = 0.0
+    norm = float(np.linalg.norm(ref))
+    return float(np.linalg.norm(diff)) / norm if norm > 0.0 else 0.0
+
+
+def iaaft_heights(
+    heights: npt.ArrayLike,
+    rng: np.random.Generator | SeedLike = None,
+    *,
+    factor: int = 1,
+    max_iter: int = 100,
+    tol: float = 1e-4,
+) -> IaaftResult:
+    """IAAFT surrogate: measured height distribution exactly, amplitude spectrum approximately.
+
+    Schreiber & Schmitz (1996), Phys. Rev. Lett. 77, 635.  Start: a random-phase surrogate
+    (of the interpolated amplitude matrix for ``factor > 1``); iterate (1) impose the target
+    amplitudes keeping the current phases, (2) replace the heights by the target heights in
+    the rank order of (1).  The result is the output of step (2), so its sorted heights are
+    the target heights exactly.  Stops when ε (:func:`amplitude_error`) changes by less than
+    ``tol`` relative to ε, or after ``max_iter`` iterations.
+    """
+    z = _heights(heights)
+    factor = _check_factor(factor)
+    if max_iter < 1:
+        raise SurfaceError(f"max_iter must be >= 1, got {max_iter}")
+    gen = as_generator(rng)
+    shape = (z.shape[0], factor * z.shape[1])
+    mean = float(z.mean())
+    if factor == 1:
+        target = np.abs(np.fft.rfft2(z))
+    else:
+        target = _longer_half_amplitudes(z, factor)
+        target[0, 0] = abs(mean) * shape[0] * shape[1]
+    sorted_values = np.sort(np.repeat(z.ravel(), factor))
+    ref = target.copy()
+    ref[0, 0] = 0.0
+    ref_norm = max(float(np.linalg.norm(ref)), np.finfo(float).tiny)
+    current = _phase_from_half_amplitudes(target, shape, mean, gen)
+    ranked = np.empty(sorted_values.size, dtype=np.float64)
+    previous = np.inf
+    iterations = 0
+    for iterations in range(1, max_iter + 1):  # noqa: B007 - the count is returned
+        # (2) rank-order remap onto the measured heights: the distribution is exact
+        ranked[np.argsort(current, axis=None, kind="stable")] = sorted_values
+        remapped = ranked.reshape(shape)
+        spec = np.fft.rfft2(remapped)
+        mag = np.abs(spec)
+        diff = mag - target
+        diff[0, 0] = 0.0
+        err = float(np.linalg.norm(diff)) / ref_norm
+        if abs(previous - err) <= tol * err:
+            break
+        previous = err
+        # (1) impose the target amplitudes, keep the phases
+        mag[mag == 0.0] = 1.0
+        current = np.fft.irfft2(target * (spec / mag), s=shape)
+    final = ranked.reshape(shape).copy()
+    return IaaftResult(
+        heights=np.asarray(final, dtype=np.float64),
+        amplitude_error=amplitude_error(final, target),
+        iterations=iterations,
+    )
+
+
+def iaaft_surface(
+    surface: Surface,
+    rng: np.random.Generator | SeedLike = None,
+    *,
+    max_iter: int = 100,
+    tol: float = 1e-4,
+) -> Surface:
+    """:func:`iaaft_heights` of ``surface`` as a :class:`Surface` of the same size."""
+    return longer_surface(surface, 1, rng, method="iaaft", max_iter=max_iter, tol=tol)
+
+
+def random_phase_surface(surface: Surface, rng: np.random.Generator | SeedLike = None) -> Surface:
+    """:func:`random_phase_heights` of ``surface`` as a :class:`Surface` of the same size."""
+    return longer_surface(surface, 1, rng, method="phase")
+
+
+def similar_surface(
+    surface: Surface,
+    rng: np.random.Generator | SeedLike = None,
+    *,
+    method: str = "phase",
+    factor: int = 1,
+    max_iter: int = 100,
+    tol: float = 1e-4,
+) -> Surface:
+    """One stochastically similar surface of ``factor`` times the length (``"phase"`` | ``"iaaft"``)."""
+    return longer_surface(surface, factor, rng, method=method, max_iter=max_iter, tol=tol)

@@ -1,0 +1,90 @@
+"""Ensembles and sliding windows (METHOD §4a–c): fast windows equal the naive analysis."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+
+from stochfric.contact.asperity import ContactError, asperity_sums, default_approach_m
+from stochfric.contact.materials import get_material
+from stochfric.process.ensemble import (
+    ensemble_contact,
+    ergodic_contact,
+    naive_window_contact,
+    path_contact,
+    window_contact,
+    window_starts,
+)
+from stochfric.surface.io import Surface, default_surface_path, read_surface, surface_from_array
+from stochfric.surface.preprocess import prepare
+from stochfric.surface.summits import find_summits, summits_of
+from stochfric.surface.synthesis import longer_surface
+
+MAT = get_material("brake-pad")
+
+
+@pytest.fixture(scope="module")
+def fine() -> Surface:
+    f, _ = prepare(read_surface(default_surface_path()))
+    return f
+
+
+@pytest.mark.parametrize("rule", ["thesis", "8-neighbour"])
+def test_fast_windows_equal_naive_windows(fine: Surface, rule: str) -> None:
+    long = longer_surface(fine, 3, 4)
+    u = default_approach_m(summits_of(fine))
+    kw: dict[str, Any] = dict(window_points=296, shift_points=37, rule=rule)
+    fast = window_contact(long.heights_m, long.grid_spacing_m, MAT, u, **kw)
+    naive = naive_window_contact(long.heights_m, long.grid_spacing_m, MAT, u, **kw)
+    assert fast[0].shape == (window_starts(888, 296, 37).size, u.size)
+    np.testing.assert_allclose(fast[0], naive[0], rtol=1e-12)
+    np.testing.assert_allclose(fast[1], naive[1], rtol=1e-12)
+    np.testing.assert_array_equal(fast[2], naive[2])
+
+
+def test_each_window_referenced_to_its_own_highest_summit(fine: Surface) -> None:
+    long = longer_surface(fine, 4, 9)
+    u = np.array([1e-12, 1e-7])
+    _a, n, c = window_contact(long.heights_m, long.grid_spacing_m, MAT, u, window_points=296, shift_points=50)
+    # at a vanishing approach exactly one summit (the window's highest) touches in every window
+    np.testing.assert_array_equal(c[:, 0], 1)
+    # and the window at column 100 equals an analysis of the cropped window on its own
+    s = find_summits(long.heights_m[:, 100:396], long.grid_spacing_m)
+    ref = asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=MAT.e_star_pa)
+    np.testing.assert_allclose(n[2], ref[1], rtol=1e-9)
+
+
+def test_window_starts() -> None:
+    np.testing.assert_array_equal(window_starts(10, 4, 3), [0, 3, 6])
+    with pytest.raises(ContactError):
+        window_starts(3, 4, 1)
+
+
+def test_ensemble_streams_do_not_depend_on_the_number_of_realisations(fine: Surface) -> None:
+    u = default_approach_m(summits_of(fine))
+    small = ensemble_contact(fine, MAT, u, realizations=3, seed=5)
+    big = ensemble_contact(fine, MAT, u, realizations=5, seed=5)
+    np.testing.assert_array_equal(small.normal_force_n, big.normal_force_n[:3])
+    assert small.mu.shape == (3, u.size)
+    assert not np.allclose(big.mu[0], big.mu[1])
+    with pytest.raises(ContactError, match="surrogate"):
+        ensemble_contact(fine, MAT, u, realizations=2, method="x")
+
+
+def test_path_and_ergodic_shapes(fine: Surface) -> None:
+    u = default_approach_m(summits_of(fine), num=4)
+    pc = path_contact(fine, MAT, u, long_surfaces=2, length_factor=3, shift_points=74, seed=1)
+    assert pc.samples.mu.shape == (2, 9, 4)
+    assert pc.window_shift_m == pytest.approx(74 * fine.grid_spacing_m[1])
+    np.testing.assert_allclose(pc.positions_m[1], pc.window_shift_m)
+    erg = ergodic_contact(fine, MAT, u, windows=3, seed=2)
+    assert erg.mu.shape == (3, 4)
+    assert np.all(np.isfinite(erg.mu))
+
+
+def test_window_without_summit_is_refused() -> None:
+    flat = surface_from_array(np.zeros((10, 40)), physical_size_m=(1e-5, 4e-5))
+    with pytest.raises(ContactError, match="no summit"):
+        window_contact(flat.heights_m, flat.grid_spacing_m, MAT, [1e-7], window_points=10, shift_points=5)
