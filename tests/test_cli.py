@@ -110,3 +110,18 @@ def test_simulate_with_a_process_model_file(tmp_path) -> None:
     bad.write_text("[1, 2]")
     res = runner.invoke(app, ["simulate", "--process", str(bad), *args])
     assert res.exit_code == 2 and "not a friction-process model" in res.output
+
+
+def test_simulate_white_intensity_rules() -> None:
+    base = ["simulate", "--preset", "brake", "--model", "white", "--runs", "2", "--seed", "1",
+            "--tau-end", "10", "--json"]
+    thesis = _json([*base, "--white-intensity", "sigma_mu"])
+    level = _json([*base, "--white-intensity", "spectral_level"])
+    default = _json(base)
+    assert default["x_gh"] == thesis["x_gh"]  # the thesis's rule is the default
+    assert thesis["sigma_zeta"] == pytest.approx(0.0742, abs=5e-4)  # σ_μ(0.35 MPa)
+    # one-sided PSD level of the flat brake spectrum S0 = σ_μ²/(K Δf), σ_ζ = S0/2
+    assert level["sigma_zeta"] == pytest.approx(0.0742037**2 / (39 * 20.0) / 2, rel=1e-4)
+    assert level["process"]["sigma_zeta_rule"] == "spectral_level"
+    res = runner.invoke(app, [*base, "--white-intensity", "spectral_level", "--sigma-zeta", "0.1"])
+    assert res.exit_code == 2 and "not both" in res.output

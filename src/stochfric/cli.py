@@ -59,6 +59,11 @@ class PresetChoice(StrEnum):
     sheet = "sheet"
 
 
+class WhiteIntensityChoice(StrEnum):
+    sigma_mu = "sigma_mu"
+    spectral_level = "spectral_level"
+
+
 class PathChoice(StrEnum):
     mass = "mass"
     relative = "relative"
@@ -230,7 +235,12 @@ def simulate(
     runs: Annotated[int, typer.Option(min=1, help="Monte Carlo runs.")] = 1,
     seed: Annotated[int | None, typer.Option(min=0, help="Root seed (recorded).")] = None,
     sigma_zeta: Annotated[
-        float | None, typer.Option(help="White-noise intensity σ_ζ (default σ_μ(p)).")
+        float | None, typer.Option(help="White-noise intensity σ_ζ (default: from the rule below).")
+    ] = None,
+    white_intensity: Annotated[
+        WhiteIntensityChoice | None,
+        typer.Option(help="Rule for σ_ζ from the process model: sigma_mu (thesis, σ_ζ = σ_μ(p)) or "
+                     "spectral_level (matches the process's low-frequency PSD level)."),
     ] = None,
     path_coordinate: Annotated[
         PathChoice, typer.Option(help="Where the contact process is read (METHOD §7.7).")
@@ -272,6 +282,12 @@ def simulate(
             from .process.model import load_process_model
 
             process = load_process_model(process_file)
+        if white_intensity is not None:
+            if process is None:
+                raise ParameterError("--white-intensity needs a friction-process model (--preset or --process)")
+            if sigma_zeta is not None:
+                raise ParameterError("give either --sigma-zeta or --white-intensity, not both")
+            process = replace(process, sigma_zeta_rule=white_intensity.value)
         if process is not None and process_length is not None:
             # keep the grid spanning whole periods: n = round(length/dx) points of dx = length/n
             npts = max(2, round(process_length / process.dx))
