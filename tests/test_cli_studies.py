@@ -45,7 +45,16 @@ def test_damping_json_contract(app: typer.Typer) -> None:
     for m in ("white", "contact"):
         e = d["d_max_stochastic"][m][0]
         assert set(e) == {"value", "interval"} and e["interval"][0] == e["value"]
-    assert d["tasks"]["computed"] == 3
+    assert d["tasks"]["computed"] == 6  # 3 grid tasks + 3 phase-diagram tasks (one per model)
+    # the thesis's modelling choices are the defaults and are recorded
+    assert d["path_coordinate"] == "mass" and d["white_intensity"] == "sigma_mu"
+    assert d["sigma_zeta"][0] == pytest.approx(0.0742, abs=5e-4)  # σ_μ(0.35 MPa)
+    # phase diagrams over D at the preset's force (Fig. 4.22): auto D from the lowest grid D to above D_max
+    ph = d["phase"]
+    assert ph["normal_force"] == 5600.0 and ph["damping_rule"] == "auto"
+    assert len(ph["damping"]) == 5 and ph["damping"][0] == 0.05
+    assert ph["damping"][-1] > max(d["d_max_deterministic"][0], d["d_max_stochastic"]["contact"][0]["value"])
+    assert ph["runs"] == {"deterministic": 1, "white": 3, "contact": 3}
 
 
 def test_other_studies_json(app: typer.Typer, tmp_path: Path) -> None:
@@ -69,7 +78,7 @@ def test_human_output_and_report(app: typer.Typer, tmp_path: Path) -> None:
     assert (tmp_path / "rep" / "index.html").exists()
     r2 = runner.invoke(app, ["study", "damping", "--normal-force", "4000,6000", "--damping", "0.1:0.2:3", "--runs",
                              "2", "--checkpoint", str(tmp_path / "ck"), "--json"])
-    assert json.loads(r2.stdout)["tasks"] == {"computed": 0, "loaded_from_checkpoint": 6}
+    assert json.loads(r2.stdout)["tasks"] == {"computed": 0, "loaded_from_checkpoint": 9}  # 6 grid + 3 phase
 
 
 @pytest.mark.parametrize(
@@ -81,6 +90,12 @@ def test_human_output_and_report(app: typer.Typer, tmp_path: Path) -> None:
         (["study", "forcing", "--preset", "car"], "preset"),
         (["study", "damping", "--process", "/nonexistent/model.json"], "cannot read"),
         (["study", "damping", "--executor", "mpi"], "unknown executor"),
+        (["study", "damping", "--white-intensity", "pink"], "white_intensity"),
+        (["study", "forcing", "--white-intensity", "sigma"], "'sigma_mu' or 'spectral_level'"),
+        (["study", "lyapunov", "--path-coordinate", "global"], "path_coordinate"),
+        (["study", "normal-force", "--path-coordinate", "x"], "'mass' or 'relative'"),
+        (["study", "damping", "--phase-damping", "0.1,1.5"], "phase_damping"),
+        (["study", "damping", "--phase-force", "-5"], "phase_force"),
     ],
 )
 def test_errors_exit_2(app: typer.Typer, args: list[str], needle: str) -> None:
@@ -88,6 +103,48 @@ def test_errors_exit_2(app: typer.Typer, args: list[str], needle: str) -> None:
     assert r.exit_code == 2
     assert "error:" in r.output and needle in r.output
     assert "Traceback" not in r.output
+    assert len(r.output.strip().splitlines()) == 1, r.output
+
+
+def test_white_intensity_and_path_coordinate(app: typer.Typer, tmp_path: Path) -> None:
+    base = ["study", "damping", "--normal-force", "5600", "--damping", "0.1:0.2:5", "--runs", "3", "--json"]
+    thesis = _json(app, base)
+    level = _json(app, [*base, "--white-intensity", "spectral_level", "--out", str(tmp_path)])
+    assert thesis["white_intensity"] == "sigma_mu" and level["white_intensity"] == "spectral_level"
+    assert thesis["sigma_zeta"][0] == pytest.approx(0.0742, abs=5e-4)
+    # the flat brake spectrum: S0 = σ_μ²/(K Δf), σ_ζ = S0/2
+    assert level["sigma_zeta"][0] == pytest.approx(0.0742037**2 / (39 * 20.0) / 2, rel=1e-3)
+    for key in ("stick_probability", "m_mean"):  # deterministic and contact results do not depend on the rule
+        for m in ("deterministic", "contact"):
+            assert thesis[key][m] == level[key][m], (key, m)
+    import xarray as xr
+
+    with xr.open_dataset(tmp_path / "damping.nc", engine="h5netcdf") as ds:
+        assert ds.attrs["white_intensity"] == "spectral_level" and ds.attrs["path_coordinate"] == "mass"
+        assert json.loads(ds.attrs["setup_json"])["process"]["sigma_zeta_rule"] == "spectral_level"
+        assert float(ds["sigma_zeta"].sel(model="white").values[0]) == pytest.approx(level["sigma_zeta"][0])
+    rel = _json(app, [*base, "--path-coordinate", "relative"])
+    assert rel["path_coordinate"] == "relative"
+    assert rel["m_mean"]["deterministic"] == thesis["m_mean"]["deterministic"]
+    for kind, extra in (("forcing", ["--eta", "1.0"]), ("normal-force", ["--phase-runs", "0"]),
+                        ("lyapunov", ["--normal-force", "4000", "--q", "5e-4", "--eta", "1.2", "--tau-end", "30"])):
+        s = _json(app, ["study", kind, "--runs", "2", "--white-intensity", "spectral_level",
+                        "--path-coordinate", "relative", *extra, "--json"])
+        assert s["white_intensity"] == "spectral_level" and s["path_coordinate"] == "relative", kind
+        sz = s["sigma_zeta"] if isinstance(s["sigma_zeta"], list) else [s["sigma_zeta"]]
+        assert all(v < 1e-4 for v in sz), kind
+
+
+def test_phase_options(app: typer.Typer) -> None:
+    d = _json(app, ["study", "damping", "--preset", "sheet", "--normal-force", "1000,2000", "--damping", "0.1:0.2:3",
+                    "--runs", "2", "--phase-damping", "0.12,0.05", "--phase-runs", "2", "--json"])
+    # the sheet's damping-study force 1400 N is not on the grid: the middle force is used
+    assert d["phase"]["normal_force"] == 1000.0
+    assert d["phase"]["damping"] == [0.05, 0.12] and d["phase"]["damping_rule"] == "given"
+    assert d["phase"]["runs"] == {"deterministic": 1, "white": 2, "contact": 2}
+    d = _json(app, ["study", "damping", "--normal-force", "5600", "--damping", "0.1,0.2", "--runs", "2",
+                    "--phase-force", "3000", "--phase-runs", "0", "--json"])
+    assert "phase" not in d and d["tasks"]["computed"] == 3
 
 
 def test_process_file(app: typer.Typer, tmp_path: Path) -> None:
@@ -117,12 +174,19 @@ report = true
 kind = "damping"
 normal_forces = [5600]
 damping = "0.1:0.2:3"
+white_intensity = "spectral_level"
+path_coordinate = "relative"
+phase_damping = [0.1, 0.2]
 [[study]]
 kind = "forcing"
 eta = [1.0]
 """)
     d = _json(app, ["run", str(f), "--json"])
     assert [s["study"] for s in d["studies"]] == ["damping", "forcing"]
+    dmp, frc = d["studies"]
+    assert dmp["white_intensity"] == "spectral_level" and dmp["path_coordinate"] == "relative"
+    assert dmp["phase"]["damping"] == [0.1, 0.2]
+    assert frc["white_intensity"] == "sigma_mu" and frc["path_coordinate"] == "mass"
     assert (tmp_path / "out" / "index.html").exists()
     assert (tmp_path / "out" / "00_damping_brake" / "damping.nc").exists()
     bad = tmp_path / "bad.toml"
@@ -135,3 +199,8 @@ def test_reproduce_quick(app: typer.Typer, tmp_path: Path) -> None:
     d = _json(app, ["reproduce", "--quick", "--out", str(tmp_path), "--json"])
     assert d["timings_s"]["total"] < 180
     assert (tmp_path / "index.html").exists()
+    page = (tmp_path / "index.html").read_text(encoding="utf-8")
+    for name in ("01_damping_brake_phase.png", "05_damping_sheet_phase.png"):  # Fig. 4.22 / 4.53 analogues
+        assert (tmp_path / name).exists() and f'src="{name}"' in page, name
+    assert "Phase curves at N = 5600 N" in page and "Phase curves at N = 1400 N" in page
+    assert page.count("white-noise intensity rule: sigma_mu") == 8  # every study shows its choices

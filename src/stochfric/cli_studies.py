@@ -36,6 +36,11 @@ CkptOpt = Annotated[Path | None, typer.Option("--checkpoint", help="Checkpoint d
 OutOpt = Annotated[Path | None, typer.Option("--out", help="Write <study>.nc and <study>.json here.")]
 ReportOpt = Annotated[Path | None, typer.Option("--report", help="Write an HTML report into this directory.")]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON object.")]
+PathOpt = Annotated[str, typer.Option(
+    "--path-coordinate", help="Where the contact process is read: mass (thesis, path of the mass) | relative.")]
+WhiteOpt = Annotated[str, typer.Option(
+    "--white-intensity", help="σ_ζ of the white-noise model: sigma_mu (thesis, σ_ζ = σ_μ(p)) | spectral_level "
+                              "(the process's low-frequency spectral level).")]
 
 
 def _fail(message: str) -> typer.Exit:
@@ -69,9 +74,10 @@ def _models(spec: str | None) -> dict[str, Any]:
 
 
 def _common(preset: str, process: Path | None, runs: int | None, seed: int, tau_end: float | None,
-            dt: float | None, integrator: str, stick_window: float, models: str | None) -> dict[str, Any]:
+            dt: float | None, integrator: str, stick_window: float, models: str | None,
+            path_coordinate: str = "mass", white_intensity: str = "sigma_mu") -> dict[str, Any]:
     d: dict[str, Any] = {"preset": preset, "seed": seed, "integrator": integrator, "stick_window": stick_window,
-                         **_models(models)}
+                         "path_coordinate": path_coordinate, "white_intensity": white_intensity, **_models(models)}
     if process is not None:
         d["process_file"] = str(process)
     if runs is not None:
@@ -129,7 +135,7 @@ def _print_summary(kind: str, s: dict[str, Any]) -> None:
     from rich.console import Console
     from rich.table import Table
 
-    from .report.html import READERS
+    from .report.html import READERS, model_choices_text
 
     con = Console()
     con.print(f"[bold]stochfric study {kind}[/] preset={s.get('preset')} runs={s.get('runs')} seed={s.get('seed')} "
@@ -148,6 +154,9 @@ def _print_summary(kind: str, s: dict[str, Any]) -> None:
         con.print(t)
     _, reading = READERS[kind](s)
     con.print(reading)
+    choices = model_choices_text(s)
+    if choices:
+        con.print(choices)
     for w in s.get("warnings", []):
         con.print(f"[yellow]warning[/] {w['code']} ×{w['count']}")
     for f in s.get("files", []):
@@ -163,15 +172,25 @@ def damping_command(
     confidence: Annotated[float, typer.Option("--confidence", help="Clopper–Pearson level.")] = 0.95,
     p_detect: Annotated[float, typer.Option("--p-detect", help="Tolerated stick probability for D_hi.")] = 0.1,
     x0: Annotated[tuple[float, float] | None, typer.Option("--x0", help="Initial X1 X2 (default (0, γ0)).")] = None,
+    phase_force: Annotated[float | None, typer.Option(
+        "--phase-force", help="N [N] of the phase diagrams over D (default: the preset's damping-study force if "
+                              "it is on the --normal-force grid, else the middle force).")] = None,
+    phase_damping: Annotated[str | None, typer.Option(
+        "--phase-damping", help="D values of the phase diagrams, list or A:B:NUM (default: 5 grid values from the "
+                                "lowest D to the first grid D above the largest D_max at the phase force).")] = None,
+    phase_runs: Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for the phase diagrams "
+                                                                        "(0: none).")] = 3,
+    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu",
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
-    """Damping study: D_max^d, D_max^s (with interval), D_H, M_diff, M_quot (METHOD §6.2)."""
+    """Damping study: D_max^d, D_max^s (with interval), D_H, M_diff, M_quot, phase diagrams over D (METHOD §6.2)."""
     try:
         cfg = _validate("damping", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
-                                              models),
+                                              models, path_coordinate, white_intensity),
                                     "normal_forces": normal_force, "damping": damping, "confidence": confidence,
-                                    "p_detect": p_detect, "x0": x0})
+                                    "p_detect": p_detect, "x0": x0, "phase_force": phase_force,
+                                    "phase_damping": phase_damping, "phase_runs": phase_runs})
     except StudyError as exc:
         raise _fail(str(exc)) from None
     _execute(cfg, executor, workers, scheduler, checkpoint, out, report, json_out)
@@ -185,13 +204,14 @@ def forcing_command(
     damping: Annotated[float | None, typer.Option("--damping", help="D (default 5e-6).")] = None,
     runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
     tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler", stick_window: WinOpt = 0.5,
+    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu",
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
     """Forcing study: bifurcation data, E[X_gh] ± σ over η, σ_contact/σ_white (METHOD §6.3)."""
     try:
         cfg = _validate("forcing", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
-                                              models),
+                                              models, path_coordinate, white_intensity),
                                     "normal_force": normal_force, "forcing_q": q, "eta": eta, "damping": damping})
     except StudyError as exc:
         raise _fail(str(exc)) from None
@@ -208,12 +228,14 @@ def lyapunov_command(
     damping: Annotated[float | None, typer.Option("--damping", help="D (default 5e-6).")] = None,
     runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
     tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler",
+    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu",
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
     """Largest Lyapunov exponent λ (4.43) / E[Λ] (4.44) over η and N (METHOD §6.4)."""
     try:
-        cfg = _validate("lyapunov", {**_common(preset, process, runs, seed, tau_end, dt, integrator, 0.5, models),
+        cfg = _validate("lyapunov", {**_common(preset, process, runs, seed, tau_end, dt, integrator, 0.5, models,
+                                               path_coordinate, white_intensity),
                                      "normal_forces": normal_force, "forcing_q": q, "eta": eta,
                                      "perturbation": perturbation, "damping": damping})
     except StudyError as exc:
@@ -228,13 +250,14 @@ def normal_force_command(
     phase_runs: Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for phase diagrams.")] = 5,
     runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
     tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler", stick_window: WinOpt = 0.5,
+    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu",
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
     """Normal-force study: phase diagrams, PDFs, E[X_gh] ± σ, VarK with SEs (METHOD §6.1)."""
     try:
         cfg = _validate("normal-force", {**_common(preset, process, runs, seed, tau_end, dt, integrator,
-                                                   stick_window, models),
+                                                   stick_window, models, path_coordinate, white_intensity),
                                          "normal_forces": normal_force, "dampings": damping,
                                          "phase_runs": phase_runs})
     except StudyError as exc:

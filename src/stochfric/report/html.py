@@ -72,6 +72,27 @@ def _provenance(result: Any) -> str:
     return "".join(parts)
 
 
+_PATH_TEXT = {"mass": "mass (thesis: global path of the mass)", "relative": "relative path"}
+_WHITE_TEXT = {"sigma_mu": "sigma_mu (thesis: σ_ζ = σ_μ(p))",
+               "spectral_level": "spectral_level (σ_ζ = S0/2, the process's low-frequency spectral level)"}
+
+
+def model_choices_text(summary: dict[str, Any]) -> str:
+    """One line with the path coordinate, the white-noise intensity rule and σ_ζ of a study summary."""
+    pc = summary.get("path_coordinate")
+    wi = summary.get("white_intensity")
+    if pc is None and wi is None:
+        return ""
+    sz = summary.get("sigma_zeta")
+    forces = summary.get("normal_force")
+    if isinstance(sz, list) and isinstance(forces, list) and len(sz) == len(forces):
+        sz_txt = ", ".join(f"{_fmt(v, '.4g')} (N = {nf:g} N)" for v, nf in zip(sz, forces, strict=True))
+    else:
+        sz_txt = _fmt(sz, ".4g")
+    return (f"Contact process read along: {_PATH_TEXT.get(str(pc), str(pc))}; white-noise intensity rule: "
+            f"{_WHITE_TEXT.get(str(wi), str(wi))}; σ_ζ of the white model = {sz_txt}.")
+
+
 def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:
     """(table HTML, reading text) for a damping study summary."""
     forces = summary["normal_force"]
@@ -105,6 +126,14 @@ def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:
         lines.append("D_max^d ≥ D_H at every force: the Hopf bifurcation is subcritical (stick-slip from a large "
                      "start survives above the linear stability boundary)." if ok else
                      "D_max^d < D_H at some force (check the grid and the stick window).")
+    ph = summary.get("phase")
+    if ph:
+        frac = ph.get("has_cycle_fraction", {})
+        parts = "; ".join(f"{m} " + ", ".join(_fmt(v, ".2g") for v in vals) for m, vals in frac.items())
+        lines.append(f"Phase curves at N = {ph['normal_force']:g} N for D = "
+                     + ", ".join(f"{v:g}" for v in ph["damping"])
+                     + f" ({ph.get('damping_rule', 'auto')}); fraction of the phase runs still sticking after the "
+                     f"transient: {parts}.")
     return _table(header, rows), " ".join(lines)
 
 
@@ -239,6 +268,9 @@ def write_report(
         table, reading = READERS[kind](res.summary)
         readings.append(f"<li><b>{html.escape(kind)} ({html.escape(str(preset))})</b>: {html.escape(reading)}</li>")
         body.append(f"<p class='reading'>{html.escape(reading)}</p>")
+        choices = model_choices_text(res.summary)
+        if choices:
+            body.append(f"<p class='choices'>{html.escape(choices)}</p>")
         body.append(table)
         for path, cap in FIGURES[kind](res.dataset, d, prefix=f"{k:02d}_{kind.replace('-', '_')}_{preset}"):
             body.append(_figure(path, cap, d))

@@ -6,6 +6,7 @@ figure the plot corresponds to.
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import Any
 
@@ -34,10 +35,57 @@ def _save(fig: Any, path: Path) -> Path:
     return path
 
 
-def damping_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "damping") -> list[Figure]:
-    """X_gh and M maps over (D, N) (Fig. 4.23/4.25/4.28), M_diff (4.26/4.29), P(D) and D_max(N)."""
+def _gamma0(ds: xr.Dataset) -> float | None:
+    try:
+        return float(json.loads(ds.attrs["setup_json"])["gamma0"])
+    except (KeyError, ValueError, TypeError):
+        return None
+
+
+def damping_phase_figure(ds: xr.Dataset, directory: str | Path, prefix: str = "damping") -> list[Figure]:
+    """Phase curves x2 over x1 at one force for several D, one panel per model (Fig. 4.22/4.24/4.27,
+    sheet 4.53/4.55/4.58); empty when the dataset has no ``phase_trajectory``."""
+    if "phase_trajectory" not in ds:
+        return []
     d = Path(directory)
-    out: list[Figure] = []
+    models = [str(m) for m in ds["model"].values]
+    pd = ds["phase_damping"].values
+    nf = float(ds["phase_normal_force"].values)
+    g0 = _gamma0(ds)
+    cmap = plt.get_cmap("viridis")
+    cols = [cmap(0.9 * k / max(1, pd.size - 1)) for k in range(pd.size)]
+    fig, axes = plt.subplots(1, len(models), figsize=(4.4 * len(models), 3.8), squeeze=False, sharex=True,
+                             sharey=True)
+    for j, m in enumerate(models):
+        ax = axes[0, j]
+        tr = ds["phase_trajectory"].sel(model=m).values  # [D, run, sample, component]
+        for k, dval in enumerate(pd):
+            for r in range(tr.shape[1]):
+                x1, x2 = tr[k, r, :, 1], tr[k, r, :, 2]
+                if np.isfinite(x1).any():
+                    ax.plot(x1, x2, lw=0.9 if r == 0 else 0.5, alpha=1.0 if r == 0 else 0.6, color=cols[k],
+                            label=f"D = {dval:g}" if r == 0 else None)
+        if g0 is not None:
+            ax.axhline(g0, color="0.5", lw=0.7, ls=":")
+        nrun = int(np.isfinite(tr[0, :, 0, 1]).sum()) if tr.size else 0
+        ax.set_title(f"{m}, N = {nf:g} N" + (f" ({nrun} runs per D)" if m != "deterministic" else ""), fontsize=9)
+        ax.set_xlabel("x1")
+        ax.set_ylabel("x2")
+        if j == 0:
+            _legend(ax, 7)
+    return [(_save(fig, d / f"{prefix}_phase.png"),
+             f"Phase curves x2 over x1 at N = {nf:g} N for damping ratios D = "
+             + ", ".join(f"{v:g}" for v in pd)
+             + " (thesis Fig. 4.22 deterministic, 4.24 white noise, 4.27 contact analysis; sheet Fig. 4.53, 4.55, "
+             "4.58): with growing D the stick-slip cycle shrinks until the stick line x2 = γ0 (dotted) is no longer "
+             "reached and the motion decays onto steady sliding; stochastic models: several runs per D.")]
+
+
+def damping_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "damping") -> list[Figure]:
+    """X_gh and M maps over (D, N) (Fig. 4.23/4.25/4.28), M_diff (4.26/4.29), P(D) and D_max(N), and the
+    phase curves over D at one force (4.22/4.24/4.27)."""
+    d = Path(directory)
+    out: list[Figure] = damping_phase_figure(ds, d, prefix)
     models = [str(m) for m in ds["model"].values]
     dd = ds["damping_ratio"].values
     nn = ds["normal_force"].values

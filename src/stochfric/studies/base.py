@@ -76,6 +76,8 @@ def provenance_attrs(
         "seed_rule": "task k uses SeedSequence(seed, spawn_key=(k,)); trajectory (i, r) of a task spawn key (k, i, r)",
         "versions_json": json.dumps(package_versions()),
         "executor_json": json.dumps(executor.describe() if executor is not None else {"executor": "serial"}),
+        "path_coordinate": str(getattr(config, "path_coordinate", "mass")),
+        "white_intensity": str(getattr(config, "white_intensity", "sigma_mu")),
         "units_note": "x_gh, t_gh dimensionless (x = y/L, L = 1 m; tau = omega0 t); forces in N; damping ratio D [-]",
     }
 

@@ -9,12 +9,14 @@ with spawn key ``(task_index,)`` of the study's root seed (:func:`task_seed`), n
 the order of execution.
 
 The three friction models of METHOD §6 are run side by side: ``deterministic`` (the
-pressure law 4.13 alone), ``white`` (plus white noise of intensity σ_ζ = σ_μ(p), §5.1)
+pressure law 4.13 alone), ``white`` (plus white noise of intensity σ_ζ, §5.1: by default the
+thesis's σ_ζ = σ_μ(p), or the process's low-frequency spectral level, ``white_intensity``)
 and ``contact`` (plus a band-limited process from the friction-process model, §5.2).
 """
 
 from __future__ import annotations
 
+import dataclasses
 import json
 import math
 import warnings
@@ -32,6 +34,8 @@ from ..process.model import FrictionProcessModel, load_process_model
 from ..process.presets import Preset, get_preset
 
 MODELS: tuple[str, ...] = ("deterministic", "white", "contact")
+PATH_COORDINATES: tuple[str, ...] = ("mass", "relative")
+WHITE_INTENSITY_RULES: tuple[str, ...] = ("sigma_mu", "spectral_level")
 
 #: Default stick window: a run "has a stick-slip cycle" when it has at least one slip→stick
 #: transition with τ in (STICK_WINDOW · τ_end, τ_end] (after the transient, METHOD §7.9).
@@ -123,13 +127,36 @@ class StudySetup:
         }
 
 
+def with_white_intensity(process: FrictionProcessModel, rule: str) -> FrictionProcessModel:
+    """The process model with its σ_ζ rule set to ``rule`` (``"sigma_mu"`` | ``"spectral_level"``).
+
+    Only the white-noise model's intensity ``process.sigma_zeta(p)`` changes; the mean and the
+    realisations of the contact-analysis process do not depend on the rule.
+    """
+    if rule not in WHITE_INTENSITY_RULES:
+        raise StudyError(f"white-noise intensity rule must be one of {list(WHITE_INTENSITY_RULES)}, got {rule!r}")
+    if getattr(process, "sigma_zeta_rule", None) == rule:
+        return process
+    if not (dataclasses.is_dataclass(process) and any(f.name == "sigma_zeta_rule"
+                                                      for f in dataclasses.fields(process))):
+        raise StudyError(f"the friction-process model {type(process).__name__} has no sigma_zeta_rule; "
+                         "use white_intensity = 'sigma_mu'")
+    try:
+        out: FrictionProcessModel = dataclasses.replace(process, sigma_zeta_rule=rule)
+    except ValueError as exc:
+        raise StudyError(f"white-noise intensity rule {rule!r}: {exc}") from None
+    return out
+
+
 def make_setup(
     preset: str = "brake",
     process_file: str | Path | None = None,
     tau_end: float | None = None,
     dt: float | None = None,
+    white_intensity: str = "sigma_mu",
 ) -> StudySetup:
-    """Resolve a preset name and an optional friction-process model file (``--process FILE``)."""
+    """Resolve a preset name and an optional friction-process model file (``--process FILE``);
+    the σ_ζ rule ``white_intensity`` is applied to the process model (it overrides a file's own)."""
     try:
         pre = get_preset(preset)
     except ValueError as exc:
@@ -140,9 +167,30 @@ def make_setup(
     else:
         process = pre.process
         source = f"preset:{pre.name}"
+    process = with_white_intensity(process, white_intensity)
     te = float(tau_end) if tau_end is not None else pre.tau_end
     step = float(dt) if dt is not None else pre.dt
     return StudySetup(preset=pre, process=process, process_source=source, tau_end=te, dt=step)
+
+
+def setup_for(config: Any, tau_end: float | None = None) -> StudySetup:
+    """:func:`make_setup` from a study config (``tau_end`` overrides a missing ``config.tau_end``)."""
+    te = config.tau_end if config.tau_end is not None else tau_end
+    return make_setup(config.preset, config.process_file, te, config.dt, config.white_intensity)
+
+
+def white_sigma_zeta(setup: StudySetup, normal_force: float) -> float:
+    """σ_ζ of the white-noise model at N [N] (p = N/A) under the setup's σ_ζ rule."""
+    return float(setup.process.sigma_zeta(float(normal_force) / setup.preset.contact_area))
+
+
+def model_choices(config: Any, setup: StudySetup, forces: Sequence[float]) -> dict[str, Any]:
+    """JSON record of the modelling choices: path coordinate, σ_ζ rule and σ_ζ per force."""
+    return {
+        "path_coordinate": config.path_coordinate,
+        "white_intensity": config.white_intensity,
+        "sigma_zeta": [white_sigma_zeta(setup, nf) for nf in forces],
+    }
 
 
 def law_for(process: FrictionProcessModel, params: OscillatorParameters) -> FrictionLaw:

@@ -4,6 +4,13 @@ Every study takes one of these frozen models.  Fields left ``None`` take the the
 values from the preset (METHOD §6 table): the study forces, D = 5·10⁻⁶ undamped, τ_end = 50,
 Δτ = 0.005.  Grids accept ``"START:STOP:NUM"`` (inclusive), ``"a,b,c"`` or a list.
 
+Two modelling choices of METHOD §5 are fields of every study: ``path_coordinate`` (where the
+contact-analysis process is read: ``"mass"`` = the thesis's global coordinate of the mass,
+``"relative"`` = the relative path) and ``white_intensity`` (the σ_ζ rule of the white-noise
+model: ``"sigma_mu"`` = the thesis's σ_ζ = σ_μ(p), ``"spectral_level"`` = white noise with the
+process's low-frequency spectral level); the study applies the latter to its process model
+(preset or ``process_file``) with ``dataclasses.replace(model, sigma_zeta_rule=…)``.
+
 :meth:`StudyConfig.hash_config` is what the checkpoint hash covers: every field (they all
 change the numbers) plus the content of a ``process_file``.
 """
@@ -20,6 +27,8 @@ from .common import MODELS, STICK_WINDOW, parse_grid
 
 Grid = Annotated[tuple[float, ...], BeforeValidator(parse_grid)]
 ModelName = Literal["deterministic", "white", "contact"]
+PathCoordinate = Literal["mass", "relative"]
+WhiteIntensity = Literal["sigma_mu", "spectral_level"]
 
 
 class StudyConfig(BaseModel):
@@ -38,7 +47,13 @@ class StudyConfig(BaseModel):
     dt: float | None = Field(default=None, gt=0)
     integrator: Literal["euler", "accurate"] = "euler"
     sde_integrator: Literal["euler", "milstein"] = "euler"
-    path_coordinate: Literal["mass", "relative"] = "mass"
+    path_coordinate: PathCoordinate = Field(
+        default="mass", description="where the contact process is read: mass (thesis) | relative"
+    )
+    white_intensity: WhiteIntensity = Field(
+        default="sigma_mu",
+        description="σ_ζ rule of the white-noise model: sigma_mu (thesis) | spectral_level",
+    )
     stick_window: float = Field(default=STICK_WINDOW, ge=0.0, lt=1.0)
     x0: tuple[float, float] | None = None
 
@@ -71,6 +86,16 @@ class DampingConfig(StudyConfig):
     common_random_numbers: bool = True
     confidence: float = Field(default=0.95, gt=0, lt=1)
     p_detect: float = Field(default=0.1, gt=0, lt=1)
+    phase_force: float | None = Field(
+        default=None, gt=0,
+        description="N [N] of the phase diagrams over D (default: the preset's damping-study force if it is "
+                    "one of the normal forces, else the middle force)",
+    )
+    phase_damping: Grid | None = Field(
+        default=None, description="D values of the phase diagrams (default: chosen from the results, see docs)"
+    )
+    phase_runs: int = Field(default=3, ge=0, le=1000, description="runs kept per D (stochastic models); 0: none")
+    save_every: int = Field(default=10, ge=1, description="keep every k-th step of the phase trajectories")
 
     @field_validator("damping")
     @classmethod
@@ -80,6 +105,17 @@ class DampingConfig(StudyConfig):
         if list(v) != sorted(v):
             raise ValueError("the damping grid must be increasing")
         return v
+
+    @field_validator("phase_damping")
+    @classmethod
+    def _phase_damping_range(cls, v: tuple[float, ...] | None) -> tuple[float, ...] | None:
+        if v is None:
+            return v
+        if any(not 0 <= d < 1 for d in v):
+            raise ValueError("phase-diagram damping ratios must lie in [0, 1)")
+        if len(set(v)) != len(v):
+            raise ValueError(f"a phase-diagram damping ratio is listed twice: {list(v)}")
+        return tuple(sorted(v))
 
 
 class ForcingConfig(StudyConfig):

@@ -21,6 +21,17 @@ E[X_gh], σ(X_gh), E[M_s]; M_diff = M_d − E[M_s] (4.41), M_quot = E[M_s]/M_d (
 
 X_gh maps use the thesis convention (0 where no stick occurs, ``x_gh_mean``) and NaN-aware
 variants (``x_gh_mean_nan``).  Initial state: sticking at the origin, (0, γ0), unless ``x0``.
+
+**Phase diagrams over D at one force** (thesis Fig. 4.22/4.24/4.27 brake N = 5600 N,
+4.53/4.55/4.58 sheet N = 1400 N): after the grid, one extra task per model runs the phase
+force (``phase_force``; default the preset's damping-study force if it is one of the grid
+forces, else the middle grid force) at a few D (``phase_damping``) and keeps the decimated
+trajectories (every ``save_every``-th step) of ``phase_runs`` runs (deterministic: one).
+Default D (:func:`auto_phase_damping`): 5 values evenly spaced from the lowest grid D to
+D_top, snapped to the grid, where D_top is the first grid D above the largest D_max (of any
+model) at the phase force — so the curves go from a large stick-slip cycle to decay onto
+steady sliding (the grid's largest D if no grid D lies above).  Only these tasks keep
+trajectories; they use task indices after the grid tasks (own seeds, checkpointed too).
 """
 
 from __future__ import annotations
@@ -37,17 +48,19 @@ import xarray as xr
 from ..oscillator.reference import hopf_damping
 from .base import StudyResult, provenance_attrs, sweep
 from .common import (
+    StudySetup,
     TaskSpec,
     integrator_for,
     law_for,
-    make_setup,
+    model_choices,
     pad_events,
     runs_for,
+    setup_for,
     warnings_of,
     window_mask,
 )
 from .config import DampingConfig
-from .executors import Executor
+from .executors import Executor, SweepStats
 from .stats import clopper_pearson
 
 
@@ -83,9 +96,60 @@ def d_max_stochastic(
     return point, point, high
 
 
+#: number of D values of the automatic phase-diagram choice
+N_PHASE_DAMPING = 5
+
+
+def default_phase_force(preset_force: float, forces: tuple[float, ...]) -> float:
+    """The preset's damping-study force if it is one of ``forces``, else the middle force."""
+    if any(math.isclose(preset_force, f, rel_tol=1e-12) for f in forces):
+        return float(preset_force)
+    return float(forces[(len(forces) - 1) // 2])
+
+
+def auto_phase_damping(damping: npt.ArrayLike, d_max: npt.ArrayLike, n: int = N_PHASE_DAMPING) -> tuple[float, ...]:
+    """Default D of the phase diagrams: ``n`` values evenly spaced from the lowest grid D to
+    D_top, snapped to the grid (duplicates dropped), increasing.
+
+    D_top = the first grid D above max(``d_max``) (the largest D with a cycle over the models at
+    the phase force), or the largest grid D if none lies above or no model has a cycle.
+    """
+    grid = np.asarray(damping, dtype=float)
+    dm = np.asarray(d_max, dtype=float)
+    dm = dm[np.isfinite(dm)]
+    top = float(grid[-1])
+    if dm.size:
+        above = grid[grid > float(dm.max()) + 1e-12]
+        if above.size:
+            top = float(above[0])
+    targets = np.linspace(float(grid[0]), top, n) if n > 1 else np.array([top])
+    picked = sorted({float(grid[int(np.argmin(np.abs(grid - t)))]) for t in targets})
+    return tuple(picked)
+
+
+def phase_tasks(config: DampingConfig, setup: StudySetup, phase_force: float, dampings: tuple[float, ...],
+                first_index: int) -> list[TaskSpec]:
+    """One task per model at ``phase_force``: the D in ``dampings``, trajectories kept."""
+    tasks = []
+    for k, model in enumerate(config.models):
+        params = tuple(setup.parameters(phase_force, d) for d in dampings)
+        runs = min(runs_for(model, config.runs), config.phase_runs)
+        tasks.append(TaskSpec(
+            index=first_index + k, label=f"{model} phase N={phase_force:g}", model=model, params=params,
+            runs=runs, tau_end=setup.tau_end, dt=setup.dt,
+            integrator=integrator_for(model, config.integrator, config.sde_integrator),
+            root_entropy=config.seed, process=setup.process,
+            x0=None if config.x0 is None else tuple(config.x0 for _ in params),
+            common_random_numbers=config.common_random_numbers, path_coordinate=config.path_coordinate,
+            keep_trajectory_runs=runs, save_every=config.save_every,
+        ))
+    return tasks
+
+
 def damping_tasks(config: DampingConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
-    """One task per (model, N): all D of that N batched into one simulate call."""
-    setup = make_setup(config.preset, config.process_file, config.tau_end, config.dt)
+    """One task per (model, N): all D of that N batched into one simulate call (the grid; the
+    phase-diagram tasks follow in :func:`damping_study`, their D may depend on the grid)."""
+    setup = setup_for(config)
     forces = config.normal_forces or (float(setup.preset.study_parameters["damping_study_force"]),)
     tasks = []
     idx = 0
@@ -101,7 +165,9 @@ def damping_tasks(config: DampingConfig) -> tuple[list[TaskSpec], dict[str, Any]
                 common_random_numbers=config.common_random_numbers, path_coordinate=config.path_coordinate,
             ))
             idx += 1
-    return tasks, {"setup": setup, "forces": forces}
+    pf = config.phase_force if config.phase_force is not None else default_phase_force(
+        float(setup.preset.study_parameters["damping_study_force"]), tuple(forces))
+    return tasks, {"setup": setup, "forces": forces, "phase_force": float(pf)}
 
 
 def damping_study(
@@ -113,8 +179,16 @@ def damping_study(
 ) -> StudyResult:
     """Run the damping study and analyse it (see the module docstring)."""
     tasks, info = damping_tasks(config)
-    setup, forces = info["setup"], info["forces"]
-    results, stats, chash = sweep("damping", config, tasks, executor, checkpoint, progress)
+    setup, forces, phase_force = info["setup"], info["forces"], info["phase_force"]
+    n_phase = len(config.models) if config.phase_runs > 0 else 0
+    total = len(tasks) + n_phase
+
+    def grid_progress(done: int, _n: int) -> None:
+        if progress is not None:
+            progress(done, total)
+
+    results, stats, chash = sweep("damping", config, tasks, executor, checkpoint,
+                                  grid_progress if progress is not None else None)
     models: list[str] = list(config.models)
     dgrid = np.asarray(config.damping)
     nm, nn, nd, nr = len(models), len(forces), len(dgrid), config.runs
@@ -231,12 +305,67 @@ def damping_study(
             safe = np.stack([np.fmax(dmax[di], dmax[models.index(m)]) for m in stoch])
             data["d_safe"] = (("stochastic_model", "normal_force"), safe,
                               {"units": "1", "long_name": "safe limit max(D_max^d, D_max^s)"})
+    phase_rule = "none"
+    if n_phase:
+        if config.phase_damping is not None:
+            phase_d, phase_rule = tuple(config.phase_damping), "given"
+        else:
+            fi = int(np.argmin(np.abs(np.asarray(forces, float) - phase_force)))
+            phase_d, phase_rule = auto_phase_damping(dgrid, dmax[:, fi]), "auto"
+        ptasks = phase_tasks(config, setup, phase_force, phase_d, first_index=len(tasks))
+
+        def phase_progress(done: int, _n: int) -> None:
+            if progress is not None:
+                progress(len(tasks) + done, total)
+
+        presults, pstats, _ = sweep("damping", config, ptasks, executor, checkpoint,
+                                    phase_progress if progress is not None else None)
+        stats = SweepStats(computed=stats.computed + pstats.computed, loaded=stats.loaded + pstats.loaded)
+        _add_phase(data, coords, models, ptasks, presults, phase_force, phase_d, setup.tau_end,
+                   config.stick_window, max(1, config.phase_runs))
+        for t in ptasks:
+            warns += warnings_of(presults[t.index])
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(provenance_attrs("damping", config, setup, config.seed, executor))
     ds.attrs["stick_window"] = config.stick_window
     ds.attrs["checkpoint_hash"] = chash or ""
+    ds.attrs["phase_damping_rule"] = phase_rule
     summary = _summary(config, setup, ds, models, forces, warns)
     return StudyResult("damping", ds, summary, stats)
+
+
+def _add_phase(data: dict[str, Any], coords: dict[str, Any], models: list[str], ptasks: list[TaskSpec],
+               presults: dict[int, dict[str, Any]], phase_force: float, phase_d: tuple[float, ...],
+               tau_end: float, window: float, npr: int) -> None:
+    """Phase-diagram variables: trajectories [model, phase_damping, phase_run, sample, component]."""
+    nm, npd = len(models), len(phase_d)
+    trs = [presults[t.index].get("trajectory") for t in ptasks]
+    nsamp = max((tr.shape[2] for tr in trs if tr is not None), default=0)
+    traj = np.full((nm, npd, npr, nsamp, 3), np.nan)
+    cyc = np.full((nm, npd, npr), np.nan)
+    sc = np.full((nm, npd, npr), np.nan)
+    for mi, (t, tr) in enumerate(zip(ptasks, trs, strict=True)):
+        r = presults[t.index]
+        if tr is not None:
+            traj[mi, :, : tr.shape[1], : tr.shape[2]] = tr
+        cyc[mi, :, : t.runs] = window_mask(r["t_gh"], tau_end, window).any(axis=-1)
+        sc[mi, :, : t.runs] = r["stick_count"]
+    coords["phase_damping"] = ("phase_damping", np.asarray(phase_d, float),
+                               {"units": "1", "long_name": "damping ratio D of the phase diagrams"})
+    coords["phase_run"] = ("phase_run", np.arange(npr), {"units": "1"})
+    coords["sample"] = ("sample", np.arange(nsamp), {"units": "1", "long_name": "saved time step"})
+    coords["component"] = ("component", ["tau", "x1", "x2"],
+                           {"long_name": "tau = omega0 t, x1 = y/L, x2 = x1' (dimensionless, L = 1 m)"})
+    pdims = ("model", "phase_damping", "phase_run")
+    data["phase_normal_force"] = ((), float(phase_force), {"units": "N", "long_name": "normal force of the "
+                                                                                      "phase diagrams"})
+    data["phase_trajectory"] = ((*pdims, "sample", "component"), traj,
+                                {"units": "1", "long_name": "decimated trajectory (tau, x1, x2) at the phase force; "
+                                                            "NaN: run not kept (deterministic: run 0 only)"})
+    data["phase_has_cycle"] = (pdims, cyc, {"units": "1", "long_name": "1 if a slip->stick transition in the "
+                                                                        "stick window"})
+    data["phase_stick_count"] = (pdims, sc, {"units": "1", "long_name": "M: slip->stick transitions in "
+                                                                         "(0, tau_end]"})
 
 
 def _none(v: float) -> float | None:
@@ -288,7 +417,17 @@ def _summary(config: DampingConfig, setup: Any, ds: xr.Dataset, models: list[str
     if "m_diff" in ds:
         out["m_diff"] = {m: ds["m_diff"].sel(stochastic_model=m).values.tolist()
                          for m in ds["stochastic_model"].values.tolist()}
-    out["sigma_zeta"] = [float(v) for v in ds["sigma_zeta"].sel(model=models[0]).values]
+    out.update(model_choices(config, setup, forces))  # path coordinate, σ_ζ rule, σ_ζ of the white model per N
+    if "phase_trajectory" in ds:
+        out["phase"] = {
+            "normal_force": float(ds["phase_normal_force"].values),
+            "damping": [float(v) for v in ds["phase_damping"].values],
+            "damping_rule": ds.attrs.get("phase_damping_rule", "auto"),
+            "runs": {m: int(np.isfinite(ds["phase_has_cycle"].sel(model=m).values[0]).sum()) for m in models},
+            "save_every": config.save_every,
+            "has_cycle_fraction": {m: [float(np.nanmean(v)) for v in ds["phase_has_cycle"].sel(model=m).values]
+                                   for m in models},
+        }
     codes = sorted({w["code"] for w in warns})
     out["warnings"] = [{"code": c, "count": sum(w["code"] == c for w in warns)} for c in codes]
     out["versions"] = package_versions()

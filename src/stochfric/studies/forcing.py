@@ -19,14 +19,23 @@ import xarray as xr
 
 from ..io_utils import package_versions
 from .base import StudyResult, provenance_attrs, sweep
-from .common import TaskSpec, integrator_for, make_setup, pad_events, runs_for, warnings_of, window_mask
+from .common import (
+    TaskSpec,
+    integrator_for,
+    model_choices,
+    pad_events,
+    runs_for,
+    setup_for,
+    warnings_of,
+    window_mask,
+)
 from .config import ForcingConfig
 from .executors import Executor
 
 
 def forcing_tasks(config: ForcingConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
     """One task per (model, q)."""
-    setup = make_setup(config.preset, config.process_file, config.tau_end, config.dt)
+    setup = setup_for(config)
     sp = setup.preset.study_parameters
     nf = config.normal_force if config.normal_force is not None else float(sp["forcing_study_force"])
     d = config.damping if config.damping is not None else float(sp["damping_undamped"])
@@ -100,9 +109,11 @@ def forcing_study(
         "forcing_amplitude_n": [q * setup.preset.stiffness for q in qs], "eta": etas.tolist(),
         "runs": config.runs, "seed": config.seed, "tau_end": setup.tau_end, "dt": setup.dt,
         "models": models,
+        **model_choices(config, setup, [info["normal_force"]]),
         "x_gh_mean": {m: mean[i].tolist() for i, m in enumerate(models)},
         "x_gh_std": {m: std[i].tolist() for i, m in enumerate(models)},
     }
+    summary["sigma_zeta"] = summary["sigma_zeta"][0]  # one normal force
     if "white" in models and "contact" in models:
         with np.errstate(invalid="ignore", divide="ignore"):
             ratio = std[models.index("contact")] / std[models.index("white")]

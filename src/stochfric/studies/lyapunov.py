@@ -28,7 +28,7 @@ import xarray as xr
 
 from ..io_utils import package_versions
 from .base import StudyResult, provenance_attrs, sweep
-from .common import TaskSpec, integrator_for, make_setup, pad_events, runs_for, warnings_of
+from .common import TaskSpec, integrator_for, model_choices, pad_events, runs_for, setup_for, warnings_of
 from .config import LyapunovConfig
 from .executors import Executor
 
@@ -54,7 +54,7 @@ def lyapunov_exponent(w: npt.ArrayLike) -> tuple[float, str, int]:
 
 def lyapunov_tasks(config: LyapunovConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
     """One task per (model, q, N): parameter sets (η0, η0, η1, η1, …) = (ref, pert) pairs."""
-    setup = make_setup(config.preset, config.process_file, config.tau_end or 200.0, config.dt)
+    setup = setup_for(config, tau_end=200.0)
     sp = setup.preset.study_parameters
     forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
     d = config.damping if config.damping is not None else float(sp["damping_undamped"])
@@ -145,7 +145,7 @@ def lyapunov_study(
         "study": "lyapunov", "preset": setup.preset.name, "process_source": setup.process_source,
         "normal_force": list(forces), "forcing_q": qs, "eta": etas.tolist(), "damping": info["damping"],
         "runs": config.runs, "seed": config.seed, "tau_end": setup.tau_end, "dt": setup.dt,
-        "perturbation": config.perturbation, "models": models,
+        "perturbation": config.perturbation, "models": models, **model_choices(config, setup, forces),
         "lyapunov": {m: lam[i].tolist() for i, m in enumerate(models)},
         "status": {m: status[i].tolist() for i, m in enumerate(models)},
         "n_transitions": {m: kk[i].tolist() for i, m in enumerate(models)},

@@ -19,7 +19,16 @@ import xarray as xr
 
 from ..io_utils import package_versions
 from .base import StudyResult, provenance_attrs, sweep
-from .common import TaskSpec, integrator_for, make_setup, pad_events, runs_for, warnings_of, window_mask
+from .common import (
+    TaskSpec,
+    integrator_for,
+    model_choices,
+    pad_events,
+    runs_for,
+    setup_for,
+    warnings_of,
+    window_mask,
+)
 from .config import NormalForceConfig
 from .executors import Executor
 from .stats import sample_summary
@@ -30,7 +39,7 @@ _SE_FIELDS = ("mean", "std", "vark", "se_mean_iid", "se_std_iid", "se_vark_iid",
 
 def normal_force_tasks(config: NormalForceConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
     """One task per (model, D)."""
-    setup = make_setup(config.preset, config.process_file, config.tau_end, config.dt)
+    setup = setup_for(config)
     sp = setup.preset.study_parameters
     forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
     dampings = config.dampings or (float(sp["damping_undamped"]), float(sp["damping_damped"]))
@@ -133,7 +142,7 @@ def normal_force_study(
     summary: dict[str, Any] = {
         "study": "normal-force", "preset": setup.preset.name, "process_source": setup.process_source,
         "normal_force": list(forces), "damping": list(dampings), "runs": config.runs, "seed": config.seed,
-        "tau_end": setup.tau_end, "dt": setup.dt, "models": models,
+        "tau_end": setup.tau_end, "dt": setup.dt, "models": models, **model_choices(config, setup, forces),
         "stick_window": [config.stick_window * setup.tau_end, setup.tau_end],
         "x_gh_mean": tab("mean"), "x_gh_std": tab("std"), "varK": tab("vark"),
         "x_gh_mean_se": tab("se_mean_boot"), "x_gh_std_se": tab("se_std_boot"), "varK_se": tab("se_vark_boot"),

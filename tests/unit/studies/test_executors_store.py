@@ -29,7 +29,8 @@ SMALL = DampingConfig(normal_forces=(4000.0, 6000.0), damping=(0.1, 0.14, 0.18),
 
 
 def _arrays(ds: xr.Dataset) -> dict[str, np.ndarray]:
-    return {k: ds[k].values for k in ("x_gh", "t_gh", "stick_count", "stick_probability", "d_max")}
+    return {k: ds[k].values for k in ("x_gh", "t_gh", "stick_count", "stick_probability", "d_max",
+                                      "phase_damping", "phase_trajectory")}
 
 
 def _assert_same(a: xr.Dataset, b: xr.Dataset) -> None:
@@ -93,15 +94,17 @@ def test_resume_after_interrupt_and_deleted_files(tmp_path: Path) -> None:
     assert store.finished() == {0, 1}
     ex2 = CountingExecutor()
     res = damping_study(SMALL, executor=ex2, checkpoint=str(tmp_path))
-    assert sorted(ex2.calls) == [2, 3, 4, 5]  # finished tasks not recomputed
-    assert res.stats.loaded == 2 and res.stats.computed == 4
+    # finished tasks not recomputed; 6, 7, 8: the phase-diagram tasks (one per model)
+    assert sorted(ex2.calls) == [2, 3, 4, 5, 6, 7, 8]
+    assert res.stats.loaded == 2 and res.stats.computed == 7
     _assert_same(ref, res.to_dataset())
     # delete two task files: exactly those are recomputed
     store.path(1).unlink()
     store.path(4).unlink()
+    store.path(7).unlink()
     ex3 = CountingExecutor()
     _assert_same(ref, damping_study(SMALL, executor=ex3, checkpoint=str(tmp_path)).to_dataset())
-    assert sorted(ex3.calls) == [1, 4]
+    assert sorted(ex3.calls) == [1, 4, 7]
     # a complete checkpoint computes nothing; no temporary files are left behind
     ex4 = CountingExecutor()
     damping_study(SMALL, executor=ex4, checkpoint=str(tmp_path))

@@ -61,6 +61,13 @@ def test_defaults_and_grids(tmp_path: Path) -> None:
         ("[execution]\nexecutor = 'serial'\n", "no [[study]]"),
         ("[execution]\nexecuter = 'serial'\n[[study]]\nkind = 'damping'\n", "execution.executer"),
         ("study = 3\n", "array of tables"),
+        ("[[study]]\nkind = 'damping'\nwhite_intensity = 'pink'\n",
+         "study[0].white_intensity: Input should be 'sigma_mu' or 'spectral_level'"),
+        ("[defaults]\npath_coordinate = 'global'\n[[study]]\nkind = 'forcing'\n",
+         "study[0].path_coordinate: Input should be 'mass' or 'relative'"),
+        ("[[study]]\nkind = 'damping'\nphase_damping = [0.1, 1.1]\n", "study[0].phase_damping"),
+        ("[[study]]\nkind = 'damping'\nphase_runs = -1\n", "study[0].phase_runs"),
+        ("[[study]]\nkind = 'forcing'\nphase_force = 1000\n", "study[0].phase_force: Extra inputs"),
     ],
 )
 def test_errors_are_clear(tmp_path: Path, text: str, needle: str) -> None:
@@ -89,3 +96,19 @@ def test_config_is_frozen_and_hashable_dict() -> None:
         c.runs = 3  # type: ignore[misc]
     h = c.hash_config()
     assert h["runs"] == 2 and h["kind"] == "damping"
+
+
+def test_model_choices_in_toml() -> None:
+    rf = parse_run_file({"defaults": {"white_intensity": "spectral_level", "path_coordinate": "relative"},
+                         "study": [{"kind": "damping", "phase_force": 1400, "phase_damping": "0.05:0.2:4",
+                                    "phase_runs": 2, "save_every": 5},
+                                   {"kind": "lyapunov", "white_intensity": "sigma_mu"}]})
+    d, ly = rf.study
+    assert isinstance(d, DampingConfig)
+    assert d.white_intensity == "spectral_level" and d.path_coordinate == "relative"
+    assert d.phase_force == 1400.0 and d.phase_damping == (0.05, 0.1, 0.15, 0.2)
+    assert d.phase_runs == 2 and d.save_every == 5
+    assert ly.white_intensity == "sigma_mu" and ly.path_coordinate == "relative"
+    assert DampingConfig().white_intensity == "sigma_mu" and DampingConfig().path_coordinate == "mass"
+    # both change the numbers, so both are in the checkpoint key
+    assert d.hash_config()["white_intensity"] == "spectral_level"
