@@ -473,10 +473,13 @@ def run_benchmarks(size: str = "quick", *, log: Callable[[str], None] | None = N
     t10k = wall * HEADLINE_RUNS / hr * (50.0 / htau)
     rep.ratios["headline: time for 10,000 runs [s]"] = t10k
 
-    # targets
+    # targets.  The issue asks for the *kernels* at >= 100x the pure-Python loop on one core:
+    # Euler as run by simulate (no random numbers), Euler–Maruyama with the increments given to
+    # both the kernel and the Python loop (like for like).  The end-to-end Euler–Maruyama ratio,
+    # which adds numpy's normal generator (~9-10 ns per number, the same for any kernel), is
+    # reported in the ratios above but is not a kernel figure.
     for c in ("brake", "demo"):
-        for what in ("Euler kernel / python Euler loop", "Euler–Maruyama / python Euler loop",
-                     "Euler–Maruyama / python EM loop"):
+        for what in ("Euler kernel / python Euler loop", "EM, kernel only / python EM loop"):
             v = rep.ratios[f"{c}: {what}"]
             rep.targets[f"{c}: {what} >= {PYTHON_RATIO_TARGET:g}x"] = {
                 "value": v, "met": v >= PYTHON_RATIO_TARGET}

@@ -231,7 +231,7 @@ def simulate(
     save_every: int = 10,
     max_events: int | None = None,
     workers: int | None = None,
-    batch_size: int = 32,
+    batch_size: int = 256,
     rtol: float = 1e-11,
     atol: float = 1e-13,
     max_step: float = 0.1,
@@ -341,6 +341,7 @@ def simulate(
         lawp_set[i, : len(lw.params)] = lw.params
         shape_set[i] = lw.shape
 
+    x0_set = np.array(plan.x0, dtype=np.float64).reshape(npar, 2)
     x_gh = np.full((n_traj, nev), np.nan)
     t_gh = np.full((n_traj, nev), np.nan)
     counts = np.zeros(n_traj, dtype=np.int64)
@@ -380,7 +381,7 @@ def simulate(
                             f"process realisation has shape {vals.shape}, expected ({n_proc_len},)"
                         )
                     proc[j] = vals
-        x0b = np.array([plan.x0[int(s)] for s in sets], dtype=np.float64)
+        x0b = x0_set[sets]
         if integrator == "accurate":
             _acc.run_accurate_batch(
                 prm_set[sets], shape_set[sets], lawp_set[sets], x0b, float(tau_end),

@@ -43,7 +43,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from .friction_laws import mu_kinetic_row
+from .friction_laws import SHAPE_CONSTANT, SHAPE_RATIONAL, mu_kinetic_row
 
 # --- codes -------------------------------------------------------------------
 SCHEME_EULER = 0
@@ -156,23 +156,25 @@ def _breakaway_limit(
 
 
 # --- per-trajectory state of the lock-step batch kernel ------------------------------
+# Group arrays are stored field-major, ``fs[field, lane]``, so that every field of a group is
+# one contiguous row that the compiler can process with SIMD instructions.
 _F_X1 = 0
 _F_X2 = 1
-_F_TAU = 2
+_F_STK = 2  # 1.0 while sticking
 _F_S = 3
 _F_PATH = 4
 _F_LIMB = 5  # static limit of the current stick phase (path, hence μ̂, is fixed while sticking)
 _F_PSS = 6  # path at the start of the current slip phase
 _F_MINSLIP = 7
-_NF = 8
-_I_STICK = 0
-_I_M = 1
-_I_NSHORT = 2
-_I_NNOSTICK = 3
-_I_NBREAK = 4
-_I_NPHASES = 5
-_I_ISAVE = 6
-_NI = 7
+_F_DONE = 8  # 1.0 when the fast pass completed the current step
+_NF = 9
+_I_M = 0
+_I_NSHORT = 1
+_I_NNOSTICK = 2
+_I_NBREAK = 3
+_I_NPHASES = 4
+_I_ISAVE = 5
+_NI = 6
 # per-trajectory constants, hoisted with the same rounding as the expressions they replace
 _C_GAMMA0 = 0
 _C_NN = 1
@@ -188,12 +190,17 @@ _C_PDX = 10
 _C_ITO = 11  # ½ b b' / s = −n² σ_ζ / 4 (METHOD §5.1)
 _C_MUK0 = 12  # μ_k(0), contact model only
 _C_FORCED = 13  # 1.0 when q ≠ 0 (q = 0: q cos x3 is ±0 and the cosine is skipped)
-_NC = 14
+_C_P0 = 14  # law in rational form p0/(1 + p1 v) + p2 + p3 v² (constant law: p1 = p2 = p3 = 0)
+_C_P1 = 15
+_C_P2 = 16
+_C_P3 = 17
+_NC = 18
 
-#: Trajectories advanced in lock-step by :func:`run_fixed_step_batch`.  One Euler step is
-#: a chain of dependent operations (x2 → v_rel → μ, with a division → x2) that leaves the
-#: CPU idle; interleaving independent trajectories fills it (measured ~4× on Euler).
-LOCKSTEP = 8
+#: Trajectories advanced in lock-step by :func:`run_fixed_step_batch`.  One trajectory's Euler
+#: step is a chain of dependent operations (x2 → v_rel → μ, with a division → x2) that leaves
+#: the CPU idle; a group of independent trajectories in field-major arrays fills it, and the
+#: branch-free fast pass over the group is compiled to SIMD instructions.
+LOCKSTEP = 32
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -204,28 +211,32 @@ def _advance(
     dw: npt.NDArray[np.float64], proc: npt.NDArray[np.float64], n_proc: npt.NDArray[np.int64],
     xgh: npt.NDArray[np.float64], tgh: npt.NDArray[np.float64],
 ) -> None:  # pragma: no cover
-    """Advance trajectory ``j`` (group slot ``jj``) over grid step ``k`` (see module doc)."""
-    gamma0 = cs[jj, _C_GAMMA0]
-    nn = cs[jj, _C_NN]
-    dd2 = cs[jj, _C_DD2]
-    c2 = cs[jj, _C_C2]
-    qq = cs[jj, _C_QQ]
-    x30 = cs[jj, _C_X30]
-    eta = cs[jj, _C_ETA]
-    vscale = cs[jj, _C_VSCALE]
-    lim = cs[jj, _C_LIM]
-    sigma = cs[jj, _C_SIGMA]
-    pdx = cs[jj, _C_PDX]
-    ito = cs[jj, _C_ITO]
-    forced = cs[jj, _C_FORCED] != 0.0
+    """Advance trajectory ``j`` (group lane ``jj``) over grid step ``k`` (see module doc).
+
+    The full step with the thesis's switching logic; called when the fast pass of
+    :func:`run_fixed_step_batch` found an event (or cannot handle the lane).
+    """
+    gamma0 = cs[_C_GAMMA0, jj]
+    nn = cs[_C_NN, jj]
+    dd2 = cs[_C_DD2, jj]
+    c2 = cs[_C_C2, jj]
+    qq = cs[_C_QQ, jj]
+    x30 = cs[_C_X30, jj]
+    eta = cs[_C_ETA, jj]
+    vscale = cs[_C_VSCALE, jj]
+    lim = cs[_C_LIM, jj]
+    sigma = cs[_C_SIGMA, jj]
+    pdx = cs[_C_PDX, jj]
+    ito = cs[_C_ITO, jj]
+    forced = cs[_C_FORCED, jj] != 0.0
     shape = shapes[j]
-    x1 = fs[jj, _F_X1]
-    x2 = fs[jj, _F_X2]
-    tau = fs[jj, _F_TAU]
-    s = fs[jj, _F_S]
-    path = fs[jj, _F_PATH]
-    lim_b = fs[jj, _F_LIMB]
-    stick = ist[jj, _I_STICK] != 0
+    x1 = fs[_F_X1, jj]
+    x2 = fs[_F_X2, jj]
+    tau = k * dt  # = the previous step's (k_prev + 1) * dt, bit for bit
+    s = fs[_F_S, jj]
+    path = fs[_F_PATH, jj]
+    lim_b = fs[_F_LIMB, jj]
+    stick = fs[_F_STK, jj] != 0.0
     h = dt
     dwk = 0.0
     if white:
@@ -253,11 +264,11 @@ def _advance(
                 tau += th * h
                 h -= th * h
                 stick = False
-                ist[jj, _I_NBREAK] += 1
+                ist[_I_NBREAK, jj] += 1
                 # the unbalanced force decides the direction of the first slip:
                 # F > n μ_s → the spring pulls back, x2 falls below γ0, v_rel > 0
                 s = 1.0 if fn > 0.0 else -1.0
-                fs[jj, _F_PSS] = path
+                fs[_F_PSS, jj] = path
         else:
             vr = gamma0 - x2
             if vr > 0.0:
@@ -299,28 +310,28 @@ def _advance(
                 tc = tau + th * h
                 if abs(_stick_force_hoisted(x1c, tc, c2, qq, x30, eta, forced)) <= lim:
                     # slip → stick: X_gh
-                    m = ist[jj, _I_M]
+                    m = ist[_I_M, jj]
                     if m < xgh.shape[1]:
                         xgh[j, m] = x1c
                         tgh[j, m] = tc
-                    ist[jj, _I_M] = m + 1
+                    ist[_I_M, jj] = m + 1
                     path += th * dpath
-                    sp = path - fs[jj, _F_PSS]
-                    ist[jj, _I_NPHASES] += 1
-                    if sp < fs[jj, _F_MINSLIP]:
-                        fs[jj, _F_MINSLIP] = sp
+                    sp = path - fs[_F_PSS, jj]
+                    ist[_I_NPHASES, jj] += 1
+                    if sp < fs[_F_MINSLIP, jj]:
+                        fs[_F_MINSLIP, jj] = sp
                     if sp < pdx:
-                        ist[jj, _I_NSHORT] += 1
+                        ist[_I_NSHORT, jj] += 1
                     x1 = x1c
                     x2 = gamma0
                     h -= th * h
                     tau = tc
                     stick = True
-                    lim_b = _breakaway_limit(lim, nn, cs[jj, _C_MUK0], noise, proc, j, n_proc[j],
+                    lim_b = _breakaway_limit(lim, nn, cs[_C_MUK0, jj], noise, proc, j, n_proc[j],
                                              pdx, path)
                 else:
                     # belt speed reached, static friction cannot hold: keep slipping
-                    ist[jj, _I_NNOSTICK] += 1
+                    ist[_I_NNOSTICK, jj] += 1
                     x1 = x1n
                     x2 = x2n
                     path += dpath
@@ -334,13 +345,12 @@ def _advance(
                 h = 0.0
     if stick:
         x2 = gamma0
-    fs[jj, _F_X1] = x1
-    fs[jj, _F_X2] = x2
-    fs[jj, _F_TAU] = (k + 1) * dt
-    fs[jj, _F_S] = s
-    fs[jj, _F_PATH] = path
-    fs[jj, _F_LIMB] = lim_b
-    ist[jj, _I_STICK] = 1 if stick else 0
+    fs[_F_X1, jj] = x1
+    fs[_F_X2, jj] = x2
+    fs[_F_S, jj] = s
+    fs[_F_PATH, jj] = path
+    fs[_F_LIMB, jj] = lim_b
+    fs[_F_STK, jj] = 1.0 if stick else 0.0
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -373,9 +383,14 @@ def run_fixed_step_batch(
     holds the Wiener increments ``ΔW_k`` (``N(0, dt)``) for white noise, ``proc[i]`` the
     process realisation (``n_proc[i]`` points) for the contact model.
 
-    Trajectories are advanced in groups of :data:`LOCKSTEP`, step by step; their arithmetic
-    is that of a single trajectory, so the numbers do not depend on the grouping or the
-    batching.  Releases the GIL, so batches run in parallel threads.
+    Trajectories are advanced in groups of :data:`LOCKSTEP`, step by step.  Every step first
+    runs a branch-free fast pass over the group — a stick step without breakaway, or a slip
+    step that crosses no switching condition, with exactly the arithmetic of the full step —
+    and then the full step :func:`_advance` for the lanes where an event happened.  Groups
+    with forcing, the contact process or a tabulated law take a scalar fast pass instead
+    (cosine, gathers and table look-ups do not vectorise).  The numbers of a trajectory do
+    not depend on the grouping or the batching.  Releases the GIL, so batches run in
+    parallel threads.
     """
     white = noise == NOISE_WHITE
     contact = noise == NOISE_PROCESS
@@ -386,126 +401,193 @@ def run_fixed_step_batch(
     for g0 in range(0, ntraj, LOCKSTEP):
         g1 = min(ntraj, g0 + LOCKSTEP)
         ng = g1 - g0
-        fs = np.empty((ng, _NF))
-        ist = np.zeros((ng, _NI), dtype=np.int64)
-        cs = np.empty((ng, _NC))
+        fs = np.empty((_NF, ng))
+        ist = np.zeros((_NI, ng), dtype=np.int64)
+        cs = np.zeros((_NC, ng))
+        vector = not contact
         for jj in range(ng):
             j = g0 + jj
             row = prm[j]
             gamma0 = row[P_GAMMA0]
             nn = row[P_N]
             dd2 = 2.0 * row[P_D]
-            cs[jj, _C_GAMMA0] = gamma0
-            cs[jj, _C_NN] = nn
-            cs[jj, _C_DD2] = dd2
-            cs[jj, _C_C2] = dd2 * gamma0
-            cs[jj, _C_QQ] = row[P_Q]
-            cs[jj, _C_X30] = row[P_X30]
-            cs[jj, _C_ETA] = row[P_ETA]
-            cs[jj, _C_VSCALE] = row[P_VSCALE]
+            cs[_C_GAMMA0, jj] = gamma0
+            cs[_C_NN, jj] = nn
+            cs[_C_DD2, jj] = dd2
+            cs[_C_C2, jj] = dd2 * gamma0
+            cs[_C_QQ, jj] = row[P_Q]
+            cs[_C_X30, jj] = row[P_X30]
+            cs[_C_ETA, jj] = row[P_ETA]
+            cs[_C_VSCALE, jj] = row[P_VSCALE]
             lim = nn * row[P_MUS]
-            cs[jj, _C_LIM] = lim
-            cs[jj, _C_SIGMA] = row[P_SIGMA]
-            cs[jj, _C_PDX] = row[P_PROC_DX]
-            cs[jj, _C_ITO] = -0.25 * nn * nn * row[P_SIGMA]
+            cs[_C_LIM, jj] = lim
+            cs[_C_SIGMA, jj] = row[P_SIGMA]
+            cs[_C_PDX, jj] = row[P_PROC_DX]
+            cs[_C_ITO, jj] = -0.25 * nn * nn * row[P_SIGMA]
             mu_k0 = mu_kinetic_row(shapes[j], 0.0, lawp, j) if contact else 0.0
-            cs[jj, _C_MUK0] = mu_k0
-            cs[jj, _C_FORCED] = 1.0 if row[P_Q] != 0.0 else 0.0
+            cs[_C_MUK0, jj] = mu_k0
+            cs[_C_FORCED, jj] = 1.0 if row[P_Q] != 0.0 else 0.0
+            if row[P_Q] != 0.0:
+                vector = False
+            if shapes[j] == SHAPE_RATIONAL:
+                cs[_C_P0, jj] = lawp[j, 0]
+                cs[_C_P1, jj] = lawp[j, 1]
+                cs[_C_P2, jj] = lawp[j, 2]
+                cs[_C_P3, jj] = lawp[j, 3]
+            elif shapes[j] == SHAPE_CONSTANT:
+                # p0/(1 + 0·v) + 0 + 0·v² = p0 exactly: the rational form gives the same bits
+                cs[_C_P0, jj] = lawp[j, 0]
+            else:
+                vector = False
             x1 = x0[j, 0]
             x2 = x0[j, 1]
-            fs[jj, _F_X1] = x1
-            fs[jj, _F_X2] = x2
-            fs[jj, _F_TAU] = 0.0
-            fs[jj, _F_S] = -1.0 if x2 > gamma0 else 1.0
-            fs[jj, _F_PATH] = 0.0
-            fs[jj, _F_LIMB] = _breakaway_limit(lim, nn, mu_k0, noise, proc, j, n_proc[j],
+            fs[_F_X1, jj] = x1
+            fs[_F_X2, jj] = x2
+            fs[_F_S, jj] = -1.0 if x2 > gamma0 else 1.0
+            fs[_F_PATH, jj] = 0.0
+            fs[_F_LIMB, jj] = _breakaway_limit(lim, nn, mu_k0, noise, proc, j, n_proc[j],
                                                row[P_PROC_DX], 0.0)
-            fs[jj, _F_PSS] = 0.0
-            fs[jj, _F_MINSLIP] = np.inf
+            fs[_F_PSS, jj] = 0.0
+            fs[_F_MINSLIP, jj] = np.inf
             stick = (x2 == gamma0) and (abs(_stick_force(x1, 0.0, row)) <= lim)
-            ist[jj, _I_STICK] = 1 if stick else 0
-            ist[jj, _I_ISAVE] = 1
+            fs[_F_STK, jj] = 1.0 if stick else 0.0
+            ist[_I_ISAVE, jj] = 1
             if nsave > 0:
                 traj[j, 0, 0] = 0.0
                 traj[j, 0, 1] = x1
                 traj[j, 0, 2] = x2
+        # contiguous rows of the group (views, created once per group)
+        vx1 = fs[_F_X1]
+        vx2 = fs[_F_X2]
+        vstk = fs[_F_STK]
+        vs = fs[_F_S]
+        vpath = fs[_F_PATH]
+        vlimb = fs[_F_LIMB]
+        vdone = fs[_F_DONE]
+        cg = cs[_C_GAMMA0]
+        cn = cs[_C_NN]
+        cd2 = cs[_C_DD2]
+        cc2 = cs[_C_C2]
+        cvs = cs[_C_VSCALE]
+        csig = cs[_C_SIGMA]
+        cito = cs[_C_ITO]
+        cp0 = cs[_C_P0]
+        cp1 = cs[_C_P1]
+        cp2 = cs[_C_P2]
+        cp3 = cs[_C_P3]
+        wk = np.zeros(ng)
         for k in range(nsteps):
-            save = nsave > 0 and (k + 1) % decimate == 0
-            for jj0 in range(ng):
-                uj = np.uint64(jj0)  # unsigned indices: no negative-index wrap-around code
-                u = np.uint64(g0 + jj0)
-                # fast paths: a plain stick or slip step that crosses no switching condition,
-                # with the arithmetic of the first pass of _advance, committed only if no
-                # event occurs in the step (otherwise _advance redoes it from the state)
-                done = False
-                if ist[uj, _I_STICK] != 0:
-                    gamma0 = cs[uj, _C_GAMMA0]
-                    x1n = fs[uj, _F_X1] + gamma0 * dt
-                    fn = _stick_force_hoisted(x1n, fs[uj, _F_TAU] + dt, cs[uj, _C_C2],
-                                              cs[uj, _C_QQ], cs[uj, _C_X30], cs[uj, _C_ETA],
-                                              cs[uj, _C_FORCED] != 0.0)
-                    if abs(fn) <= fs[uj, _F_LIMB]:
-                        fs[uj, _F_X1] = x1n
-                        fs[uj, _F_X2] = gamma0
-                        fs[uj, _F_TAU] = (k + 1) * dt
-                        done = True
-                else:
-                    gamma0 = cs[uj, _C_GAMMA0]
-                    x1 = fs[uj, _F_X1]
-                    x2 = fs[uj, _F_X2]
-                    vr = gamma0 - x2
-                    if vr != 0.0:
-                        s = 1.0 if vr > 0.0 else -1.0
-                        avr = abs(vr)
-                        nn = cs[uj, _C_NN]
-                        path = fs[uj, _F_PATH]
-                        mu = mu_kinetic_row(shapes[u], cs[uj, _C_VSCALE] * avr, lawp, u)
-                        if contact:
-                            mu += process_value_row(proc, u, n_proc[u], cs[uj, _C_PDX], path)
-                        drift = -x1 - cs[uj, _C_DD2] * x2 + nn * mu * s
-                        if cs[uj, _C_FORCED] != 0.0:
-                            drift += cs[uj, _C_QQ] * math.cos(cs[uj, _C_X30]
-                                                             + cs[uj, _C_ETA] * fs[uj, _F_TAU])
-                        x1n = x1 + x2 * dt
-                        if white:
-                            ito = cs[uj, _C_ITO]
-                            b = nn * s * math.sqrt(cs[uj, _C_SIGMA] * avr)
-                            if milstein:
-                                x2n = milstein_step(x2, drift + s * ito, b, 2.0 * s * ito,
-                                                    dw[u, k], dt)
-                            else:
-                                x2n = em_step(x2, drift + s * ito, b, dw[u, k], dt)
+            if vector:
+                if white:
+                    for jj in range(ng):
+                        wk[jj] = dw[g0 + jj, k]
+                # fast pass, branch-free: both candidates, then a select per lane
+                for jj in range(ng):
+                    a1 = vx1[jj]
+                    a2 = vx2[jj]
+                    gam = cg[jj]
+                    x1s = a1 + gam * dt
+                    ok_stick = abs(x1s + cc2[jj]) <= vlimb[jj]
+                    vr = gam - a2
+                    s = 1.0 if vr > 0.0 else -1.0
+                    avr = abs(vr)
+                    v = cvs[jj] * avr
+                    mu = cp0[jj] / (1.0 + cp1[jj] * v) + cp2[jj] + cp3[jj] * v * v
+                    drift = -a1 - cd2[jj] * a2 + cn[jj] * mu * s
+                    x1n = a1 + a2 * dt
+                    if white:
+                        ito = cito[jj]
+                        b = cn[jj] * s * math.sqrt(csig[jj] * avr)
+                        dwj = wk[jj]
+                        if milstein:
+                            x2n = a2 + (drift + s * ito) * dt + b * dwj + 0.5 * (2.0 * s * ito) * (dwj * dwj - dt)
                         else:
-                            x2n = x2 + drift * dt
-                        if (gamma0 - x2n) * s > 0.0:
-                            fs[uj, _F_X1] = x1n
-                            fs[uj, _F_X2] = x2n
-                            fs[uj, _F_PATH] = path + (abs(x1n - x1) if mass_path else avr * dt)
-                            fs[uj, _F_TAU] = (k + 1) * dt
-                            fs[uj, _F_S] = s
+                            x2n = a2 + (drift + s * ito) * dt + b * dwj
+                    else:
+                        x2n = a2 + drift * dt
+                    ok_slip = (vr != 0.0) & ((gam - x2n) * s > 0.0)
+                    dp = abs(x1n - a1) if mass_path else avr * dt
+                    is_st = vstk[jj] != 0.0
+                    good = ok_stick if is_st else ok_slip
+                    slip_ok = good & (not is_st)
+                    vx1[jj] = (x1s if is_st else x1n) if good else a1
+                    vx2[jj] = (gam if is_st else x2n) if good else a2
+                    vpath[jj] = vpath[jj] + dp if slip_ok else vpath[jj]
+                    vs[jj] = s if slip_ok else vs[jj]
+                    vdone[jj] = 1.0 if good else 0.0
+            else:
+                # scalar fast pass (forcing, contact process or tabulated law in the group)
+                for jj in range(ng):
+                    j = g0 + jj
+                    done = False
+                    if vstk[jj] != 0.0:
+                        gam = cg[jj]
+                        x1n = vx1[jj] + gam * dt
+                        fn = _stick_force_hoisted(x1n, k * dt + dt, cc2[jj], cs[_C_QQ, jj],
+                                                  cs[_C_X30, jj], cs[_C_ETA, jj],
+                                                  cs[_C_FORCED, jj] != 0.0)
+                        if abs(fn) <= vlimb[jj]:
+                            vx1[jj] = x1n
+                            vx2[jj] = gam
                             done = True
-                if not done:
-                    _advance(jj0, g0 + jj0, k, dt, fs, ist, cs, shapes, lawp, white, contact, milstein,
+                    else:
+                        gam = cg[jj]
+                        a1 = vx1[jj]
+                        a2 = vx2[jj]
+                        vr = gam - a2
+                        if vr != 0.0:
+                            s = 1.0 if vr > 0.0 else -1.0
+                            avr = abs(vr)
+                            nn = cn[jj]
+                            path = vpath[jj]
+                            mu = mu_kinetic_row(shapes[j], cvs[jj] * avr, lawp, j)
+                            if contact:
+                                mu += process_value_row(proc, j, n_proc[j], cs[_C_PDX, jj], path)
+                            drift = -a1 - cd2[jj] * a2 + nn * mu * s
+                            if cs[_C_FORCED, jj] != 0.0:
+                                drift += cs[_C_QQ, jj] * math.cos(cs[_C_X30, jj] + cs[_C_ETA, jj] * (k * dt))
+                            x1n = a1 + a2 * dt
+                            if white:
+                                ito = cito[jj]
+                                b = nn * s * math.sqrt(csig[jj] * avr)
+                                if milstein:
+                                    x2n = milstein_step(a2, drift + s * ito, b, 2.0 * s * ito, dw[j, k], dt)
+                                else:
+                                    x2n = em_step(a2, drift + s * ito, b, dw[j, k], dt)
+                            else:
+                                x2n = a2 + drift * dt
+                            if (gam - x2n) * s > 0.0:
+                                vx1[jj] = x1n
+                                vx2[jj] = x2n
+                                vpath[jj] = path + (abs(x1n - a1) if mass_path else avr * dt)
+                                vs[jj] = s
+                                done = True
+                    vdone[jj] = 1.0 if done else 0.0
+            save = nsave > 0 and (k + 1) % decimate == 0
+            for jj in range(ng):
+                j = g0 + jj
+                if vdone[jj] == 0.0:
+                    _advance(jj, j, k, dt, fs, ist, cs, shapes, lawp, white, contact, milstein,
                              mass_path, noise, dw, proc, n_proc, xgh, tgh)
                 if save:
-                    isave = ist[uj, _I_ISAVE]
+                    isave = ist[_I_ISAVE, jj]
                     if isave < nsave:
-                        traj[u, isave, 0] = fs[uj, _F_TAU]
-                        traj[u, isave, 1] = fs[uj, _F_X1]
-                        traj[u, isave, 2] = fs[uj, _F_X2]
-                        ist[uj, _I_ISAVE] = isave + 1
+                        traj[j, isave, 0] = (k + 1) * dt
+                        traj[j, isave, 1] = vx1[jj]
+                        traj[j, isave, 2] = vx2[jj]
+                        ist[_I_ISAVE, jj] = isave + 1
         for jj in range(ng):
             j = g0 + jj
-            counts[j] = ist[jj, _I_M]
-            diag[j, D_PATH] = fs[jj, _F_PATH]
-            diag[j, D_MIN_SLIP_PATH] = fs[jj, _F_MINSLIP]
-            diag[j, D_N_SHORT_SLIP] = ist[jj, _I_NSHORT]
-            diag[j, D_N_NO_STICK] = ist[jj, _I_NNOSTICK]
-            diag[j, D_X1] = fs[jj, _F_X1]
-            diag[j, D_X2] = fs[jj, _F_X2]
-            diag[j, D_STICK] = 1.0 if ist[jj, _I_STICK] != 0 else 0.0
-            diag[j, D_N_BREAKAWAY] = ist[jj, _I_NBREAK]
-            diag[j, D_N_SLIP_PHASES] = ist[jj, _I_NPHASES]
+            counts[j] = ist[_I_M, jj]
+            diag[j, D_PATH] = fs[_F_PATH, jj]
+            diag[j, D_MIN_SLIP_PATH] = fs[_F_MINSLIP, jj]
+            diag[j, D_N_SHORT_SLIP] = ist[_I_NSHORT, jj]
+            diag[j, D_N_NO_STICK] = ist[_I_NNOSTICK, jj]
+            diag[j, D_X1] = fs[_F_X1, jj]
+            diag[j, D_X2] = fs[_F_X2, jj]
+            diag[j, D_STICK] = 1.0 if fs[_F_STK, jj] != 0.0 else 0.0
+            diag[j, D_N_BREAKAWAY] = ist[_I_NBREAK, jj]
+            diag[j, D_N_SLIP_PHASES] = ist[_I_NPHASES, jj]
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
