@@ -174,3 +174,22 @@ def test_event_buffer_overflow_is_reported() -> None:
     with pytest.warns(SimulationWarningCategory, match="max_events"):
         r = simulate(OscillatorParameters(gamma0=1.0, n=10.0), law=law_III(), max_events=2)
     assert r.stick_count[0, 0] == 6 and np.isfinite(r.x_gh[0, 0]).sum() == 2
+
+
+@pytest.mark.parametrize(("model", "integrator"), [("deterministic", "euler"), ("white", "euler"),
+                                                   ("white", "milstein")])
+def test_vector_and_scalar_fast_passes_give_identical_numbers(model: str, integrator: str) -> None:
+    """The batch kernel's SIMD fast pass (unforced groups) and its scalar fast pass (a forced
+    lane in the group) share the arithmetic of the full step: same trajectory, same bits."""
+    from stochfric.oscillator.kernels import LOCKSTEP
+
+    p, pre = _brake(2720.0)
+    runs = LOCKSTEP // 2
+    forced = p.replace(q=1e-4, eta=1.3)
+    kw = dict(model=model, law=_law, process=pre.process, integrator=integrator, runs=runs, seed=9,
+              tau_end=20.0, workers=1, save_trajectory=True)
+    alone = simulate([p], **kw)  # one group of unforced lanes: vector pass
+    mixed = simulate([p, forced], batch_size=2 * runs, **kw)  # shares its group with forced lanes
+    np.testing.assert_array_equal(alone.x_gh[0], mixed.x_gh[0])
+    np.testing.assert_array_equal(alone.trajectory[0], mixed.trajectory[0])
+    assert alone.stick_count.sum() > 0
