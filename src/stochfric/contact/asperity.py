@@ -23,8 +23,6 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import tempfile
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -33,6 +31,7 @@ import numpy as np
 import numpy.typing as npt
 
 from stochfric.contact.materials import Material
+from stochfric.io_utils import write_atomic
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import Summits
 
@@ -296,17 +295,8 @@ class ContactResult:
     def to_netcdf(self, path: str | Path) -> Path:
         """Write :meth:`to_dataset` to ``path`` atomically (temp file in the same folder,
         then :func:`os.replace`); returns the path."""
-        target = Path(path)
-        target.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
-        os.close(fd)
-        try:
-            self.to_dataset().to_netcdf(tmp, engine="h5netcdf")
-            os.replace(tmp, target)
-        except BaseException:
-            Path(tmp).unlink(missing_ok=True)
-            raise
-        return target
+        ds = self.to_dataset()
+        return write_atomic(path, lambda p: ds.to_netcdf(p, engine="h5netcdf"))
 
 
 def read_contact_result(path: str | Path) -> ContactResult:

@@ -17,7 +17,6 @@ once per run from a friction-process model, §5.2; integrators ``euler``, ``accu
 
 from __future__ import annotations
 
-import functools
 import math
 import os
 import warnings
@@ -49,12 +48,6 @@ DT_REFUSE = 0.25
 #: unforced, a deviation is visible at 0.05).
 DT_WARN_FORCED = 0.01
 DT_WARN_UNFORCED = 0.02
-
-
-@functools.cache
-def _versions() -> tuple[tuple[str, str], ...]:
-    """Package versions, read once per process (``importlib.metadata`` costs ~7 ms a call)."""
-    return tuple(package_versions().items())
 
 
 class SimulationWarningCategory(UserWarning):
@@ -453,7 +446,7 @@ def simulate(
         tau_end=tau_end,
         runs=runs,
         seed_entropy=int(root.entropy),  # type: ignore[arg-type]
-        versions=dict(_versions()),
+        versions=package_versions(),
         path_coordinate=path_coordinate,
         x0=plan.x0,
         laws=[lw.to_dict() for lw in plan.laws],

@@ -22,7 +22,6 @@ import itertools
 import json
 import math
 import os
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal, Protocol, overload, runtime_checkable
@@ -30,6 +29,7 @@ from typing import Any, Literal, Protocol, overload, runtime_checkable
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from stochfric.io_utils import write_json_atomic
 from stochfric.process.spectral import (
     band_limited_frequencies,
     generate_process,
@@ -104,6 +104,10 @@ def _pressure_scalar(p_pa: float) -> float:
     if p <= 0.0:
         raise ValueError(f"pressure p must be > 0 Pa, got {p_pa!r}")
     return p
+
+
+#: Units of the serialised models (SI; PSD in the convention of METHOD §0).
+_UNITS = {"dx": "m", "length": "m", "pressure": "Pa", "frequency": "1/m", "psd": "m (one-sided, METHOD §0)"}
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -403,13 +407,7 @@ class BandLimitedProcessModel:
             "spectrum_shape": self.spectrum_shape,
             "falling_ratio": self.falling_ratio,
             "sigma_zeta_rule": self.sigma_zeta_rule,
-            "units": {
-                "dx": "m",
-                "length": "m",
-                "pressure": "Pa",
-                "frequency": "1/m",
-                "psd": "m (one-sided, METHOD §0)",
-            },
+            "units": dict(_UNITS),
             "nyquist_frequency": nyquist_frequency(self.dx),
         }
 
@@ -441,7 +439,7 @@ class BandLimitedProcessModel:
         A temporary file in the same directory is written, flushed and renamed over
         ``path`` with :func:`os.replace`, so readers never see a half-written file.
         """
-        return _atomic_write_json(Path(path), self.to_dict())
+        return write_json_atomic(path, self.to_dict())
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> BandLimitedProcessModel:
@@ -687,13 +685,7 @@ class TabulatedProcessModel:
             "variance_rule": self.variance_rule,
             "sigma_zeta_rule": self.sigma_zeta_rule,
             "psd_level": None if self.psd_level is None else self.psd_level.to_dict(),
-            "units": {
-                "dx": "m",
-                "length": "m",
-                "pressure": "Pa",
-                "frequency": "1/m",
-                "psd": "m (one-sided, METHOD §0)",
-            },
+            "units": dict(_UNITS),
             "nyquist_frequency": nyquist_frequency(self.dx),
         }
 
@@ -728,7 +720,7 @@ class TabulatedProcessModel:
 
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write :meth:`to_dict` as JSON to ``path`` atomically; returns the path."""
-        return _atomic_write_json(Path(path), self.to_dict())
+        return write_json_atomic(path, self.to_dict())
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> TabulatedProcessModel:
@@ -763,22 +755,3 @@ def load_process_model(path: str | os.PathLike[str]) -> FrictionProcessModel:
         return process_model_from_dict(data)
     except (KeyError, TypeError) as exc:
         raise ValueError(f"{path} is not a valid friction-process model: missing {exc}") from None
-
-
-def _atomic_write_json(path: Path, payload: dict[str, Any]) -> Path:
-    directory = path.parent if str(path.parent) else Path(".")
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=directory)
-    try:
-        with os.fdopen(fd, "w", encoding="utf-8") as fh:
-            json.dump(payload, fh, indent=2, sort_keys=True)
-            fh.write("\n")
-            fh.flush()
-            os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except FileNotFoundError:
-            pass
-        raise
-    return path
