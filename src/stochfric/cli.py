@@ -31,6 +31,8 @@ app = typer.Typer(
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
+    # plain help text: rich markup would swallow units such as "[kg]" and turn "A:B:NUM" into an emoji
+    rich_markup_mode=None,
 )
 err_console = Console(stderr=True)
 
