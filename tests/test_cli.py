@@ -125,3 +125,17 @@ def test_simulate_white_intensity_rules() -> None:
     assert level["process"]["sigma_zeta_rule"] == "spectral_level"
     res = runner.invoke(app, [*base, "--white-intensity", "spectral_level", "--sigma-zeta", "0.1"])
     assert res.exit_code == 2 and "not both" in res.output
+
+
+def test_simulate_white_intensity_thesis_mode() -> None:
+    base = ["simulate", "--preset", "brake", "--model", "white", "--runs", "2", "--seed", "1",
+            "--tau-end", "10", "--json"]
+    thesis = _json([*base, "--white-intensity", "thesis"])
+    assert thesis["white_increment"] == "thesis"
+    assert thesis["sigma_zeta"] == pytest.approx(0.0742, abs=5e-4)  # nominal σ_ζ = σ_μ(0.35 MPa)
+    # printed (4.31): σ_ζ,eff = σ_ζ · Lω0 · Δτ (ω0 = √(1e6/2) rad/s, Δτ = 0.005)
+    assert thesis["sigma_zeta_effective"] == pytest.approx(thesis["sigma_zeta"] * 707.1068 * 0.005, rel=1e-6)
+    explicit = _json([*base, "--sigma-zeta", repr(thesis["sigma_zeta_effective"])])
+    assert explicit["x_gh"] == thesis["x_gh"]  # the mode is exactly Itô EM with σ_ζ,eff
+    default = _json(base)
+    assert default["white_increment"] == "ito" and default["x_gh"] != thesis["x_gh"]

@@ -91,7 +91,7 @@ def test_human_output_and_report(app: typer.Typer, tmp_path: Path) -> None:
         (["study", "damping", "--process", "/nonexistent/model.json"], "cannot read"),
         (["study", "damping", "--executor", "mpi"], "unknown executor"),
         (["study", "damping", "--white-intensity", "pink"], "white_intensity"),
-        (["study", "forcing", "--white-intensity", "sigma"], "'sigma_mu' or 'spectral_level'"),
+        (["study", "forcing", "--white-intensity", "sigma"], "'sigma_mu', 'spectral_level' or 'thesis'"),
         (["study", "lyapunov", "--path-coordinate", "global"], "path_coordinate"),
         (["study", "normal-force", "--path-coordinate", "x"], "'mass' or 'relative'"),
         (["study", "damping", "--phase-damping", "0.1,1.5"], "phase_damping"),

@@ -64,6 +64,7 @@ class PresetChoice(StrEnum):
 class WhiteIntensityChoice(StrEnum):
     sigma_mu = "sigma_mu"
     spectral_level = "spectral_level"
+    thesis = "thesis"
 
 
 class PathChoice(StrEnum):
@@ -242,7 +243,8 @@ def simulate(
     white_intensity: Annotated[
         WhiteIntensityChoice | None,
         typer.Option(help="Rule for σ_ζ from the process model: sigma_mu (thesis, σ_ζ = σ_μ(p)) or "
-                     "spectral_level (matches the process's low-frequency PSD level)."),
+                     "spectral_level (matches the process's low-frequency PSD level) or thesis (reproduction "
+                     "mode: printed eq. 4.31, σ_ζ,eff = σ_μ(p)·Lω0·Δτ, depends on Δτ)."),
     ] = None,
     path_coordinate: Annotated[
         PathChoice, typer.Option(help="Where the contact process is read (METHOD §7.7).")
@@ -289,7 +291,8 @@ def simulate(
                 raise ParameterError("--white-intensity needs a friction-process model (--preset or --process)")
             if sigma_zeta is not None:
                 raise ParameterError("give either --sigma-zeta or --white-intensity, not both")
-            process = replace(process, sigma_zeta_rule=white_intensity.value)
+            rule = "sigma_mu" if white_intensity is WhiteIntensityChoice.thesis else white_intensity.value
+            process = replace(process, sigma_zeta_rule=rule)
         if process is not None and process_length is not None:
             # keep the grid spanning whole periods: n = round(length/dx) points of dx = length/n
             npts = max(2, round(process_length / process.dx))
@@ -336,6 +339,8 @@ def simulate(
                     path_coordinate=path_coordinate.value,
                     save_trajectory=plot is not None or out is not None, save_every=save_every,
                     workers=workers, progress=cb,
+                    white_increment="thesis" if (white_intensity is WhiteIntensityChoice.thesis
+                                                 and model is ModelChoice.white) else "ito",
                 )
             finally:
                 if prog is not None:
@@ -376,6 +381,8 @@ def _print_summary(result: Any, summary: dict[str, Any], out: Path | None, plot:
         line += f"  p={p.pressure / 1e6:.4g} MPa"
     if result.model != "deterministic":
         line += f"  σ_ζ={result.sigma_zeta[0]:.4g}" if result.model == "white" else ""
+        if result.settings.get("white_increment") == "thesis":
+            line += f" (thesis mode: σ_ζ,eff={result.settings['sigma_zeta_effective'][0]:.4g})"
     con.print(line + f"  τ_end={result.tau_end:g} Δτ={result.dt:g} runs={result.runs} "
               f"seed={result.seed_entropy}")
     xs = [v for row in summary["x_gh"] for v in row]

@@ -40,7 +40,8 @@ PathOpt = Annotated[str, typer.Option(
     "--path-coordinate", help="Where the contact process is read: mass (thesis, path of the mass) | relative.")]
 WhiteOpt = Annotated[str, typer.Option(
     "--white-intensity", help="σ_ζ of the white-noise model: sigma_mu (thesis, σ_ζ = σ_μ(p)) | spectral_level "
-                              "(the process's low-frequency spectral level).")]
+                              "(the process's low-frequency spectral level) | thesis (reproduction mode: printed "
+                              "eq. 4.31, σ_ζ,eff = σ_μ(p)·Lω0·Δτ, depends on Δτ).")]
 
 
 def _fail(message: str) -> typer.Exit:

@@ -37,6 +37,12 @@ from .parameters import OscillatorParameters, ParameterError
 from .result import SimulationResult, SimulationWarning
 
 MODELS = ("deterministic", "white", "contact")
+#: White-noise increment rules (docs/oscillator.md, METHOD erratum 4 and 10): ``ito`` is the
+#: consistent Itô model (ΔW = R_k √Δτ, intensity σ_ζ per unit dimensionless relative path);
+#: ``thesis`` reads the printed eq. (4.31), ΔW = Δτ R_k with the dimensional relative
+#: velocity L ω0 (γ0 − X2) under the root, i.e. σ_ζ,eff = σ_ζ · L ω0 · Δτ with a correct
+#: √Δτ increment — a reproduction mode whose intensity depends on the time step.
+WHITE_INCREMENTS = ("ito", "thesis")
 INTEGRATORS = ("euler", "milstein", "accurate")
 PATH_COORDINATES = {"mass": _k.PATH_MASS, "relative": _k.PATH_RELATIVE}
 
@@ -78,6 +84,7 @@ class _Plan:
     params: list[OscillatorParameters]
     laws: list[FrictionLaw]
     sigma: list[float]
+    sigma_eff: list[float]
     pressures: list[float | None]
     x0: list[tuple[float, float]]
     nsteps: int
@@ -150,6 +157,7 @@ def _plan(
     x0: tuple[float, float] | Sequence[tuple[float, float]] | None,
     tau_end: float,
     dt: float,
+    white_increment: str = "ito",
 ) -> _Plan:
     laws: list[FrictionLaw] = []
     sig: list[float] = []
@@ -193,7 +201,23 @@ def _plan(
         if not all(math.isfinite(v) for v in x0s[-1]):
             raise ParameterError(f"initial state x0 must be finite, got {x0s[-1]}")
     nsteps = round(tau_end / dt)
-    return _Plan(list(params), laws, sig, pressures, x0s, nsteps)
+    eff = [thesis_sigma_zeta(s_, p, dt) if white_increment == "thesis" else s_
+           for s_, p in zip(sig, params, strict=True)]
+    return _Plan(list(params), laws, sig, eff, pressures, x0s, nsteps)
+
+
+def thesis_sigma_zeta(sigma_zeta: float, params: OscillatorParameters, dt: float) -> float:
+    """σ_ζ,eff = σ_ζ · L ω0 · Δτ: the intensity that printed eq. (4.31) effectively uses.
+
+    (4.31) as printed multiplies the noise by ``Δτ R_k`` (not ``√Δτ R_k``, erratum 4) and,
+    read with the dimensional relative velocity ``v_rel = L ω0 (γ0 − X2)`` [m/s] under the
+    root (erratum 10), its noise term is
+    ``n s √(σ_ζ L ω0 |γ0 − X2|) Δτ R_k = n s √(σ_ζ,eff |γ0 − X2|) √Δτ R_k``:
+    the consistent Euler–Maruyama step with intensity ``σ_ζ,eff`` (L in m, ω0 in rad/s,
+    taken as numbers; Δτ dimensionless).  It vanishes as Δτ → 0, so it is only a
+    reproduction mode (docs/oscillator.md).
+    """
+    return float(sigma_zeta) * params.velocity_scale * float(dt)
 
 
 def _need_pressure(p: OscillatorParameters, what: str) -> float:
@@ -230,6 +254,7 @@ def simulate(
     max_step: float = 0.1,
     common_random_numbers: bool = False,
     progress: Callable[[int, int], None] | None = None,
+    white_increment: str = "ito",
 ) -> SimulationResult:
     """Simulate the friction oscillator for every parameter set and run.
 
@@ -272,6 +297,10 @@ def simulate(
         Tolerances of the ``accurate`` integrator.
     progress:
         Called as ``progress(done, total)`` after every batch.
+    white_increment:
+        ``ito`` (default: ΔW = R_k √Δτ, METHOD erratum 4) or ``thesis`` (printed eq. 4.31
+        with the dimensional relative velocity: σ_ζ,eff = σ_ζ · L ω0 · Δτ, see
+        :func:`thesis_sigma_zeta`; a Δτ-dependent reproduction mode, white model only).
     """
     plist = [params] if isinstance(params, OscillatorParameters) else list(params)
     if not plist:
@@ -290,6 +319,14 @@ def simulate(
             "'milstein' is the strong order-1 scheme for the white-noise SDE; for the "
             f"{model} model use 'euler' or 'accurate'"
         )
+    if white_increment not in WHITE_INCREMENTS:
+        raise ParameterError(
+            f"unknown white-noise increment {white_increment!r}; choose one of {WHITE_INCREMENTS}"
+        )
+    if white_increment != "ito" and model != "white":
+        raise ParameterError(
+            f"white_increment={white_increment!r} applies to the white-noise model only, not {model!r}"
+        )
     if path_coordinate not in PATH_COORDINATES:
         raise ParameterError(
             f"unknown path coordinate {path_coordinate!r}; choose 'mass' (thesis) or 'relative'"
@@ -300,7 +337,7 @@ def simulate(
         raise ParameterError(f"save_every must be >= 1, got {save_every}")
     warn_list = check_time_step(dt, tau_end, integrator, plist)
     law_spec: LawSpec = law_III() if law is None else law
-    plan = _plan(plist, model, law_spec, process, sigma_zeta, x0, tau_end, dt)
+    plan = _plan(plist, model, law_spec, process, sigma_zeta, x0, tau_end, dt, white_increment)
     root = as_seed_sequence(seed)
 
     npar = len(plist)
@@ -329,7 +366,7 @@ def simulate(
         row[_k.P_X30] = 0.0
         row[_k.P_VSCALE] = p.velocity_scale
         row[_k.P_MUS] = lw.static
-        row[_k.P_SIGMA] = plan.sigma[i]
+        row[_k.P_SIGMA] = plan.sigma_eff[i]
         row[_k.P_PROC_DX] = proc_dx / p.length_scale
         lawp_set[i, : len(lw.params)] = lw.params
         shape_set[i] = lw.shape
@@ -458,6 +495,8 @@ def simulate(
             "common_random_numbers": common_random_numbers,
             "rtol": rtol, "atol": atol, "max_step": max_step,
             "spawn_key_layout": "(param_set, run)",
+            "white_increment": white_increment,
+            "sigma_zeta_effective": plan.sigma_eff,
         },
     )
 

@@ -175,6 +175,8 @@ class SimulationResult:
             "x0": list(self.x0[param_set]),
             "friction_law": self.laws[param_set],
             "sigma_zeta": self.sigma_zeta[param_set],
+            "white_increment": self.settings.get("white_increment", "ito"),
+            "sigma_zeta_effective": list(self.settings.get("sigma_zeta_effective", self.sigma_zeta))[param_set],
             "process": self.process,
             "diagnostics": {
                 k: [float(x) for x in v[param_set]] for k, v in self.diagnostics.items()

@@ -74,7 +74,9 @@ def _provenance(result: Any) -> str:
 
 _PATH_TEXT = {"mass": "mass (thesis: global path of the mass)", "relative": "relative path"}
 _WHITE_TEXT = {"sigma_mu": "sigma_mu (thesis: σ_ζ = σ_μ(p))",
-               "spectral_level": "spectral_level (σ_ζ = S0/2, the process's low-frequency spectral level)"}
+               "spectral_level": "spectral_level (σ_ζ = S0/2, the process's low-frequency spectral level)",
+               "thesis": "thesis (REPRODUCTION MODE: printed eq. 4.31, σ_ζ,eff = σ_μ(p)·Lω0·Δτ, "
+                         "intensity depends on Δτ)"}
 
 
 def model_choices_text(summary: dict[str, Any]) -> str:
@@ -89,8 +91,13 @@ def model_choices_text(summary: dict[str, Any]) -> str:
         sz_txt = ", ".join(f"{_fmt(v, '.4g')} (N = {nf:g} N)" for v, nf in zip(sz, forces, strict=True))
     else:
         sz_txt = _fmt(sz, ".4g")
+    eff = summary.get("sigma_zeta_effective")
+    eff_txt = ""
+    if summary.get("white_increment") == "thesis" and eff is not None:
+        vals = eff if isinstance(eff, list) else [eff]
+        eff_txt = "; effective σ_ζ,eff = " + ", ".join(_fmt(v, ".4g") for v in vals)
     return (f"Contact process read along: {_PATH_TEXT.get(str(pc), str(pc))}; white-noise intensity rule: "
-            f"{_WHITE_TEXT.get(str(wi), str(wi))}; σ_ζ of the white model = {sz_txt}.")
+            f"{_WHITE_TEXT.get(str(wi), str(wi))}; σ_ζ of the white model = {sz_txt}{eff_txt}.")
 
 
 def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:

@@ -10,7 +10,8 @@ the order of execution.
 
 The three friction models of METHOD §6 are run side by side: ``deterministic`` (the
 pressure law 4.13 alone), ``white`` (plus white noise of intensity σ_ζ, §5.1: by default the
-thesis's σ_ζ = σ_μ(p), or the process's low-frequency spectral level, ``white_intensity``)
+thesis's σ_ζ = σ_μ(p), or the process's low-frequency spectral level, or the printed-(4.31)
+reproduction mode ``thesis`` with σ_ζ,eff = σ_μ(p)·Lω0·Δτ, ``white_intensity``)
 and ``contact`` (plus a band-limited process from the friction-process model, §5.2).
 """
 
@@ -35,7 +36,18 @@ from ..process.presets import Preset, get_preset
 
 MODELS: tuple[str, ...] = ("deterministic", "white", "contact")
 PATH_COORDINATES: tuple[str, ...] = ("mass", "relative")
-WHITE_INTENSITY_RULES: tuple[str, ...] = ("sigma_mu", "spectral_level")
+WHITE_INTENSITY_RULES: tuple[str, ...] = ("sigma_mu", "spectral_level", "thesis")
+
+
+def white_increment_of(rule: str) -> str:
+    """The :func:`simulate` ``white_increment`` of a white-intensity rule: ``thesis`` → ``"thesis"``
+    (printed eq. 4.31, σ_ζ,eff = σ_μ(p)·Lω0·Δτ), every other rule → ``"ito"``."""
+    return "thesis" if rule == "thesis" else "ito"
+
+
+def process_rule_of(rule: str) -> str:
+    """The process model's σ_ζ rule behind a white-intensity rule (``thesis`` uses σ_ζ = σ_μ(p))."""
+    return "sigma_mu" if rule == "thesis" else rule
 
 #: Default stick window: a run "has a stick-slip cycle" when it has at least one slip→stick
 #: transition with τ in (STICK_WINDOW · τ_end, τ_end] (after the transient, METHOD §7.9).
@@ -94,6 +106,12 @@ class StudySetup:
     process_source: str
     tau_end: float
     dt: float
+    white_intensity: str = "sigma_mu"
+
+    @property
+    def white_increment(self) -> str:
+        """``"thesis"`` for the printed-(4.31) reproduction mode, else ``"ito"``."""
+        return white_increment_of(self.white_intensity)
 
     def parameters(
         self, normal_force: float, damping_ratio: float, forcing_amplitude: float = 0.0, eta: float = 0.0
@@ -124,17 +142,21 @@ class StudySetup:
             "process": self.process.to_dict(),
             "tau_end": self.tau_end,
             "dt": self.dt,
+            "white_intensity": self.white_intensity,
+            "white_increment": self.white_increment,
         }
 
 
 def with_white_intensity(process: FrictionProcessModel, rule: str) -> FrictionProcessModel:
-    """The process model with its σ_ζ rule set to ``rule`` (``"sigma_mu"`` | ``"spectral_level"``).
+    """The process model with its σ_ζ rule set to ``rule`` (``"sigma_mu"`` | ``"spectral_level"``;
+    ``"thesis"`` uses the process rule ``"sigma_mu"`` and scales it in :func:`simulate`).
 
     Only the white-noise model's intensity ``process.sigma_zeta(p)`` changes; the mean and the
     realisations of the contact-analysis process do not depend on the rule.
     """
     if rule not in WHITE_INTENSITY_RULES:
         raise StudyError(f"white-noise intensity rule must be one of {list(WHITE_INTENSITY_RULES)}, got {rule!r}")
+    rule = process_rule_of(rule)
     if getattr(process, "sigma_zeta_rule", None) == rule:
         return process
     if not (dataclasses.is_dataclass(process) and any(f.name == "sigma_zeta_rule"
@@ -170,7 +192,8 @@ def make_setup(
     process = with_white_intensity(process, white_intensity)
     te = float(tau_end) if tau_end is not None else pre.tau_end
     step = float(dt) if dt is not None else pre.dt
-    return StudySetup(preset=pre, process=process, process_source=source, tau_end=te, dt=step)
+    return StudySetup(preset=pre, process=process, process_source=source, tau_end=te, dt=step,
+                      white_intensity=white_intensity)
 
 
 def setup_for(config: Any, tau_end: float | None = None) -> StudySetup:
@@ -180,16 +203,27 @@ def setup_for(config: Any, tau_end: float | None = None) -> StudySetup:
 
 
 def white_sigma_zeta(setup: StudySetup, normal_force: float) -> float:
-    """σ_ζ of the white-noise model at N [N] (p = N/A) under the setup's σ_ζ rule."""
+    """σ_ζ of the white-noise model at N [N] (p = N/A) under the setup's σ_ζ rule (for ``thesis``:
+    the nominal σ_ζ = σ_μ(p); see :func:`white_sigma_zeta_effective`)."""
     return float(setup.process.sigma_zeta(float(normal_force) / setup.preset.contact_area))
 
 
+def white_sigma_zeta_effective(setup: StudySetup, normal_force: float) -> float:
+    """The intensity the white-noise SDE actually uses: σ_ζ, or σ_ζ·Lω0·Δτ (L = 1 m) in ``thesis``
+    mode (printed eq. 4.31, docs/oscillator.md)."""
+    s = white_sigma_zeta(setup, normal_force)
+    return s * setup.preset.omega0 * setup.dt if setup.white_increment == "thesis" else s
+
+
 def model_choices(config: Any, setup: StudySetup, forces: Sequence[float]) -> dict[str, Any]:
-    """JSON record of the modelling choices: path coordinate, σ_ζ rule and σ_ζ per force."""
+    """JSON record of the modelling choices: path coordinate, σ_ζ rule, σ_ζ per force and the
+    effective σ_ζ of the white-noise SDE (differs only in ``thesis`` mode)."""
     return {
         "path_coordinate": config.path_coordinate,
         "white_intensity": config.white_intensity,
+        "white_increment": setup.white_increment,
         "sigma_zeta": [white_sigma_zeta(setup, nf) for nf in forces],
+        "sigma_zeta_effective": [white_sigma_zeta_effective(setup, nf) for nf in forces],
     }
 
 
@@ -247,6 +281,7 @@ class TaskSpec:
     path_coordinate: str = "mass"
     keep_trajectory_runs: int = 0
     save_every: int = 10
+    white_increment: str = "ito"
     extra: dict[str, Any] = field(default_factory=dict, compare=False)
 
 
@@ -272,6 +307,7 @@ def execute_task(spec: TaskSpec, threads: int | None = None) -> dict[str, npt.ND
             integrator=spec.integrator, runs=spec.runs, seed=task_seed(spec.root_entropy, spec.index),
             path_coordinate=spec.path_coordinate, save_trajectory=keep, save_every=spec.save_every,
             workers=threads, common_random_numbers=spec.common_random_numbers,
+            white_increment=spec.white_increment if spec.model == "white" else "ito",
         )
     nev = int(max(1, np.max(np.sum(np.isfinite(res.x_gh), axis=2))))
     out: dict[str, npt.NDArray[Any]] = {

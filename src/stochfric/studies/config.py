@@ -8,8 +8,10 @@ Two modelling choices of METHOD §5 are fields of every study: ``path_coordinate
 contact-analysis process is read: ``"mass"`` = the thesis's global coordinate of the mass,
 ``"relative"`` = the relative path) and ``white_intensity`` (the σ_ζ rule of the white-noise
 model: ``"sigma_mu"`` = the thesis's σ_ζ = σ_μ(p), ``"spectral_level"`` = white noise with the
-process's low-frequency spectral level); the study applies the latter to its process model
-(preset or ``process_file``) with ``dataclasses.replace(model, sigma_zeta_rule=…)``.
+process's low-frequency spectral level, ``"thesis"`` = the printed-(4.31) reproduction
+mode σ_ζ,eff = σ_μ(p)·Lω0·Δτ, whose intensity depends on Δτ; docs/oscillator.md); the study
+applies the latter to its process model (preset or ``process_file``) with
+``dataclasses.replace(model, sigma_zeta_rule=…)``.
 
 :meth:`StudyConfig.hash_config` is what the checkpoint hash covers: every field (they all
 change the numbers) plus the content of a ``process_file``.
@@ -28,7 +30,7 @@ from .common import MODELS, STICK_WINDOW, parse_grid
 Grid = Annotated[tuple[float, ...], BeforeValidator(parse_grid)]
 ModelName = Literal["deterministic", "white", "contact"]
 PathCoordinate = Literal["mass", "relative"]
-WhiteIntensity = Literal["sigma_mu", "spectral_level"]
+WhiteIntensity = Literal["sigma_mu", "spectral_level", "thesis"]
 
 
 class StudyConfig(BaseModel):
@@ -52,7 +54,9 @@ class StudyConfig(BaseModel):
     )
     white_intensity: WhiteIntensity = Field(
         default="sigma_mu",
-        description="σ_ζ rule of the white-noise model: sigma_mu (thesis) | spectral_level",
+        description="σ_ζ rule of the white-noise model: sigma_mu (thesis rule, consistent Itô model) | "
+                    "spectral_level | thesis (printed eq. 4.31: σ_ζ,eff = σ_μ(p)·Lω0·Δτ, a Δτ-dependent "
+                    "reproduction mode)",
     )
     stick_window: float = Field(default=STICK_WINDOW, ge=0.0, lt=1.0)
     x0: tuple[float, float] | None = None

@@ -141,6 +141,7 @@ def phase_tasks(config: DampingConfig, setup: StudySetup, phase_force: float, da
             root_entropy=config.seed, process=setup.process,
             x0=None if config.x0 is None else tuple(config.x0 for _ in params),
             common_random_numbers=config.common_random_numbers, path_coordinate=config.path_coordinate,
+            white_increment=setup.white_increment,
             keep_trajectory_runs=runs, save_every=config.save_every,
         ))
     return tasks
@@ -163,6 +164,7 @@ def damping_tasks(config: DampingConfig) -> tuple[list[TaskSpec], dict[str, Any]
                 root_entropy=config.seed, process=setup.process,
                 x0=None if config.x0 is None else tuple(config.x0 for _ in params),
                 common_random_numbers=config.common_random_numbers, path_coordinate=config.path_coordinate,
+                white_increment=setup.white_increment,
             ))
             idx += 1
     pf = config.phase_force if config.phase_force is not None else default_phase_force(

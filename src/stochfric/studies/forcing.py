@@ -50,7 +50,7 @@ def forcing_tasks(config: ForcingConfig) -> tuple[list[TaskSpec], dict[str, Any]
                 integrator=integrator_for(model, config.integrator, config.sde_integrator),
                 root_entropy=config.seed, process=setup.process,
                 x0=None if config.x0 is None else tuple(config.x0 for _ in params),
-                path_coordinate=config.path_coordinate,
+                path_coordinate=config.path_coordinate, white_increment=setup.white_increment,
             ))
             idx += 1
     return tasks, {"setup": setup, "normal_force": nf, "damping": d}
@@ -114,6 +114,7 @@ def forcing_study(
         "x_gh_std": {m: std[i].tolist() for i, m in enumerate(models)},
     }
     summary["sigma_zeta"] = summary["sigma_zeta"][0]  # one normal force
+    summary["sigma_zeta_effective"] = summary["sigma_zeta_effective"][0]
     if "white" in models and "contact" in models:
         with np.errstate(invalid="ignore", divide="ignore"):
             ratio = std[models.index("contact")] / std[models.index("white")]

@@ -76,6 +76,7 @@ def lyapunov_tasks(config: LyapunovConfig) -> tuple[list[TaskSpec], dict[str, An
                     integrator=integrator_for(model, config.integrator, config.sde_integrator),
                     root_entropy=config.seed, process=setup.process, x0=tuple(x0s),
                     common_random_numbers=True, path_coordinate=config.path_coordinate,
+                    white_increment=setup.white_increment,
                 ))
                 idx += 1
     return tasks, {"setup": setup, "forces": forces, "damping": d}

@@ -55,7 +55,8 @@ def normal_force_tasks(config: NormalForceConfig) -> tuple[list[TaskSpec], dict[
                 integrator=integrator_for(model, config.integrator, config.sde_integrator),
                 root_entropy=config.seed, process=setup.process,
                 x0=None if config.x0 is None else tuple(config.x0 for _ in params),
-                path_coordinate=config.path_coordinate, keep_trajectory_runs=min(config.phase_runs, runs),
+                path_coordinate=config.path_coordinate,
+                white_increment=setup.white_increment, keep_trajectory_runs=min(config.phase_runs, runs),
                 save_every=config.save_every,
             ))
             idx += 1

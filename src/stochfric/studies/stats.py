@@ -108,3 +108,70 @@ def sample_summary(
         bv = float(np.nanstd(vv, ddof=1)) if np.sum(np.isfinite(vv)) > 1 else math.nan
     return SampleSummary(n=n, n_runs=len(nonempty), mean=m, std=s, vark=v, se_mean_iid=se_m, se_std_iid=se_s,
                          se_vark_iid=se_v, se_mean_boot=bm, se_std_boot=bs, se_vark_boot=bv)
+
+
+@dataclass(frozen=True)
+class RatioEstimate:
+    """A ratio of two independent Monte Carlo estimates with its uncertainty.
+
+    ``se_delta`` is the delta-method standard error r·√((SE_a/a)² + (SE_b/b)²) from the
+    bootstrap-over-runs SEs of numerator and denominator; ``low``/``high`` the percentile
+    interval of the bootstrap distribution of the ratio (numerator and denominator resampled
+    independently, by runs, fixed seed).
+    """
+
+    value: float
+    se_delta: float
+    low: float
+    high: float
+    confidence: float
+
+    def to_dict(self) -> dict[str, Any]:
+        return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in asdict(self).items()}
+
+
+def _boot_std(runs: list[npt.NDArray[np.float64]], n_boot: int, g: np.random.Generator) -> npt.NDArray[np.float64]:
+    out = np.full(n_boot, math.nan)
+    if len(runs) < 2:
+        return out
+    for i in range(n_boot):
+        pick = g.integers(0, len(runs), len(runs))
+        x = np.concatenate([runs[j] for j in pick])
+        out[i] = float(np.std(x, ddof=1)) if x.size > 1 else math.nan
+    return out
+
+
+def std_ratio(
+    per_run_a: list[npt.NDArray[np.float64]],
+    per_run_b: list[npt.NDArray[np.float64]],
+    *,
+    n_boot: int = 400,
+    confidence: float = 0.95,
+    rng: np.random.Generator | None = None,
+) -> RatioEstimate:
+    """σ_a/σ_b of two pooled samples (e.g. σ(X_gh) contact / white) with a bootstrap interval.
+
+    The run is the independent unit (the X_gh of one run are correlated), so both samples are
+    resampled by runs; NaN where a sample has fewer than two values.
+    """
+    ra = [np.asarray(r, dtype=float)[np.isfinite(r)] for r in per_run_a]
+    rb = [np.asarray(r, dtype=float)[np.isfinite(r)] for r in per_run_b]
+    ra = [r for r in ra if r.size]
+    rb = [r for r in rb if r.size]
+    xa = np.concatenate(ra) if ra else np.zeros(0)
+    xb = np.concatenate(rb) if rb else np.zeros(0)
+    if xa.size < 2 or xb.size < 2:
+        return RatioEstimate(math.nan, math.nan, math.nan, math.nan, confidence)
+    sa, sb = float(np.std(xa, ddof=1)), float(np.std(xb, ddof=1))
+    r = sa / sb if sb > 0 else math.nan
+    g = rng if rng is not None else np.random.default_rng(0)
+    ba, bb = _boot_std(ra, n_boot, g), _boot_std(rb, n_boot, g)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        br = ba / bb
+    ok = np.isfinite(br)
+    if np.sum(ok) < 2 or not math.isfinite(r):
+        return RatioEstimate(r, math.nan, math.nan, math.nan, confidence)
+    rel = math.sqrt((float(np.nanstd(ba, ddof=1)) / sa) ** 2 + (float(np.nanstd(bb, ddof=1)) / sb) ** 2)
+    a = (1 - confidence) / 2
+    lo, hi = np.quantile(br[ok], [a, 1 - a])
+    return RatioEstimate(r, r * rel, float(lo), float(hi), confidence)

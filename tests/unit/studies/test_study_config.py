@@ -62,7 +62,7 @@ def test_defaults_and_grids(tmp_path: Path) -> None:
         ("[execution]\nexecuter = 'serial'\n[[study]]\nkind = 'damping'\n", "execution.executer"),
         ("study = 3\n", "array of tables"),
         ("[[study]]\nkind = 'damping'\nwhite_intensity = 'pink'\n",
-         "study[0].white_intensity: Input should be 'sigma_mu' or 'spectral_level'"),
+         "study[0].white_intensity: Input should be 'sigma_mu', 'spectral_level' or 'thesis'"),
         ("[defaults]\npath_coordinate = 'global'\n[[study]]\nkind = 'forcing'\n",
          "study[0].path_coordinate: Input should be 'mass' or 'relative'"),
         ("[[study]]\nkind = 'damping'\nphase_damping = [0.1, 1.1]\n", "study[0].phase_damping"),
