@@ -7,6 +7,8 @@ input end with a one-line message and exit code 2, never with a traceback.
 from __future__ import annotations
 
 import json
+import math
+import os
 import sys
 import warnings
 from enum import StrEnum
@@ -175,6 +177,22 @@ def _build_parameters(
     ), None
 
 
+PLOT_SUFFIXES = (".png", ".pdf", ".svg")
+
+
+def _simulation_memory_bytes(runs: int, tau_end: float, dt: float, *, save_every: int, trajectories: bool,
+                             model: str, process_points: int, workers: int | None) -> float:
+    """Bytes that ``simulate`` allocates for one parameter set: X_gh/t_gh (2·(2τ_end + 16) per run),
+    the stored trajectories (3 components every ``save_every`` steps, doubled for the NetCDF copy), and
+    per worker a batch of 256 white-noise increments or process realisations."""
+    nsteps = math.ceil(tau_end / dt)
+    events = int(2 * tau_end) + 16
+    per_run = 8 * (2 * events + 1 + 9) + (2 * 24 * (nsteps // save_every + 1) if trajectories else 0)
+    batch = 256 * (workers or os.cpu_count() or 1) * 8 * (
+        (nsteps if model == "white" else 0) + (process_points if model == "contact" else 0))
+    return float(runs) * per_run + batch
+
+
 def _progress_bar(enabled: bool) -> tuple[Progress | None, Any]:
     if not enabled:
         return None, None
@@ -274,6 +292,12 @@ def simulate(
     from .oscillator.parameters import ParameterError
 
     try:
+        from .io_utils import check_output_path
+
+        if out is not None:
+            check_output_path(out, option="--out")
+        if plot is not None:
+            check_output_path(plot, option="--plot", kind="file", suffixes=PLOT_SUFFIXES)
         params, pre = _build_parameters(
             preset.value if preset else None, gamma0, n, normal_force, damping, q,
             forcing_frequency if forcing_frequency is not None else eta, forcing_amplitude,
@@ -319,6 +343,17 @@ def simulate(
             )
         te = tau_end if tau_end is not None else (pre.tau_end if pre else 50.0)
         step = dt if dt is not None else (pre.dt if pre else 0.005)
+        if te > 0 and step > 0:
+            from .io_utils import require_memory
+
+            save_traj = plot is not None or out is not None
+            need = _simulation_memory_bytes(
+                runs, te, step, save_every=save_every, trajectories=save_traj, model=model.value,
+                process_points=round(process.length / process.dx) if process is not None else 0, workers=workers)
+            require_memory(need, what=f"simulate with --runs {runs} --tau-end {te:g} --dt {step:g}", advice=(
+                "use fewer --runs or a shorter --tau-end (run several smaller jobs with different --seed)"
+                + (", or a larger --save-every, or drop --out/--plot (no trajectories are kept without them)"
+                   if save_traj else "")))
         prog, _ = _progress_bar(not json_out and runs >= 200 and sys.stderr.isatty())
         task = None
         cb = None
@@ -350,15 +385,18 @@ def simulate(
 
     summary = result.to_json_dict()
     summary["preset"] = pre.name if pre else None
-    if out is not None:
-        from .io_utils import write_text_atomic
+    try:
+        if out is not None:
+            from .io_utils import write_netcdf_atomic, write_text_atomic
 
-        result.to_netcdf(out / "simulation.nc")
-        write_text_atomic(out / "simulation.json", json.dumps(summary, indent=1))
-    if plot is not None:
-        from .report.figures import plot_phase_portrait
+            write_netcdf_atomic(out / "simulation.nc", result.to_dataset())
+            write_text_atomic(out / "simulation.json", json.dumps(summary, indent=1))
+        if plot is not None:
+            from .report.figures import plot_phase_portrait
 
-        plot_phase_portrait(result, plot)
+            plot_phase_portrait(result, plot)
+    except OSError as exc:  # disk full, place removed meanwhile: the previous files stay intact
+        raise fail(f"could not write the results: {exc}") from None
     if json_out:
         typer.echo(json.dumps(summary))
         return
@@ -372,7 +410,8 @@ def _print_summary(result: Any, summary: dict[str, Any], out: Path | None, plot:
     p = result.params[0]
     con.print(
         f"[bold]stochfric simulate[/] model={result.model} integrator={result.integrator} "
-        f"law={summary['friction_law']['name']} preset={summary['preset']}"
+        f"law={summary['friction_law']['name']}"
+        + (f" preset={summary['preset']}" if summary["preset"] else "")
     )
     line = f"γ0={p.gamma0:.5g} n={p.n:.5g} D={p.damping_ratio:.3g} q={p.q:.3g} η={p.eta:.3g}"
     if p.normal_force is not None:

@@ -8,10 +8,8 @@ stderr and a short table is printed.
 
 from __future__ import annotations
 
-import contextlib
 import json
 import time
-from collections.abc import Callable, Iterator
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -49,23 +47,108 @@ def _fail(message: str) -> typer.Exit:
     return typer.Exit(code=2)
 
 
-@contextlib.contextmanager
-def _progress(enabled: bool, label: str) -> Iterator[Callable[[int, int], None] | None]:
-    if not enabled:
-        yield None
-        return
-    from rich.console import Console
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+class _StudyProgress:
+    """Progress of one or more studies on stderr.
 
-    prog = Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total} tasks"),
-                    TimeElapsedColumn(), TimeRemainingColumn(), console=Console(stderr=True), transient=True)
-    task = prog.add_task(label, total=None)
+    On a terminal: a rich bar naming the running study with done/total tasks and the time
+    remaining (and, for several studies, a second bar over the studies).  Otherwise (a log
+    file, a pipe): one line per finished study.  ``enabled=False`` (``--json``): silent.
+    """
 
-    def cb(done: int, total: int) -> None:
-        prog.update(task, completed=done, total=total)
+    def __init__(self, enabled: bool, n_studies: int = 1) -> None:
+        import sys
 
-    with prog:
-        yield cb
+        self.enabled = enabled
+        self.n_studies = n_studies
+        self.tty = enabled and sys.stderr.isatty()
+        self.finished = 0
+        self.label = ""
+        self.done = 0
+        self.total: int | None = None
+        self._prog: Any = None
+        self._study_task: Any = None
+        self._all_task: Any = None
+        self._t0 = time.perf_counter()
+
+    def __enter__(self) -> _StudyProgress:
+        if self.tty:
+            from rich.console import Console
+            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+
+            self._prog = Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.fields[count]}"),
+                                  TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn(),
+                                  console=Console(stderr=True), transient=True)
+            self._prog.start()
+            if self.n_studies > 1:
+                self._all_task = self._prog.add_task("all studies", total=self.n_studies,
+                                                     count=f"0/{self.n_studies} studies")
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        if self._prog is not None:
+            self._prog.stop()
+
+    def start(self, label: str) -> None:
+        """A study begins: name it on the bar."""
+        self.label, self.done, self.total = label, 0, None
+        self._t0 = time.perf_counter()
+        if self._prog is not None:
+            if self._study_task is not None:
+                self._prog.remove_task(self._study_task)
+            self._study_task = self._prog.add_task(label, total=None, count="counting tasks …")
+
+    def tasks(self, done: int, total: int) -> None:
+        """``progress(done, total)`` callback of a study."""
+        self.done, self.total = done, total
+        if self._prog is not None and self._study_task is not None:
+            self._prog.update(self._study_task, completed=done, total=total, count=f"{done}/{total} tasks")
+
+    def end(self, computed: int, loaded: int) -> None:
+        """The running study has finished: advance the bar, or print its line."""
+        import sys
+
+        self.finished += 1
+        if self._prog is not None and self._all_task is not None:
+            self._prog.update(self._all_task, completed=self.finished,
+                              count=f"{self.finished}/{self.n_studies} studies")
+        if self.enabled and not self.tty:
+            print(f"[{self.finished}/{self.n_studies}] {self.label}: {computed + loaded} tasks ({computed} computed, "
+                  f"{loaded} from checkpoint) in {time.perf_counter() - self._t0:.1f} s", file=sys.stderr, flush=True)
+
+
+def _interrupted(exc: KeyboardInterrupt, what: str, checkpoint: Path | None) -> typer.Exit:
+    """Ctrl-C: say how many tasks are saved and how to resume; exit code 130."""
+    import shlex
+    import sys
+
+    from .studies.executors import SweepInterrupted
+
+    done = total = None
+    if isinstance(exc, SweepInterrupted):
+        done, total = exc.stats.loaded + exc.stats.computed, exc.total
+    head = f"interrupted in {what}" + (f" after {done} of {total} tasks" if done is not None else "")
+    if checkpoint is None:
+        msg = (f"{head}; nothing was saved (no --checkpoint). Run with --checkpoint DIR to be able to resume "
+               "an interrupted study.")
+    else:
+        argv = sys.argv[1:] if Path(sys.argv[0]).name == "stochfric" else None
+        cmd = shlex.join(["stochfric", *argv]) if argv is not None else "the same command"
+        msg = (f"{head}; {done if done is not None else 'all finished'} tasks of it are saved in {checkpoint}. "
+               f"Resume with: {cmd}  (finished tasks are loaded, not recomputed)")
+    typer.echo(msg, err=True)
+    return typer.Exit(code=130)
+
+
+def _check_dirs(**dirs: Path | str | None) -> None:
+    """Check every output directory before any work (``StudyError`` with the option name)."""
+    from .io_utils import OutputPathError, check_output_path
+
+    for name, d in dirs.items():
+        if d is not None:
+            try:
+                check_output_path(d, option="--" + name.replace("_", "-"))
+            except OutputPathError as exc:
+                raise StudyError(str(exc)) from None
 
 
 def _models(spec: str | None) -> dict[str, Any]:
@@ -108,10 +191,14 @@ def _execute(cfg: Any, executor: str, workers: int | None, scheduler: str | None
     from .studies.reproduce import run_study
 
     try:
+        _check_dirs(out=out, report=report, checkpoint=checkpoint)
         ex = make_executor(executor, workers=workers, scheduler=scheduler)
         t0 = time.perf_counter()
-        with _progress(not json_out, f"{cfg.kind} ({cfg.preset})") as cb:
-            res = run_study(cfg, executor=ex, checkpoint=str(checkpoint) if checkpoint else None, progress=cb)
+        with _StudyProgress(not json_out) as prog:
+            prog.start(f"{cfg.kind} ({cfg.preset})")
+            res = run_study(cfg, executor=ex, checkpoint=str(checkpoint) if checkpoint else None,
+                            progress=prog.tasks)
+            prog.end(res.stats.computed, res.stats.loaded)
         wall = time.perf_counter() - t0
         files: list[str] = []
         if out is not None:
@@ -122,6 +209,8 @@ def _execute(cfg: Any, executor: str, workers: int | None, scheduler: str | None
             files.append(str(write_report([res], report, contact=False)))
     except (StudyError, ValueError, OSError) as exc:
         raise _fail(str(exc)) from None
+    except KeyboardInterrupt as exc:
+        raise _interrupted(exc, f"{cfg.kind} ({cfg.preset})", checkpoint) from None
     payload = res.to_json_dict()
     payload["wall_time_s"] = wall
     payload["tasks"] = {"computed": res.stats.computed, "loaded_from_checkpoint": res.stats.loaded}
@@ -276,22 +365,33 @@ def run_command(
     from .studies.reproduce import run_study
     from .studies.run_config import load_run_file
 
+    what = str(file)
+    ckpt: Path | None = None
     try:
         rf = load_run_file(file)
+        ckpt = Path(rf.execution.checkpoint) if rf.execution.checkpoint else None
+        _check_dirs(out=rf.output.dir, checkpoint=ckpt)
         ex = make_executor(rf.execution.executor if rf.execution.scheduler is None else "dask",
                            workers=rf.execution.workers, scheduler=rf.execution.scheduler)
         results = []
         out = Path(rf.output.dir)
-        for i, cfg in enumerate(rf.study):
-            with _progress(not json_out, f"study[{i}] {cfg.kind} ({cfg.preset})") as cb:
-                res = run_study(cfg, executor=ex, checkpoint=rf.execution.checkpoint, progress=cb)
-            res.save(out / f"{i:02d}_{cfg.kind}_{cfg.preset}")
-            results.append(res)
+        with _StudyProgress(not json_out, len(rf.study)) as prog:
+            for i, cfg in enumerate(rf.study):
+                what = f"study[{i}] {cfg.kind} ({cfg.preset})"
+                prog.start(what)
+                res = run_study(cfg, executor=ex, checkpoint=rf.execution.checkpoint, progress=prog.tasks)
+                res.save(out / f"{i:02d}_{cfg.kind}_{cfg.preset}")
+                prog.end(res.stats.computed, res.stats.loaded)
+                results.append(res)
         index = write_report(results, out, contact=False) if rf.output.report else None
     except (StudyError, ValueError, OSError) as exc:
         raise _fail(str(exc)) from None
-    payload = {"studies": [r.to_json_dict() for r in results], "out": str(out),
-               "report": str(index) if index else None}
+    except KeyboardInterrupt as exc:
+        raise _interrupted(exc, what, ckpt) from None
+    tasks = [{"computed": r.stats.computed, "loaded_from_checkpoint": r.stats.loaded} for r in results]
+    payload = {"studies": [{**r.to_json_dict(), "tasks": t} for r, t in zip(results, tasks, strict=True)],
+               "tasks": {k: sum(t[k] for t in tasks) for k in ("computed", "loaded_from_checkpoint")},
+               "out": str(out), "report": str(index) if index else None}
     if json_out:
         typer.echo(json.dumps(payload, allow_nan=False))
         return
@@ -311,22 +411,30 @@ def reproduce_command(
 ) -> None:
     """All studies of thesis chapter 4 for brake and sheet, results and DIR/index.html."""
     from .studies.executors import make_executor
-    from .studies.reproduce import reproduce
+    from .studies.reproduce import plan, reproduce
 
+    what = "reproduce"
     try:
+        _check_dirs(out=out)
         ex = make_executor(executor, workers=workers, scheduler=scheduler)
-        if json_out:
-            results, timings = reproduce(out, quick=quick, seed=seed, executor=ex)
-        else:
-            with _progress(True, "reproduce") as cb:
-                def prog(label: str, d: int, n: int) -> None:
-                    if cb is not None:
-                        cb(d, n)
-                results, timings = reproduce(out, quick=quick, seed=seed, executor=ex, progress=prog)
+        with _StudyProgress(not json_out, len(plan(quick, seed))) as prog:
+            def on_tasks(label: str, d: int, n: int) -> None:
+                nonlocal what
+                if label != prog.label:
+                    what = f"reproduce, study {label}"
+                    prog.start(label)
+                prog.tasks(d, n)
+
+            results, timings = reproduce(out, quick=quick, seed=seed, executor=ex, progress=on_tasks,
+                                         study_done=lambda res: prog.end(res.stats.computed, res.stats.loaded))
     except (StudyError, ValueError, OSError) as exc:
         raise _fail(str(exc)) from None
+    except KeyboardInterrupt as exc:
+        raise _interrupted(exc, what, out / "checkpoints") from None
     payload = {"out": str(out), "report": str(out / "index.html"), "timings_s": timings,
-               "studies": [{"study": r.kind, "preset": r.summary.get("preset")} for r in results]}
+               "studies": [{"study": r.kind, "preset": r.summary.get("preset"),
+                            "tasks": {"computed": r.stats.computed, "loaded_from_checkpoint": r.stats.loaded}}
+                           for r in results]}
     if json_out:
         typer.echo(json.dumps(payload))
         return

@@ -1,4 +1,11 @@
-"""Small file helpers: atomic writes and provenance (package versions)."""
+"""Small file helpers: output-path checks, atomic writes, memory checks and provenance.
+
+Every command checks its output paths with :func:`check_output_path` *before* it computes
+anything, and every file is written through :func:`atomic_path` / :func:`write_atomic`, so a
+failed write (disk full, read-only place) ends with a clean error and leaves the previous file
+intact.  Files get the permissions an ordinary ``open()`` would give (``0666 & ~umask``), so a
+report written for others can be read by them.
+"""
 
 from __future__ import annotations
 
@@ -8,17 +15,134 @@ import importlib.metadata
 import json
 import os
 import tempfile
-from collections.abc import Callable, Iterator
+import threading
+from collections.abc import Callable, Collection, Iterator
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
+
+
+class OutputPathError(ValueError):
+    """An output path that cannot be written; the message names the option and what to change."""
+
+
+def _nearest_existing(path: Path) -> Path:
+    p = path
+    while not p.exists() and p != p.parent:
+        p = p.parent
+    return p
+
+
+def check_output_path(
+    path: str | os.PathLike[str],
+    *,
+    option: str = "--out",
+    kind: Literal["dir", "file"] = "dir",
+    suffixes: Collection[str] | None = None,
+) -> Path:
+    """Check before any work that ``path`` can be written as an output ``kind``; return it.
+
+    ``kind="dir"``: an existing directory or a path that can be created (parents included);
+    ``kind="file"``: a file name whose suffix is one of ``suffixes`` (e.g. ``(".png", ".pdf")``),
+    not an existing directory, in a directory that exists or can be created.  Writability is
+    probed by creating (and removing) a temporary file in the nearest existing directory, so
+    read-only mounts, ``/proc`` and missing permissions are all caught.  Nothing is created.
+
+    Raises :class:`OutputPathError` (a ``ValueError``) whose message starts with ``option``.
+    """
+    target = Path(path).expanduser()
+    where = f"{option} {path}"
+    if kind == "file":
+        if target.is_dir():
+            example = target / ("out" + (min(suffixes) if suffixes else ""))
+            raise OutputPathError(f"{where} is a directory; give a file name such as {example}")
+        if suffixes is not None:
+            allowed = sorted({s.lower() for s in suffixes})
+            if target.suffix.lower() not in allowed:
+                shown = f"'{target.suffix}'" if target.suffix else "none"
+                raise OutputPathError(f"{where}: unknown file extension {shown}; use one of {', '.join(allowed)}")
+        parent = target.parent
+    else:
+        if target.exists() and not target.is_dir():
+            raise OutputPathError(
+                f"{where} is an existing file, not a directory; give a directory (it is created if missing)")
+        parent = target
+    anchor = _nearest_existing(parent)
+    if not anchor.is_dir():
+        raise OutputPathError(f"{where}: {anchor} is a file, so nothing can be created below it; choose another path")
+    try:
+        fd, probe = tempfile.mkstemp(prefix=".stochfric-write-check.", dir=anchor)
+    except OSError as exc:
+        reason = exc.strerror or str(exc)
+        raise OutputPathError(
+            f"{where}: cannot create files in {anchor} ({reason}); "
+            "choose a writable place (e.g. under your home directory)"
+        ) from None
+    os.close(fd)
+    os.unlink(probe)
+    return target
+
+
+_UMASK_LOCK = threading.Lock()
+
+
+def current_umask() -> int:
+    """The process's file-mode creation mask (read without changing it where the OS allows)."""
+    try:
+        with open("/proc/self/status", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    with _UMASK_LOCK:  # portable fallback: set and restore
+        mask = os.umask(0o022)
+        os.umask(mask)
+    return mask
+
+
+def available_memory_bytes() -> int | None:
+    """Memory available to new allocations (Linux ``MemAvailable``), or ``None`` if unknown."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        pass
+    return None
+
+
+def format_bytes(n: float) -> str:
+    """``1.2 GB``-style text (decimal units)."""
+    for unit in ("B", "kB", "MB", "GB", "TB", "PB"):
+        if abs(n) < 1000 or unit == "PB":
+            return f"{n:.3g} {unit}"
+        n /= 1000
+    return f"{n:.3g} PB"  # pragma: no cover
+
+
+class MemoryRequestError(ValueError):
+    """A request that would not fit into memory; the message gives the estimate and what to change."""
+
+
+def require_memory(nbytes: float, *, what: str, advice: str, fraction: float = 0.8) -> None:
+    """Refuse (``MemoryRequestError``) a request estimated at ``nbytes`` bytes that exceeds
+    ``fraction`` of the available memory; ``what`` says what needs it, ``advice`` what to change."""
+    avail = available_memory_bytes()
+    if avail is None or nbytes <= fraction * avail:
+        return
+    raise MemoryRequestError(
+        f"{what} needs about {format_bytes(nbytes)} of memory, but only {format_bytes(avail)} is available; "
+        f"{advice}")
 
 
 @contextlib.contextmanager
 def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
     """Yield a temporary path next to ``path``; on success it replaces ``path`` atomically.
 
-    A crash or Ctrl-C while writing leaves the previous file (if any) untouched and no
-    half-written file behind.
+    A crash, Ctrl-C or a failed write (disk full) leaves the previous file (if any) untouched
+    and no half-written file behind.  The new file gets mode ``0666 & ~umask``, like a file made
+    by ``open()`` (``mkstemp`` alone would leave it ``0600``, unreadable for anyone else).
     """
     target = Path(path)
     target.parent.mkdir(parents=True, exist_ok=True)
@@ -29,6 +153,7 @@ def atomic_path(path: str | os.PathLike[str]) -> Iterator[Path]:
         yield tmp_path
         with open(tmp_path, "rb+") as fh:  # the data reach the disk before the rename
             os.fsync(fh.fileno())
+        os.chmod(tmp_path, 0o666 & ~current_umask())
         os.replace(tmp_path, target)
     finally:
         if tmp_path.exists():
@@ -40,6 +165,22 @@ def write_atomic(path: str | os.PathLike[str], writer: Callable[[Path], object])
     with atomic_path(path) as tmp:
         writer(tmp)
     return Path(path)
+
+
+def write_bytes_atomic(path: str | os.PathLike[str], data: bytes | memoryview) -> Path:
+    """Write ``data`` to ``path`` atomically with plain Python I/O (a full disk is a clean ``OSError``)."""
+    return write_atomic(path, lambda p: p.write_bytes(data))
+
+
+def write_netcdf_atomic(path: str | os.PathLike[str], dataset: Any) -> Path:
+    """Write an xarray ``dataset`` to NetCDF-4 (h5netcdf) at ``path`` atomically.
+
+    The file is built in memory and then written with Python I/O: when HDF5 itself writes to a
+    full disk it raises from its close handler and can crash the interpreter (exit 139), losing
+    the error message; this way a full disk is an ``OSError`` and the previous file stays.
+    """
+    data = dataset.to_netcdf(None, engine="h5netcdf")
+    return write_bytes_atomic(path, bytes(data))
 
 
 def write_text_atomic(path: str | os.PathLike[str], text: str) -> Path:

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from ..io_utils import package_versions, write_atomic, write_text_atomic
+from ..io_utils import package_versions, write_netcdf_atomic, write_text_atomic
 from .executors import Executor, SweepStats, run_tasks
 from .store import CheckpointStore
 
@@ -51,8 +51,7 @@ class StudyResult:
 
     def to_netcdf(self, path: str | Path) -> Path:
         """Write the dataset to NetCDF (h5netcdf) atomically."""
-        ds = self.dataset
-        return write_atomic(path, lambda p: ds.to_netcdf(p, engine="h5netcdf"))
+        return write_netcdf_atomic(path, self.dataset)  # in memory first: a full disk is a clean OSError
 
     def save(self, directory: str | Path) -> list[Path]:
         """``<kind>.nc`` and ``<kind>.json`` in ``directory``."""

@@ -8,17 +8,22 @@ same seed gives identical arrays on every executor and with any number of worker
 
 :func:`run_tasks` adds checkpointing (:class:`~stochfric.studies.store.CheckpointStore`):
 finished tasks are saved as they arrive and skipped on a rerun; a Ctrl-C or a crash loses at
-most the tasks that were running.
+most the tasks that were running.  A Ctrl-C raises :class:`SweepInterrupted`, which says how
+many tasks are saved.  Worker processes watch their parent and exit when it dies (even by
+``kill -9``), so no orphaned workers keep memory or CPU.
 """
 
 from __future__ import annotations
 
 import os
+import threading
+import time
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass
 from multiprocessing import get_context
+from pathlib import Path
 from typing import Any
 
 import numpy.typing as npt
@@ -60,10 +65,31 @@ class SerialExecutor(Executor):
         return {"executor": self.name, "threads": self.threads}
 
 
+PARENT_POLL_S = 0.5
+"""How often [s] a worker checks that its parent is still alive."""
+
+
+def _exit_with_parent(parent_pid: int, poll_s: float = PARENT_POLL_S) -> None:
+    """Worker initializer: a daemon thread ends this process as soon as ``parent_pid`` is gone.
+
+    After ``kill -9`` of the parent the workers are re-parented (``os.getppid()`` changes); the
+    thread then calls ``os._exit`` so that the worker, and with it the multiprocessing resource
+    tracker whose pipe it holds, does not outlive the run.
+    """
+
+    def watch() -> None:
+        while os.getppid() == parent_pid:
+            time.sleep(poll_s)
+        os._exit(1)
+
+    threading.Thread(target=watch, name="stochfric-parent-watch", daemon=True).start()
+
+
 class ProcessExecutor(Executor):
     """Local worker processes (``concurrent.futures.ProcessPoolExecutor``, spawn start method).
 
-    ``workers`` defaults to all cores; each task runs single-threaded in its worker.
+    ``workers`` defaults to all cores; each task runs single-threaded in its worker.  Workers exit
+    when this process dies (:func:`_exit_with_parent`); on Ctrl-C they are terminated at once.
     """
 
     name = "processes"
@@ -77,7 +103,8 @@ class ProcessExecutor(Executor):
     def run(self, fn: TaskFunction, tasks: Sequence[TaskSpec]) -> Iterator[tuple[TaskSpec, TaskResult]]:
         if not tasks:
             return
-        pool = ProcessPoolExecutor(max_workers=min(self.workers, len(tasks)), mp_context=get_context("spawn"))
+        pool = ProcessPoolExecutor(max_workers=min(self.workers, len(tasks)), mp_context=get_context("spawn"),
+                                   initializer=_exit_with_parent, initargs=(os.getpid(),))
         futures: dict[Future[TaskResult], TaskSpec] = {}
         try:
             for t in tasks:
@@ -87,8 +114,12 @@ class ProcessExecutor(Executor):
                 done, pending = wait(pending, return_when=FIRST_COMPLETED)
                 for f in done:
                     yield futures[f], f.result()
-        finally:
-            pool.shutdown(wait=True, cancel_futures=True)
+        except BaseException:  # Ctrl-C, a failed task, the consumer gone: do not wait for running tasks
+            for proc in list(getattr(pool, "_processes", {}).values()):
+                proc.terminate()
+            pool.shutdown(wait=False, cancel_futures=True)
+            raise
+        pool.shutdown(wait=True)
 
     def describe(self) -> dict[str, Any]:
         return {"executor": self.name, "workers": self.workers}
@@ -161,6 +192,24 @@ class SweepStats:
     loaded: int = 0
 
 
+class SweepInterrupted(KeyboardInterrupt):
+    """Ctrl-C during :func:`run_tasks`: how far the sweep got and where its finished tasks are.
+
+    ``saved`` counts the tasks on disk in ``checkpoint`` (``None``: no checkpoint, nothing kept).
+    """
+
+    def __init__(self, stats: SweepStats, total: int, checkpoint: Path | None) -> None:
+        super().__init__(f"interrupted after {stats.loaded + stats.computed} of {total} tasks")
+        self.stats = stats
+        self.total = total
+        self.checkpoint = checkpoint
+
+    @property
+    def saved(self) -> int:
+        """Finished tasks that a rerun with the same checkpoint loads instead of recomputing."""
+        return self.stats.loaded + self.stats.computed if self.checkpoint is not None else 0
+
+
 def run_tasks(
     tasks: Sequence[TaskSpec],
     *,
@@ -172,7 +221,7 @@ def run_tasks(
     """Run ``tasks`` (skipping those finished in ``store``), saving each as it finishes.
 
     Returns the results by task index and the counts.  ``progress(done, total)`` is called
-    after every finished (or loaded) task.
+    after every finished (or loaded) task.  A Ctrl-C raises :class:`SweepInterrupted`.
     """
     indices = [t.index for t in tasks]
     if len(set(indices)) != len(indices):
@@ -190,11 +239,16 @@ def run_tasks(
     total = len(tasks)
     if progress is not None:
         progress(len(results), total)
-    for t, arrays in ex.run(fn, todo):
-        if store is not None:
-            store.save(t.index, arrays)
-        results[t.index] = arrays
-        stats.computed += 1
-        if progress is not None:
-            progress(len(results), total)
+    try:
+        for t, arrays in ex.run(fn, todo):
+            if store is not None:
+                store.save(t.index, arrays)
+            results[t.index] = arrays
+            stats.computed += 1
+            if progress is not None:
+                progress(len(results), total)
+    except SweepInterrupted:
+        raise
+    except KeyboardInterrupt:
+        raise SweepInterrupted(stats, total, store.directory if store is not None else None) from None
     return results, stats

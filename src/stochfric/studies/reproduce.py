@@ -72,8 +72,14 @@ def reproduce(
     checkpoint: str | Path | None = None,
     progress: Callable[[str, int, int], None] | None = None,
     report: bool = True,
+    study_done: Callable[[StudyResult], None] | None = None,
 ) -> tuple[list[StudyResult], dict[str, float]]:
-    """Run :func:`plan`, save every result under ``out/<preset>/``, write ``out/index.html``."""
+    """Run :func:`plan`, save every result under ``out/<preset>/``, write ``out/index.html``.
+
+    ``progress(label, done, total)`` is called with the study's label (``"brake/damping"``) after
+    every finished task, ``study_done(result)`` after every saved study.  Finished tasks are
+    checkpointed (default ``out/checkpoints``), so an interrupted run resumes where it stopped.
+    """
     from ..report.html import write_report
 
     base = Path(out)
@@ -89,6 +95,8 @@ def reproduce(
         res.save(base / cfg.preset)
         timings[label] = time.perf_counter() - t
         results.append(res)
+        if study_done is not None:
+            study_done(res)
     timings["studies_total"] = time.perf_counter() - t0
     if report:
         t = time.perf_counter()

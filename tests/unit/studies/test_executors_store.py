@@ -136,3 +136,144 @@ def test_lyapunov_identical_across_executors() -> None:
     b = lyapunov_study(cfg, executor=ProcessExecutor(workers=2)).to_dataset()
     np.testing.assert_array_equal(a["w"].values, b["w"].values)
     np.testing.assert_array_equal(a["lyapunov"].values, b["lyapunov"].values)
+
+
+_SLEEPER = '''
+import os, time
+
+def sleep_task(task, threads):
+    open(os.path.join(os.environ["PIDDIR"], str(os.getpid())), "w").close()
+    time.sleep(60)
+    return {}
+'''
+
+_PARENT = '''
+import sys
+sys.path.insert(0, sys.argv[1])
+from sleeper import sleep_task
+from stochfric.studies.executors import ProcessExecutor
+for _ in ProcessExecutor(workers=2).run(sleep_task, [0, 1]):
+    pass
+'''
+
+
+def _alive(pid: int) -> bool:
+    try:
+        with open(f"/proc/{pid}/status", encoding="ascii") as fh:
+            return not any(line.startswith("State:") and "Z" in line.split()[1] for line in fh)
+    except FileNotFoundError:
+        return False
+
+
+_MIDDLE = '''
+import subprocess, sys, time
+subprocess.Popen([sys.executable, "-c", sys.argv[1], sys.argv[2]])
+time.sleep(60)
+'''
+_WATCHED = '''
+import os, sys, time
+from stochfric.studies.executors import _exit_with_parent
+_exit_with_parent(os.getppid(), poll_s=0.05)
+open(os.path.join(sys.argv[1], str(os.getpid())), "w").close()
+time.sleep(60)
+'''
+
+
+@pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="needs /proc (Linux)")
+def test_parent_watchdog_ends_the_process_when_the_parent_is_killed(tmp_path: Path) -> None:
+    """The worker initializer of ProcessExecutor, in a grandchild: kill -9 its parent, it exits."""
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    middle = subprocess.Popen([sys.executable, "-c", _MIDDLE, _WATCHED, str(tmp_path)])
+    try:
+        deadline = time.monotonic() + 30
+        while not list(tmp_path.iterdir()) and time.monotonic() < deadline:
+            time.sleep(0.05)
+        (pidfile,) = tmp_path.iterdir()
+        child = int(pidfile.name)
+        assert _alive(child)
+    finally:
+        middle.send_signal(signal.SIGKILL)
+        middle.wait()
+    deadline = time.monotonic() + 3
+    while _alive(child) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not _alive(child), "the watched process outlived its parent"
+
+
+@pytest.mark.slow
+@pytest.mark.skipif(not Path("/proc/self/status").exists(), reason="needs /proc (Linux)")
+def test_workers_die_with_their_parent_after_kill_9(tmp_path: Path) -> None:
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    (tmp_path / "sleeper.py").write_text(_SLEEPER, encoding="utf-8")
+    piddir = tmp_path / "pids"
+    piddir.mkdir()
+    parent = subprocess.Popen([sys.executable, "-c", _PARENT, str(tmp_path)], env={**os.environ, "PIDDIR": str(piddir)})
+    try:
+        deadline = time.monotonic() + 30
+        while len(list(piddir.iterdir())) < 2 and time.monotonic() < deadline:
+            time.sleep(0.1)
+        workers = [int(p.name) for p in piddir.iterdir()]
+        assert len(workers) == 2 and all(_alive(w) for w in workers)
+    finally:
+        parent.send_signal(signal.SIGKILL)
+        parent.wait()
+    deadline = time.monotonic() + 5
+    while any(_alive(w) for w in workers) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert not any(_alive(w) for w in workers), "workers outlived their parent"
+
+
+def test_ctrl_c_says_what_is_saved_and_how_to_resume(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    from typer.testing import CliRunner
+
+    import stochfric.studies.executors as executors
+    from stochfric.cli import app
+
+    args = ["study", "damping", "--normal-force", "4000,6000", "--damping", "0.1,0.14,0.18", "--runs", "3",
+            "--seed", "5", "--tau-end", "12", "--checkpoint", str(tmp_path / "ck")]
+    monkeypatch.setattr(executors, "make_executor", lambda *a, **k: CountingExecutor(interrupt_after=2))
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code == 130, res.output
+    assert "after 2 of 6 tasks" in res.output and "2 tasks of it are saved in" in res.output
+    assert "Resume with:" in res.output and str(tmp_path / "ck") in res.output
+    res = CliRunner().invoke(app, args[:-2])  # no checkpoint: nothing to resume, and it says so
+    assert res.exit_code == 130 and "nothing was saved" in res.output
+
+
+def test_run_json_reports_computed_and_loaded_tasks(tmp_path: Path) -> None:
+    import json
+
+    from typer.testing import CliRunner
+
+    from stochfric.cli import app
+
+    toml = tmp_path / "s.toml"
+    toml.write_text(f'''[execution]
+executor = "serial"
+checkpoint = "{tmp_path / 'ck'}"
+[output]
+dir = "{tmp_path / 'out'}"
+report = false
+[[study]]
+kind = "damping"
+normal_forces = [4000, 6000]
+damping = [0.1, 0.18]
+runs = 2
+tau_end = 10
+phase_runs = 0
+''', encoding="utf-8")
+    first = json.loads(CliRunner().invoke(app, ["run", str(toml), "--json"]).output)
+    n = first["tasks"]["computed"]
+    assert n > 0 and first["tasks"]["loaded_from_checkpoint"] == 0
+    assert first["studies"][0]["tasks"] == {"computed": n, "loaded_from_checkpoint": 0}
+    again = json.loads(CliRunner().invoke(app, ["run", str(toml), "--json"]).output)
+    assert again["tasks"] == {"computed": 0, "loaded_from_checkpoint": n}
