@@ -80,6 +80,28 @@ def test_study_run_reproduce_output_paths_checked_first(tmp_path: Path) -> None:
     _bad(["run", str(toml)], "is an existing file")
 
 
+@pytest.mark.parametrize("args,needle", [
+    (["friction-process", "--material", "brake-pad", "--out", "{file}"], "is an existing file"),
+    (["surface", "--plot", "{file}"], "is an existing file"),
+    (["contact", "--material", "brake-pad", "--output", "r.txt"], "unknown file extension '.txt'"),
+    (["contact", "--material", "brake-pad", "--plot", "/proc/x"], "cannot create files in /proc"),
+])
+def test_surface_contact_process_output_paths_checked_first(
+    args: list[str], needle: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    import stochfric.cli_process as cli_process
+    import stochfric.cli_surface as cli_surface
+
+    def boom(*_a: Any, **_k: Any) -> Any:
+        raise AssertionError("the surface was read before the output paths were checked")
+
+    monkeypatch.setattr(cli_surface, "_load_and_prepare", boom)
+    monkeypatch.setattr(cli_process, "_load_and_prepare", boom)
+    afile = tmp_path / "afile"
+    afile.write_text("x")
+    _bad([a.format(file=afile) for a in args], needle)
+
+
 @pytest.mark.skipif(os.geteuid() == 0, reason="root writes into read-only directories")
 def test_read_only_directory_refused(tmp_path: Path) -> None:
     ro = tmp_path / "ro"

@@ -32,6 +32,7 @@ from stochfric.cli_surface import (
 )
 from stochfric.contact.asperity import ContactError, default_approach_m
 from stochfric.contact.materials import MaterialError, load_material, material_names
+from stochfric.io_utils import check_output_path
 from stochfric.surface.io import SurfaceError
 from stochfric.surface.preprocess import Preparation
 from stochfric.units import MICROMETRE
@@ -148,6 +149,8 @@ def friction_process_command(
     try:
         if plot and out is None:
             raise ContactError("--plot writes into the output directory: give --out DIR")
+        if out is not None:  # before any work: a file or an unwritable place ends the command now
+            check_output_path(out, option="--out")
         mat = load_material(material)
         prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
         approach = parse_approach_um(approach_um) if approach_um is not None else None

@@ -19,6 +19,7 @@ import typer
 
 from stochfric.contact.asperity import ContactError, ContactResult, asperity_contact
 from stochfric.contact.materials import Material, MaterialError, load_material, material_names
+from stochfric.io_utils import OutputPathError, check_output_path
 from stochfric.surface.io import Surface, SurfaceError, default_surface_path, read_surface
 from stochfric.surface.preprocess import Preparation, prepare
 from stochfric.surface.statistics import (
@@ -193,6 +194,11 @@ def surface_command(
 ) -> None:
     """Surface analysis: statistics of the fine and the coarse surface, summits, radii,
     plasticity index (METHOD.md §1)."""
+    try:  # output paths first: an unwritable place ends the command before any work
+        if plot is not None:
+            check_output_path(plot, option="--plot")
+    except OutputPathError as exc:
+        raise _fail(str(exc)) from None
     try:
         prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
         mat = load_material(material) if material is not None else None
@@ -300,6 +306,13 @@ def contact_command(
     as_json: JsonOpt = False,
 ) -> None:
     """Contact analysis over the approach u: A_c, p, contacts, μ (METHOD.md §2)."""
+    try:  # output paths first: an unwritable place ends the command before any work
+        if output is not None:
+            check_output_path(output, option="--output", kind="file", suffixes=(".nc",))
+        if plot is not None:
+            check_output_path(plot, option="--plot")
+    except OutputPathError as exc:
+        raise _fail(str(exc)) from None
     try:
         mat = load_material(material)
         prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
