@@ -6,17 +6,22 @@ missing); the file checks always run.
 
 from __future__ import annotations
 
+import itertools
 import json
+import os
 import re
 import shutil
+import stat
 import subprocess
 from html.parser import HTMLParser
 from pathlib import Path
+from typing import Any
 
 import matplotlib.image as mpimg
 import pytest
 
-from stochfric.report.html import process_statistics_section, write_report
+import stochfric.report.study_figures as study_figures
+from stochfric.report.html import WARNING_HELP, damping_reading, process_statistics_section, write_report
 from stochfric.studies.config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
 from stochfric.studies.damping import damping_study
 from stochfric.studies.forcing import forcing_study
@@ -29,7 +34,8 @@ window.addEventListener('load', () => {
   const imgs = [...document.images];
   const bad = imgs.filter(i => !(i.complete && i.naturalWidth > 0)).map(i => i.getAttribute('src'));
   const d = document.createElement('pre'); d.id = 'imgcheck';
-  d.textContent = 'IMGCHECK' + JSON.stringify({n: imgs.length, bad: bad}) + 'END';
+  const subs = document.querySelectorAll('ul.answers sub').length;
+  d.textContent = 'IMGCHECK' + JSON.stringify({n: imgs.length, bad: bad, subs: subs}) + 'END';
   document.body.appendChild(d);
 });
 </script>"""
@@ -45,6 +51,30 @@ class _Imgs(HTMLParser):
             self.src.append(dict(attrs)["src"] or "")
 
 
+FIGURES: dict[str, dict[str, Any]] = {}  # figure file name → what the figure showed before it was closed
+
+
+def _inspect(fig: Any) -> dict[str, Any]:
+    """Overlapping x tick labels and empty panels of a drawn figure."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    overlaps, empty, texts, meshes = [], [], [], 0
+    for ax in fig.axes:
+        if ax.get_label() == "<colorbar>":
+            continue
+        labels = [t for t in ax.get_xticklabels() if t.get_visible() and t.get_text()]
+        boxes = sorted((t.get_window_extent(renderer) for t in labels), key=lambda b: b.x0)
+        overlaps += [ax.get_title() for a, b in itertools.pairwise(boxes) if a.x1 > b.x0]
+        has_data = bool(ax.lines or ax.patches or ax.collections)
+        notes = [t.get_text() for t in ax.texts]
+        texts += notes
+        meshes += sum(type(c).__name__ == "QuadMesh" for c in ax.collections)
+        if not has_data and not any("no stick" in n for n in notes):
+            empty.append(ax.get_title())
+    return {"overlaps": overlaps, "empty": empty, "texts": texts, "meshes": meshes,
+            "legends": sum(ax.get_legend() is not None for ax in fig.axes)}
+
+
 @pytest.fixture(scope="module")
 def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
     d = tmp_path_factory.mktemp("report")
@@ -54,7 +84,19 @@ def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
         forcing_study(ForcingConfig(eta="0.5:2:3", runs=3, seed=1)),
         lyapunov_study(LyapunovConfig(normal_forces=(4000.0,), eta=(1.2, 2.0), runs=2, tau_end=60.0, seed=1)),
     ]
-    return write_report(results, d, title="test report", contact=True)
+    save = study_figures._save
+
+    def inspecting_save(fig: Any, path: Path) -> Path:
+        FIGURES[Path(path).name] = _inspect(fig)
+        return save(fig, path)
+
+    old = os.umask(0o022)
+    try:
+        with pytest.MonkeyPatch.context() as mp:
+            mp.setattr(study_figures, "_save", inspecting_save)
+            return write_report(results, d, title="test report", contact=True)
+    finally:
+        os.umask(old)
 
 
 def test_every_image_file_exists_and_decodes(report: Path) -> None:
@@ -67,8 +109,8 @@ def test_every_image_file_exists_and_decodes(report: Path) -> None:
         assert f.exists(), src
         assert f.read_bytes()[:8] == PNG, src
         assert mpimg.imread(f).shape[0] > 50
-    for needle in ("D_max^d", "D_H", "σ_contact/σ_white", "seed", "versions", "contact analysis of the shipped",
-                   "statistics of μ", "Reading"):
+    for needle in ("D<sub>max</sub><sup>d</sup>", "D<sub>H</sub>", "σ<sub>contact</sub>/σ<sub>white</sub>", "seed",
+                   "versions", "contact analysis of the shipped", "statistics of μ", "Reading"):
         assert needle in text, needle
 
 
@@ -111,7 +153,66 @@ def test_report_renders_in_headless_chromium(report: Path, tmp_path: Path) -> No
     assert m, out.stderr[-2000:]
     res = json.loads(m.group(1))
     assert res["n"] >= 10 and res["bad"] == [], res
+    assert res["subs"] >= 2, res  # real subscripts in the Reading answers
     shot = tmp_path / "shot.png"
     subprocess.run([*args, f"--screenshot={shot}", "--window-size=1200,3000", report.as_uri()],
                    capture_output=True, timeout=60)
     assert shot.exists() and shot.read_bytes()[:8] == PNG
+
+
+def test_report_files_are_readable_by_others(report: Path) -> None:
+    """Written under umask 022: every file 0644 (mkstemp alone gave 0600 and broken images on a share)."""
+    files = [p for p in report.parent.rglob("*") if p.is_file()]
+    assert len(files) >= 10
+    assert {p.name: oct(stat.S_IMODE(p.stat().st_mode)) for p in files if stat.S_IMODE(p.stat().st_mode) != 0o644} \
+        == {}
+
+
+def test_mdiff_caption_names_the_colours_of_the_colour_map(report: Path) -> None:
+    neg, pos = study_figures.mdiff_colours()
+    assert (neg, pos) == ("red", "blue")  # RdBu: low end red
+    text = report.read_text(encoding="utf-8")
+    assert f"{neg} (negative)" in text and f"{pos} (positive)" in text and "blue (negative)" not in text
+
+
+def test_probability_panel_is_a_heat_map_per_model_with_the_limits(report: Path) -> None:
+    fig = FIGURES["01_damping_brake_probability.png"]
+    assert fig["meshes"] == 3 and fig["legends"] == 3  # one D × N map per model, each with its D_max lines
+    assert (report.parent / "01_damping_brake_probability.png").exists()
+
+
+def test_no_overlapping_ticks_and_no_blank_panels(report: Path) -> None:
+    assert FIGURES, "no figure was inspected"
+    bad = {k: (v["overlaps"], v["empty"]) for k, v in FIGURES.items() if v["overlaps"] or v["empty"]}
+    assert bad == {}
+    # D = 0.15 at 720 N: nothing sticks in any model, and the panel says so
+    assert any("no stick" in t for t in FIGURES["00_normal_force_brake_pdf_D1.png"]["texts"])
+
+
+def test_grid_edges_are_named(report: Path) -> None:
+    # the contact model still sticks at the last grid D (0.2) at 6000 N in this run
+    assert "> grid" in FIGURES["01_damping_brake_dmax.png"]["texts"]
+    summary = {"normal_force": [1000.0, 2000.0], "damping": [0.05, 0.1, 0.15], "d_hopf": [0.01, 0.02],
+               "d_max_deterministic": [None, 0.15], "models": ["deterministic", "white"],
+               "d_max_stochastic": {"white": [{"value": 0.1, "interval": [0.1, None]},
+                                              {"value": 0.15, "interval": [0.15, None]}]}}
+    table, reading = damping_reading(summary)
+    assert "<td>0.01</td><td>&lt; grid start (0.05)</td>" in table  # D_max^d below the grid, not "—"
+    assert "<td>≥ 0.15 (&gt; grid)</td>" in table  # D_max^d at the grid's end
+    assert "< grid start" in reading
+
+
+def test_reading_answers_first_and_explains_warnings(report: Path) -> None:
+    text = report.read_text(encoding="utf-8")
+    reading = text[text.index("<h2>Reading</h2>"):text.index("<h2 id='s0'>")]
+    answers = re.findall(r"<li>(.*?)</li>", reading)
+    assert len(answers) == 4
+    damping = next(a for a in answers if "damping" in a)
+    assert re.search(r"brake, N = \d+ N: stick-slip up to D = [\d.]+.* deterministically, .* with white noise", damping)
+    assert "— the deterministic limit is" in damping
+    assert "D_max" not in reading and "<sub>" in reading  # real subscripts, no raw thesis names
+    codes = {m.group(1) for m in re.finditer(r"<dt>([a-z-]+):", reading)}
+    assert codes, "this run produced warnings; they must be explained"
+    for code in codes:
+        assert code in WARNING_HELP
+        assert WARNING_HELP[code][1].split()[0] in reading and "What to do" in reading

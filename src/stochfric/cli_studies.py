@@ -225,7 +225,7 @@ def _print_summary(kind: str, s: dict[str, Any]) -> None:
     from rich.console import Console
     from rich.table import Table
 
-    from .report.html import READERS, model_choices_text
+    from .report.html import READERS, dmax_text, model_choices_text
 
     con = Console()
     con.print(f"[bold]stochfric study {kind}[/] preset={s.get('preset')} runs={s.get('runs')} seed={s.get('seed')} "
@@ -236,10 +236,12 @@ def _print_summary(kind: str, s: dict[str, Any]) -> None:
         for col in ["N [N]", "D_H", "D_max^d", *[f"D_max^s {m} [lo, hi]" for m in s["d_max_stochastic"]]]:
             t.add_column(col, justify="right")
         for i, nf in enumerate(s["normal_force"]):
-            row = [f"{nf:g}", f"{s['d_hopf'][i]:.4g}", str(s.get("d_max_deterministic", ["—"] * 99)[i])]
+            det = s.get("d_max_deterministic")
+            row = [f"{nf:g}", f"{s['d_hopf'][i]:.4g}", dmax_text(det[i], s["damping"]) if det else "—"]
             for m in s["d_max_stochastic"]:
                 e = s["d_max_stochastic"][m][i]
-                row.append(f"{e['value']} [{e['interval'][0]}, {e['interval'][1] or '> grid'}]")
+                row.append(dmax_text(e["value"], s["damping"]) + (
+                    "" if e["value"] is None else f" [{e['interval'][0]}, {e['interval'][1] or '> grid'}]"))
             t.add_row(*row)
         con.print(t)
     _, reading = READERS[kind](s)

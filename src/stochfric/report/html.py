@@ -13,6 +13,7 @@ from __future__ import annotations
 import html
 import json
 import math
+import re
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -29,7 +30,30 @@ figure{margin:1em 0}figure img{max-width:100%;border:1px solid #eee}figcaption{f
 table{border-collapse:collapse;font-size:.85em;margin:.8em 0}td,th{border:1px solid #ccc;padding:.2em .5em;
 text-align:right}th{background:#f4f4f4}pre{background:#f7f7f7;padding:.6em;overflow-x:auto;font-size:.8em}
 .reading{background:#f3f8ff;border-left:4px solid #4a90d9;padding:.5em 1em}
+ul.answers li{margin:.3em 0}.warnhelp dt{font-weight:bold;margin-top:.5em}
 """
+
+_SUBSCRIPT = re.compile(r"(?<![\w&;])([^\W\d_])_([^\W_]+)(?:\^([^\W_]+))?(?![\w])")
+
+
+def rich_text(text: str) -> str:
+    """HTML-escape ``text`` and typeset thesis symbols: ``D_max^d`` → D<sub>max</sub><sup>d</sup>,
+    ``X_gh`` → X<sub>gh</sub>, ``σ_ζ`` → σ<sub>ζ</sub> (identifiers such as ``stick_window`` stay)."""
+    def sub(m: re.Match[str]) -> str:
+        sup = f"<sup>{m.group(3)}</sup>" if m.group(3) else ""
+        return f"{m.group(1)}<sub>{m.group(2)}</sub>{sup}"
+
+    return _SUBSCRIPT.sub(sub, html.escape(text))
+
+
+def dmax_text(value: float | None, grid: Sequence[float]) -> str:
+    """A D_max for tables: the number, "≥ D_end (> grid)" at the grid's end (the limit lies beyond
+    the grid) or "< grid start" when not even the first grid D has a cycle."""
+    if value is None or not math.isfinite(float(value)):
+        return f"< grid start ({min(grid):g})"
+    if value >= max(grid) - 1e-12:
+        return f"≥ {value:.4g} (> grid)"
+    return f"{value:.4g}"
 
 
 def _fmt(v: Any, spec: str = ".4g") -> str:
@@ -41,7 +65,7 @@ def _fmt(v: Any, spec: str = ".4g") -> str:
 
 
 def _table(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
-    h = "".join(f"<th>{html.escape(str(c))}</th>" for c in header)
+    h = "".join(f"<th>{rich_text(str(c))}</th>" for c in header)
     body = "".join("<tr>" + "".join(f"<td>{_fmt(c)}</td>" for c in row) + "</tr>" for row in rows)
     return f"<table><tr>{h}</tr>{body}</table>"
 
@@ -49,7 +73,7 @@ def _table(header: Sequence[str], rows: Sequence[Sequence[Any]]) -> str:
 def _figure(path: Path, caption: str, directory: Path) -> str:
     rel = path.relative_to(directory).as_posix()
     return (f'<figure><img src="{html.escape(rel)}" alt="{html.escape(caption[:80])}">'
-            f"<figcaption>{html.escape(caption)}</figcaption></figure>")
+            f"<figcaption>{rich_text(caption)}</figcaption></figure>")
 
 
 def _provenance(result: Any) -> str:
@@ -72,7 +96,8 @@ def _provenance(result: Any) -> str:
     return "".join(parts)
 
 
-_PATH_TEXT = {"mass": "mass (thesis: global path of the mass)", "relative": "relative path"}
+_PATH_TEXT = {"mass": "mass (thesis: global path of the mass)", "relative": "relative path",
+              "position": "position (REPRODUCTION MODE: at the mass position x1, eq. 4.36/4.38 as printed)"}
 _WHITE_TEXT = {"sigma_mu": "sigma_mu (thesis: σ_ζ = σ_μ(p))",
                "spectral_level": "spectral_level (σ_ζ = S0/2, the process's low-frequency spectral level)",
                "thesis": "thesis (REPRODUCTION MODE: printed eq. 4.31, σ_ζ,eff = σ_μ(p)·Lω0·Δτ, "
@@ -110,22 +135,25 @@ def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:
     lines = []
     for i, nf in enumerate(forces):
         dd = summary.get("d_max_deterministic", [None] * len(forces))[i]
-        row: list[Any] = [nf, summary["d_hopf"][i], dd]
+        grid = summary.get("damping") or [math.nan]
+        row: list[Any] = [nf, summary["d_hopf"][i],
+                          dmax_text(dd, grid) if "d_max_deterministic" in summary else None]
         for m in stoch:
             e = summary["d_max_stochastic"][m][i]
             lo, hi = e["interval"]
-            row.append(f"{_fmt(e['value'])} [{_fmt(lo)}, {_fmt(hi) if hi is not None else '> grid'}]")
+            row.append(dmax_text(e["value"], grid) if e["value"] is None else
+                       f"{dmax_text(e['value'], grid)} [{_fmt(lo)}, {_fmt(hi) if hi is not None else '> grid'}]")
         for m in stoch:
             row.append(summary.get("d_safe", {}).get(m, [None] * len(forces))[i])
         rows.append(row)
-        txt = f"N = {nf:g} N: D_H = {summary['d_hopf'][i]:.3g}, D_max^d = {_fmt(dd, '.3g')}"
+        txt = f"N = {nf:g} N: D_H = {summary['d_hopf'][i]:.3g}, D_max^d = {dmax_text(dd, grid)}"
         for m in stoch:
             v = summary["d_max_stochastic"][m][i]["value"]
             rel = ""
             if v is not None and dd is not None:
                 rel = " (above D_max^d: the deterministic limit is unsafe)" if v > dd else (
                     " (equal to D_max^d)" if v == dd else " (below D_max^d)")
-            txt += f"; D_max^s({m}) = {_fmt(v, '.3g')}{rel}"
+            txt += f"; D_max^s({m}) = {dmax_text(v, grid)}{rel}"
         lines.append(txt + ".")
     if summary.get("d_max_deterministic"):
         ok = all(d is None or d >= h - 1e-12 for d, h in zip(summary["d_max_deterministic"], summary["d_hopf"],
@@ -192,6 +220,152 @@ def normal_force_reading(summary: dict[str, Any]) -> tuple[str, str]:
                     parts.append(f"N = {nf:g} N, D = {d:g}: {sc / sw:.2g}")
         txt = "σ(X_gh) contact/white: " + "; ".join(parts) + ". Empty cells: no stick-slip after the transient."
     return _table(["model", "D", "N [N]", "E[X_gh]", "SE", "σ", "SE", "VarK %", "SE %", "events"], rows), txt
+
+
+_WITH = {"deterministic": "deterministically", "white": "with white noise",
+         "contact": "with the contact-analysis process"}
+
+
+def _limit_words(v: float | None, grid: Sequence[float], interval: Sequence[Any] | None = None,
+                 first: bool = True) -> str:
+    """"stick-slip up to D = 0.14" (``first``) or "up to 0.16 [0.16, 0.175]"; the grid's ends in words."""
+    if v is None:
+        return f"{'no stick-slip' if first else 'none'} even at D = {min(grid):g} (the grid start)"
+    iv = ""
+    if interval is not None:
+        hi = interval[1]
+        iv = f" [{_fmt(interval[0], '.3g')}, {_fmt(hi, '.3g') if hi is not None else '> grid'}]"
+    head = "stick-slip up to D = " if first else "up to "
+    if v >= max(grid) - 1e-12:
+        return f"{head}{v:.3g} or beyond (the grid end){iv}"
+    return f"{head}{v:.3g}{iv}"
+
+
+def _above(v: float | None, ref: float | None) -> bool:
+    return v is not None and (ref is None or v > ref + 1e-12)
+
+
+def damping_headline(summary: dict[str, Any]) -> str:
+    """One-line answer of a damping study: the limits at the phase force (the thesis's case) and the
+    verdict whether the deterministic limit is safe, plus where it is unsafe over all forces."""
+    forces = list(summary["normal_force"])
+    grid = summary.get("damping") or [math.nan]
+    stoch = list(summary.get("d_max_stochastic", {}))
+    det = summary.get("d_max_deterministic")
+    nf = float((summary.get("phase") or {}).get("normal_force", forces[(len(forces) - 1) // 2]))
+    i = min(range(len(forces)), key=lambda k: abs(forces[k] - nf))
+    parts = []
+    if det is not None:
+        parts.append(f"{_limit_words(det[i], grid)} {_WITH['deterministic']}")
+    for m in stoch:
+        e = summary["d_max_stochastic"][m][i]
+        parts.append(f"{_limit_words(e['value'], grid, e['interval'], first=not parts)} {_WITH.get(m, m)}")
+    line = f"{summary.get('preset', '')}, N = {forces[i]:g} N: " + ", ".join(parts)
+    if det is not None and stoch:
+        vals = [summary["d_max_stochastic"][m][i]["value"] for m in stoch]
+        unsafe = [m for m, v in zip(stoch, vals, strict=True) if _above(v, det[i])]
+        edge = det[i] is not None and det[i] >= max(grid) - 1e-12
+        if unsafe:
+            line += " — the deterministic limit is not safe"
+        elif edge:
+            line += " — the limits reach the grid end: extend the D grid to compare them"
+        else:
+            line += " — the deterministic limit is safe here"
+        if len(forces) > 1:
+            per = []
+            for m in stoch:
+                bad = [forces[k] for k in range(len(forces))
+                       if _above(summary["d_max_stochastic"][m][k]["value"], det[k])]
+                per.append(f"{m}: " + (", ".join(f"{f:g}" for f in bad) + " N" if bad else "none"))
+            line += f". Forces where a stochastic model sticks beyond D_max^d ({len(forces)} forces): " + "; ".join(per)
+    return line + "."
+
+
+def normal_force_headline(summary: dict[str, Any]) -> str:
+    """One line: at which forces each model has stick-slip, per damping ratio."""
+    forces = summary["normal_force"]
+    models = summary["models"]
+    parts = []
+    for di, d in enumerate(summary["damping"]):
+        has = {m: [forces[k] for k in range(len(forces)) if (summary["n_events"][m][di][k] or 0) > 0]
+               for m in models}
+        if all(len(v) == len(forces) for v in has.values()):
+            parts.append(f"at D = {d:g} stick-slip at every force in every model")
+        else:
+            parts.append(f"at D = {d:g} stick-slip " + "; ".join(
+                f"{m} " + (", ".join(f"{f:g}" for f in v) + " N" if v else "nowhere") for m, v in has.items()))
+    return (f"{summary.get('preset', '')}, N = " + ", ".join(f"{f:g}" for f in forces) + " N: " + "; ".join(parts)
+            + ".")
+
+
+def forcing_headline(summary: dict[str, Any]) -> str:
+    """One line: σ(X_gh) contact/white over η, against the thesis's ratios."""
+    med = summary.get("sigma_ratio_median") or {}
+    nf = summary.get("normal_force")
+    head = f"{summary.get('preset', '')}, forced" + (f", N = {nf:g} N" if isinstance(nf, int | float) else "")
+    if not med:
+        return head + ": no white/contact pair to compare."
+    return (head + ": σ(X_gh) contact/white, median over η: " + ", ".join(
+        f"{_fmt(med.get(f'{q:g}'), '.3g')} at q = {q:g}" for q in summary["forcing_q"])
+        + " (thesis: ≈ 1.2 / ≈ 1.05 brake, small / large q; ≈ 2.5 sheet).")
+
+
+def lyapunov_headline(summary: dict[str, Any]) -> str:
+    """One line: how many cells have a positive largest Lyapunov exponent, per model."""
+    head = f"{summary.get('preset', '')}, Lyapunov exponent on the stick line: "
+    sig = summary.get("significance")
+    if sig:
+        return head + "cells with λ > 0 by more than 2 SE: " + ", ".join(
+            f"{m} {sig.get(m, {}).get('positive')}" for m in summary["models"]) + "."
+    pos = summary.get("positive_fraction") or {}
+    return head + "fraction of (q, N, η) cells with λ > 0: " + ", ".join(
+        f"{m} {_fmt(pos.get(m), '.2f')}" for m in summary["models"]) + "."
+
+
+HEADLINES = {"damping": damping_headline, "forcing": forcing_headline, "lyapunov": lyapunov_headline,
+             "normal-force": normal_force_headline}
+
+#: what each simulation warning class means for the results, and what to do about it
+WARNING_HELP = {
+    "coarse-time-step": (
+        "The time step Δτ is coarse for this motion: the thesis (Fig. 4.7, 4.8) shows Δτ > 0.01 changing "
+        "stick-slip cycles and forced solutions, so X_gh may carry discretisation error.",
+        "rerun with a smaller time step (--dt 0.001, or dt in the study file) or check a few cells with "
+        "--integrator accurate; results that do not move are converged."),
+    "process-exhausted": (
+        "The mass slid further than the generated contact-analysis friction process is long, so the process "
+        "was read periodically: the same roughness came round again, which makes the contact model's friction "
+        "partly periodic rather than random.",
+        "use a longer process (a process model file with a longer length via --process, or "
+        "simulate --process-length), or a shorter τ_end; the message gives how many times it repeated."),
+    "slip-shorter-than-grid": (
+        "Some slip phases were shorter than one grid spacing of the friction process, so friction there was "
+        "interpolated between two grid points (thesis 4.1.3) and barely varies.",
+        "use a process with a finer grid (smaller dx) when oscillations are this small."),
+    "process-grid-not-periodic": (
+        "The process grid does not span a whole number of periods, so its periodic continuation has a seam.",
+        "choose dx = length / n (simulate --process-length does this)."),
+    "event-buffer-full": (
+        "More slip→stick transitions than stored: the stick count M is exact, but only the first X_gh were kept.",
+        "raise max_events (simulate) or shorten τ_end."),
+}
+
+
+def warnings_section(results: Sequence[Any]) -> str:
+    """Every warning class the run produced: how often, in which studies, what it means, what to do."""
+    seen: dict[str, list[str]] = {}
+    for res in results:
+        for w in res.summary.get("warnings") or []:
+            seen.setdefault(w["code"], []).append(
+                f"{res.kind} ({res.summary.get('preset', '')}) ×{w['count']}")
+    if not seen:
+        return "<p>No simulation warnings in this run.</p>"
+    items = []
+    for code in sorted(seen):
+        what, todo = WARNING_HELP.get(code, ("See the warning messages of the simulations.", "—"))
+        items.append(f"<dt>{html.escape(code)}: {html.escape(', '.join(seen[code]))}</dt>"
+                     f"<dd>{rich_text(what)} <i>What to do:</i> {rich_text(todo)}</dd>")
+    return "<p>Warnings this run produced:</p><dl class='warnhelp'>" + "".join(items) + "</dl>"
 
 
 READERS = {"damping": damping_reading, "forcing": forcing_reading, "lyapunov": lyapunov_reading,
@@ -271,23 +445,24 @@ def write_report(
     for k, res in enumerate(results):
         kind = res.kind
         preset = res.summary.get("preset", "")
-        body.append(f"<h2 id='s{k}'>{html.escape(TITLES.get(kind, kind))} — {html.escape(str(preset))}</h2>")
+        body.append(f"<h2 id='s{k}'>{rich_text(TITLES.get(kind, kind))} — {html.escape(str(preset))}</h2>")
         table, reading = READERS[kind](res.summary)
-        readings.append(f"<li><b>{html.escape(kind)} ({html.escape(str(preset))})</b>: {html.escape(reading)}</li>")
-        body.append(f"<p class='reading'>{html.escape(reading)}</p>")
+        readings.append(f"<li><a href='#s{k}'>{html.escape(kind)}</a>: {rich_text(HEADLINES[kind](res.summary))}</li>")
+        body.append(f"<p class='reading'>{rich_text(reading)}</p>")
         choices = model_choices_text(res.summary)
         if choices:
-            body.append(f"<p class='choices'>{html.escape(choices)}</p>")
+            body.append(f"<p class='choices'>{rich_text(choices)}</p>")
         body.append(table)
         for path, cap in FIGURES[kind](res.dataset, d, prefix=f"{k:02d}_{kind.replace('-', '_')}_{preset}"):
             body.append(_figure(path, cap, d))
         w = res.summary.get("warnings") or []
         if w:
             body.append("<p>Simulation warnings: " + html.escape(", ".join(f"{x['code']} ×{x['count']}" for x in w))
-                        + "</p>")
+                        + " (explained under Reading).</p>")
         body.append(_provenance(res))
     if readings:
-        body.insert(2, "<h2>Reading</h2><ul>" + "".join(readings) + "</ul>")
+        body.insert(2, "<h2>Reading</h2><p>One answer per study; details, tables and figures in its section."
+                    "</p><ul class='answers'>" + "".join(readings) + "</ul>" + warnings_section(results))
     if contact:
         body.append("<h2>Chapter 3: contact analysis of the shipped real surface</h2>")
         body.append(contact_section(d))

@@ -16,11 +16,50 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
+from matplotlib.ticker import MaxNLocator
 
 from ..io_utils import write_atomic
 
 Figure = tuple[Path, str]
 _COLORS = {"deterministic": "k", "white": "tab:blue", "contact": "tab:red"}
+#: diverging colour map of the M_diff panels; its low end is red, so M_diff < 0 (unsafe) is red
+MDIFF_CMAP = "RdBu"
+
+
+def colour_name(rgba: tuple[float, ...]) -> str:
+    """"red", "blue" or "white/grey" for an RGBA colour (the dominant channel)."""
+    r, _g, b = rgba[:3]
+    if abs(r - b) < 0.15:
+        return "white/grey"
+    return "red" if r > b else "blue"
+
+
+def mdiff_colours() -> tuple[str, str]:
+    """(colour of negative, colour of positive) M_diff in :data:`MDIFF_CMAP`."""
+    cmap = plt.get_cmap(MDIFF_CMAP)
+    return colour_name(cmap(0.0)), colour_name(cmap(1.0))
+
+
+def tidy_x_ticks(ax: Any, nbins: int = 4) -> None:
+    """At most ``nbins`` x ticks, long numbers as a common ×10^k offset: no overlapping labels."""
+    ax.xaxis.set_major_locator(MaxNLocator(nbins=nbins))
+    ax.ticklabel_format(axis="x", style="sci", scilimits=(-3, 4), useOffset=True)
+
+
+def no_data(ax: Any, text: str) -> None:
+    """Replace an empty panel's blank 0–1 axes by a centred note (e.g. "no stick")."""
+    ax.set_xticks([])
+    ax.set_yticks([])
+    ax.text(0.5, 0.5, text, ha="center", va="center", transform=ax.transAxes, fontsize=10, color="0.35")
+
+
+def grid_edges(dd: Any, d_max: Any) -> tuple[Any, Any]:
+    """Masks of D_max values at the grid's end (the true limit is beyond the grid) and missing ones
+    (no stick-slip even at the grid's first D: the limit lies below the grid start)."""
+    v = np.asarray(d_max, dtype=float)
+    at_end = np.isfinite(v) & (v >= float(np.max(dd)) - 1e-12)
+    below = ~np.isfinite(v)
+    return at_end, below
 
 
 def _legend(ax: Any, size: int) -> None:
@@ -29,7 +68,8 @@ def _legend(ax: Any, size: int) -> None:
 
 
 def _save(fig: Any, path: Path) -> Path:
-    fig.tight_layout()
+    if fig.get_layout_engine() is None:
+        fig.tight_layout()
     write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"))
     plt.close(fig)
     return path
@@ -71,6 +111,7 @@ def damping_phase_figure(ds: xr.Dataset, directory: str | Path, prefix: str = "d
         ax.set_title(f"{m}, N = {nf:g} N" + (f" ({nrun} runs per D)" if m != "deterministic" else ""), fontsize=9)
         ax.set_xlabel("x1")
         ax.set_ylabel("x2")
+        tidy_x_ticks(ax)
         if j == 0:
             _legend(ax, 7)
     return [(_save(fig, d / f"{prefix}_phase.png"),
@@ -116,7 +157,7 @@ def damping_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "dampin
             z = ds["m_diff"].sel(stochastic_model=m).values
             if nn.size > 1:
                 lim = max(1.0, float(np.nanmax(np.abs(z))))
-                pc = ax.pcolormesh(dd, nn, z, shading="nearest", cmap="RdBu", vmin=-lim, vmax=lim)
+                pc = ax.pcolormesh(dd, nn, z, shading="nearest", cmap=MDIFF_CMAP, vmin=-lim, vmax=lim)
                 fig.colorbar(pc, ax=ax, label="M_diff")
                 ax.set_ylabel("N [N]")
             else:
@@ -125,44 +166,97 @@ def damping_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "dampin
                 ax.set_ylabel("M_diff")
             ax.set_xlabel("D")
             ax.set_title(f"M_diff = M_d − E[M_s], {m} (4.41); < 0: deterministic unsafe", fontsize=8)
+        neg, pos = mdiff_colours()
         out.append((_save(fig, d / f"{prefix}_mdiff.png"),
-                    "M_diff = M_d − E[M_s] (eq. 4.41, thesis Fig. 4.26a/4.29a): blue (negative) where the "
-                    "deterministic model predicts no stick-slip but stochastic runs still stick."))
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
-    ax = axes[0]
-    for m in models:
-        for i, nf in enumerate(nn):
-            p = ds["stick_probability"].sel(model=m).values[i]
-            lo = ds["stick_probability_low"].sel(model=m).values[i]
-            hi = ds["stick_probability_high"].sel(model=m).values[i]
-            ls = ["-", "--", ":", "-."][i % 4]
-            ax.plot(dd, p, ls, color=_COLORS.get(m, "k"), label=f"{m}, N={nf:g}" if len(nn) <= 4 else None)
+                    f"M_diff = M_d − E[M_s] (eq. 4.41, thesis Fig. 4.26a/4.29a): {neg} (negative) where the "
+                    "stochastic runs stick more often than the deterministic one — there the deterministic answer "
+                    f"is unsafe; {pos} (positive) where the deterministic run sticks more often."))
+    out.append(_probability_map(ds, d, prefix, models, dd, nn))
+    out.append(_dmax_figure(ds, d, prefix, models, dd, nn))
+    return out
+
+
+def _probability_map(ds: xr.Dataset, d: Path, prefix: str, models: list[str], dd: Any, nn: Any) -> Figure:
+    """P(stick-slip cycle) as a heat map over D × N, one panel per model, with the D_max lines
+    (small multiples instead of one panel of 3 × len(N) overlapping curves and bands)."""
+    fig, axes = plt.subplots(1, len(models), figsize=(4.2 * len(models), 3.6), squeeze=False, sharey=True,
+                             layout="constrained")
+    dd_det = ds["d_max"].sel(model="deterministic").values if "deterministic" in models else None
+    for j, m in enumerate(models):
+        ax = axes[0, j]
+        p = ds["stick_probability"].sel(model=m).values
+        if nn.size > 1:
+            pc = ax.pcolormesh(dd, nn, p, shading="nearest", cmap="Greys", vmin=0, vmax=1)
+            if dd_det is not None:
+                ax.plot(dd_det, nn, "o-", color="tab:orange", ms=3, lw=1.2, label=r"$D_\mathrm{max}^d$")
             if m != "deterministic":
-                ax.fill_between(dd, lo, hi, color=_COLORS.get(m, "k"), alpha=0.08)
-    ax.set_xlabel("D")
-    ax.set_ylabel("P(stick-slip cycle)")
-    ax.set_title("fraction of runs with a cycle, Clopper–Pearson 95 %", fontsize=9)
-    if len(nn) <= 4:
+                ax.plot(ds["d_max"].sel(model=m).values, nn, "s--", color=_COLORS.get(m, "k"), ms=3, lw=1.2,
+                        label=r"$D_\mathrm{max}^s$" + f" ({m})")
+            ax.plot(ds["d_hopf"].values, nn, ":", color="tab:green", lw=1.2, label=r"$D_H$")
+            ax.set_ylabel("N [N]" if j == 0 else "")
+        else:
+            lo = ds["stick_probability_low"].sel(model=m).values[0]
+            hi = ds["stick_probability_high"].sel(model=m).values[0]
+            ax.plot(dd, p[0], "o-", ms=3, color=_COLORS.get(m, "k"), label="P")
+            ax.fill_between(dd, lo, hi, color=_COLORS.get(m, "k"), alpha=0.15, label="95 % interval")
+            ax.set_ylim(-0.02, 1.02)
+            ax.set_ylabel("P(stick-slip cycle)" if j == 0 else "")
+        ax.set_xlabel("D")
+        ax.set_title(f"{m}: P(stick-slip cycle)", fontsize=9)
+        ax.xaxis.set_major_locator(MaxNLocator(nbins=5))
         _legend(ax, 7)
-    ax = axes[1]
+    if nn.size > 1:
+        fig.colorbar(pc, ax=list(axes[0]), label="P(stick-slip cycle)", fraction=0.03)
+    path = _save(fig, d / f"{prefix}_probability.png")
+    return (path, "Probability of a stick-slip cycle after the transient (fraction of runs; grey scale, white = "
+                  "0, black = 1) over damping D and normal force N, one panel per model; lines: D_max^d "
+                  "(deterministic, orange), D_max^s of the panel's model and the Hopf boundary D_H (dotted). "
+                  "Where the stochastic model's grey region reaches beyond the orange line, the deterministic "
+                  "limit is unsafe.")
+
+
+def _dmax_figure(ds: xr.Dataset, d: Path, prefix: str, models: list[str], dd: Any, nn: Any) -> Figure:
+    """D_max over N with the interval bars; limits at the grid's end drawn as ▲ "> grid", missing ones
+    (no cycle even at the first grid D) as ▼ "< grid start"."""
+    fig, ax = plt.subplots(figsize=(6.4, 3.8))
+    span = float(nn.max() - nn.min()) if nn.size > 1 else 1.0
     for k, m in enumerate(models):
         y = ds["d_max"].sel(model=m).values
         hi = ds["d_max_high"].sel(model=m).values
-        off = (k - 1) * 0.004 * (nn.max() - nn.min() + 1)
-        ax.plot(nn + off, y, "o-", color=_COLORS.get(m, "k"), label=f"D_max, {m}")
+        off = (k - 1) * 0.012 * (span if nn.size > 1 else 1.0)
+        x = nn + off
+        col = _COLORS.get(m, "k")
+        at_end, below = grid_edges(dd, y)
+        inside = ~at_end & ~below
+        ax.plot(x, np.where(below, np.nan, y), "-", color=col, lw=1, alpha=0.6)
+        ax.plot(x[inside], y[inside], "o", color=col, label=r"$D_\mathrm{max}$" + f", {m}")
+        if at_end.any():
+            ax.plot(x[at_end], y[at_end], "^", color=col, ms=8, mfc="none", mew=1.5)
+            for xi, yi in zip(x[at_end], y[at_end], strict=True):
+                ax.annotate("> grid", (xi, yi), textcoords="offset points", xytext=(0, 7), ha="center",
+                            fontsize=7, color=col)
+        if below.any():
+            y0 = float(np.min(dd))
+            ax.plot(x[below], np.full(int(below.sum()), y0), "v", color=col, ms=8, mfc="none", mew=1.5)
+            for xi in x[below]:
+                ax.annotate("< grid start", (xi, y0), textcoords="offset points", xytext=(0, -12), ha="center",
+                            fontsize=7, color=col)
         if m != "deterministic":
             top = np.where(np.isfinite(hi), hi, np.nanmax(dd))
-            ax.vlines(nn + off, y, top, color=_COLORS.get(m, "k"), alpha=0.5)
-    ax.plot(nn, ds["d_hopf"].values, "s--", color="0.4", label="D_H (linear)")
+            ax.vlines(x[inside], y[inside], top[inside], color=col, alpha=0.5)
+    ax.plot(nn, ds["d_hopf"].values, "s--", color="0.4", label=r"$D_H$ (linear)")
+    ax.axhspan(float(np.min(dd)), float(np.max(dd)), color="0.93", zorder=-1, label="D grid")
     ax.set_xlabel("N [N]")
     ax.set_ylabel("D")
-    ax.set_title("largest damping with stick-slip; bars: [D_max^s, D_hi]", fontsize=9)
+    ax.set_title(r"largest damping with stick-slip; bars: $[D_\mathrm{max}^s, D_\mathrm{hi}]$", fontsize=9)
+    lo_d, hi_d = float(np.min(dd)), float(np.max(dd))
+    ax.set_ylim(lo_d - 0.15 * (hi_d - lo_d + 1e-3), hi_d + 0.15 * (hi_d - lo_d + 1e-3))
+    ax.xaxis.set_major_locator(MaxNLocator(nbins=6))
     _legend(ax, 7)
-    out.append((_save(fig, d / f"{prefix}_dmax.png"),
-                "Left: estimated probability of a stick-slip cycle over D with Clopper–Pearson bands. Right: "
-                "D_max^d (deterministic), D_max^s (white, contact; bars up to D_hi, where the pooled upper bound "
-                "on P falls below p_detect) and the Hopf boundary D_H over N."))
-    return out
+    return (_save(fig, d / f"{prefix}_dmax.png"),
+            "D_max^d (deterministic), D_max^s (white, contact; bars up to D_hi, where the pooled upper bound on "
+            "P falls below p_detect) and the Hopf boundary D_H over N. ▲ \"> grid\": a cycle still at the last "
+            "grid D, so the limit lies beyond the grid; ▼ \"< grid start\": no cycle even at the first grid D.")
 
 
 def forcing_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "forcing") -> list[Figure]:
@@ -273,6 +367,7 @@ def normal_force_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "n
                 ax.set_title(f"{m}, D = {dval:g}", fontsize=9)
                 ax.set_xlabel("x1")
                 ax.set_ylabel("x2")
+                tidy_x_ticks(ax)
                 _legend(ax, 7)
             out.append((_save(fig, d / f"{prefix}_phase_D{di}.png"),
                         f"Phase diagrams at D = {dval:g} for each model and normal force (thesis Fig. 4.12–4.14, "
@@ -280,6 +375,7 @@ def normal_force_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "n
         fig, axes = plt.subplots(1, len(nn), figsize=(4.2 * len(nn), 3.2), squeeze=False)
         for k, nf in enumerate(nn):
             ax = axes[0, k]
+            drawn = False
             for m in models:
                 x = ds["x_gh"].sel(model=m, normal_force=nf).where(ds["in_window"].sel(model=m, normal_force=nf) > 0)
                 v = x.values[di].ravel()
@@ -287,15 +383,22 @@ def normal_force_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "n
                 if m == "deterministic":
                     for xv in np.unique(np.round(v, 12))[:5]:
                         ax.axvline(xv, color="k", lw=1)
+                        drawn = True
                 elif v.size > 1:
                     ax.hist(v, bins=25, density=True, histtype="step", color=_COLORS.get(m, "k"), label=m)
+                    drawn = True
             ax.set_title(f"N = {nf:g} N, D = {dval:g}", fontsize=9)
+            if not drawn:  # not a blank 0–1 frame that reads like a result
+                no_data(ax, "no stick after the transient\n(no X_gh in any model)")
+                continue
             ax.set_xlabel("X_gh")
             ax.set_ylabel("PDF")
+            tidy_x_ticks(ax)
             _legend(ax, 7)
         out.append((_save(fig, d / f"{prefix}_pdf_D{di}.png"),
                     f"PDFs of X_gh after the transient at D = {dval:g} (thesis Fig. 4.16, 4.17, 4.21; sheet 4.47, "
-                    "4.48, 4.52); black lines: deterministic values; empty: no stick-slip."))
+                    "4.48, 4.52); black lines: deterministic values; \"no stick\": no slip→stick transition after the "
+                    "transient in any model."))
     return out
 
 
