@@ -15,6 +15,23 @@ Conventions of the returned :class:`Surface`:
 * never a NaN: undefined (unmeasured) points are *reported* on reading and either filled by
   harmonic interpolation (``fill_undefined=True``, SurfaceTopography's
   ``interpolate_undefined_data``) or refused with a :class:`SurfaceError`.
+
+Integrity (issue 11: corrupted files must not pass silently):
+
+* **Checksums** where the format carries one: an ``.x3p`` (ISO 5436-2) is a zip archive whose
+  entries carry CRC-32s, whose ``main.xml`` records the MD5 of the binary point data
+  (``MD5ChecksumPointData``) and whose ``md5checksum.hex`` holds the MD5 of ``main.xml``.
+  SurfaceTopography does not verify them, so :func:`verify_checksums` does, before reading;
+  a mismatch is refused with a :class:`SurfaceError` that names the file.
+* **Plausibility** for all other files (:func:`plausibility_warnings`): an *isolated spike* is
+  a point of the plane-detrended map that lies more than ``SPIKE_SQ`` (20) × Sq outside the
+  height range of the 3×3-median-filtered map (the median removes single points and pairs, so
+  that range is the range of the surface without them; Sq is the RMS of the plane-detrended
+  map as read).  Measured features — dust, pits, dropouts of a few pixels — stay within it on
+  all seven shared instrument files (largest excess 14 Sq, mnt-1), while a flipped exponent or
+  high mantissa byte puts a value hundreds to 10³⁰ Sq away.  A spike is a *warning* (code
+  ``implausible-spike``) stored in ``Surface.info["warnings"]``, naming the file, the number
+  and the worst excess; the command line prints it on stderr and in the JSON ``warnings``.
 """
 
 from __future__ import annotations
@@ -36,12 +53,15 @@ __all__ = [
     "DEFAULT_SURFACE_NAME",
     "MATRIX_SUFFIXES",
     "MIN_GRID_POINTS",
+    "SPIKE_SQ",
     "Surface",
     "SurfaceError",
     "default_surface_path",
     "file_sha256",
+    "plausibility_warnings",
     "read_surface",
     "surface_from_array",
+    "verify_checksums",
 ]
 
 #: File name of the measured surface shipped with the package (see ``data/NOTICE.md``).
@@ -52,6 +72,9 @@ MATRIX_SUFFIXES = (".npy", ".txt", ".csv")
 
 #: The summit rule needs two neighbours on each side, so a grid needs at least 5 points.
 MIN_GRID_POINTS = 5
+
+#: A point more than this many Sq outside the range of the 3×3-median map is a spike.
+SPIKE_SQ = 20.0
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -215,21 +238,129 @@ def read_surface(
         raise SurfaceError(f"no such file: {p}")
     info: dict[str, Any] = {"file": p.name, "sha256": file_sha256(p)}
     if p.suffix.lower() in MATRIX_SUFFIXES:
-        return _read_matrix(
+        surface = _read_matrix(
             p,
             physical_size_m=physical_size_m,
             height_unit=height_unit,
             fill_undefined=fill_undefined,
             info=info,
         )
-    return _read_instrument(
-        p,
-        physical_size_m=physical_size_m,
-        height_unit=height_unit,
-        fill_undefined=fill_undefined,
-        channel=channel,
-        info=info,
-    )
+    else:
+        info["checksum"] = verify_checksums(p)
+        surface = _read_instrument(
+            p,
+            physical_size_m=physical_size_m,
+            height_unit=height_unit,
+            fill_undefined=fill_undefined,
+            channel=channel,
+            info=info,
+        )
+    surface.info["warnings"] = plausibility_warnings(surface.heights_m, name=p.name)
+    return surface
+
+
+def verify_checksums(path: str | Path) -> str:
+    """Verify the checksums a file format carries; return what was checked.
+
+    ``.x3p`` (ISO 5436-2): the zip CRC-32 of every entry, the MD5 of the binary point data
+    against ``MD5ChecksumPointData`` in ``main.xml`` and the MD5 of ``main.xml`` against
+    ``md5checksum.hex`` (where present).  Other formats carry no checksum: ``"none"``.
+
+    Raises
+    ------
+    SurfaceError
+        A checksum does not match (the file is corrupt); the message names the file.
+    """
+    p = Path(path)
+    if p.suffix.lower() != ".x3p":
+        return "none"
+    import re
+    import zipfile
+
+    try:
+        with zipfile.ZipFile(p) as zf:
+            bad = zf.testzip()  # reads every entry and checks its CRC-32
+            if bad is not None:
+                raise SurfaceError(f"{p.name} is corrupt: the CRC-32 of its entry {bad!r} does not match")
+            names = set(zf.namelist())
+            main = zf.read("main.xml") if "main.xml" in names else None
+            checked = ["zip CRC-32"]
+            if main is not None and "md5checksum.hex" in names:
+                expected = zf.read("md5checksum.hex").decode("ascii", "replace").split()
+                if expected and expected[0].lower() != hashlib.md5(main).hexdigest():
+                    raise SurfaceError(f"{p.name} is corrupt: the MD5 of main.xml does not match md5checksum.hex")
+                checked.append("main.xml MD5")
+            if main is not None:
+                text = main.decode("utf-8", "replace")
+                link = re.search(r"<PointDataLink>\s*([^<]+?)\s*</PointDataLink>", text)
+                md5 = re.search(r"<MD5ChecksumPointData>\s*([0-9A-Fa-f]{32})\s*</MD5ChecksumPointData>", text)
+                if link and md5 and link.group(1) in names:
+                    if hashlib.md5(zf.read(link.group(1))).hexdigest() != md5.group(1).lower():
+                        raise SurfaceError(
+                            f"{p.name} is corrupt: the MD5 of its point data ({link.group(1)}) does not "
+                            "match MD5ChecksumPointData in main.xml"
+                        )
+                    checked.append("point-data MD5")
+    except SurfaceError:
+        raise
+    except (zipfile.BadZipFile, OSError, KeyError, EOFError) as exc:  # zlib errors are OSError-like
+        raise SurfaceError(f"{p.name} is corrupt: {_one_line(exc)}") from None
+    except Exception as exc:  # zlib.error and friends: any failure to decompress is corruption
+        raise SurfaceError(f"{p.name} is corrupt: {_one_line(exc)}") from None
+    return ", ".join(checked)
+
+
+def plausibility_warnings(
+    heights_m: npt.ArrayLike, *, name: str = "the height map", spike_sq: float = SPIKE_SQ
+) -> list[dict[str, Any]]:
+    """Plausibility check of a height map [m]: isolated spikes (module doc), as warnings.
+
+    A point is a spike when its plane-detrended height lies more than ``spike_sq`` × Sq above
+    the maximum or below the minimum of the 3×3-median-filtered, plane-detrended map (Sq: RMS
+    of the plane-detrended map).  Returns a list of ``{"code", "message", ...}`` dictionaries
+    (empty when the map is plausible).
+    """
+    from scipy import ndimage
+
+    z = np.asarray(heights_m, dtype=np.float64)
+    if z.ndim != 2 or min(z.shape) < 3:
+        return []
+    if not np.all(np.isfinite(z)):
+        n_bad = int(np.count_nonzero(~np.isfinite(z)))
+        return [{"code": "non-finite-heights", "count": n_bad,
+                 "message": f"{name}: {n_bad} height(s) are NaN or infinite; the file is corrupt "
+                            "or has undefined points (--fill-undefined)"}]  # fmt: skip
+    nx, ny = z.shape
+    ii, jj = np.meshgrid(np.arange(nx, dtype=np.float64), np.arange(ny, dtype=np.float64), indexing="ij")
+    design = np.stack([np.ones(z.size), ii.ravel(), jj.ravel()], axis=1)
+    with np.errstate(all="ignore"):
+        coef, *_ = np.linalg.lstsq(design, z.ravel(), rcond=None)
+        r = z - (design @ coef).reshape(z.shape)
+        sq = float(np.sqrt(np.mean(r * r)))
+    if not (math.isfinite(sq) and sq > 0.0):
+        return []
+    m = ndimage.median_filter(r, size=3, mode="nearest")
+    excess = np.maximum(r - m.max(), m.min() - r) / sq
+    spikes = excess > spike_sq
+    n = int(np.count_nonzero(spikes))
+    if n == 0:
+        return []
+    worst = float(excess.max())
+    i, j = (int(v) for v in np.unravel_index(int(np.argmax(excess)), z.shape))
+    return [
+        {
+            "code": "implausible-spike",
+            "count": n,
+            "worst_excess_sq": worst,
+            "worst_index": [i, j],
+            "message": (
+                f"{name}: {n} isolated spike(s) more than {spike_sq:g} Sq outside the height range "
+                f"of the 3x3-median-filtered map (worst {worst:.3g} Sq at point ({i}, {j})); the "
+                "file may be corrupt - check it against the instrument's original, or remove the "
+                "spikes (--median-radius 1) before trusting Sq, summits or mu"
+            ),
+        }
+    ]
 
 
 # --------------------------------------------------------------------------------------

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+import zipfile
 from pathlib import Path
 
 import numpy as np
@@ -9,12 +11,15 @@ import pytest
 
 from stochfric.surface.io import (
     DEFAULT_SURFACE_NAME,
+    SPIKE_SQ,
     Surface,
     SurfaceError,
     default_surface_path,
     file_sha256,
+    plausibility_warnings,
     read_surface,
     surface_from_array,
+    verify_checksums,
 )
 
 SHARED = Path(__file__).resolve().parents[4] / "shared" / "data" / "topographies"
@@ -161,3 +166,100 @@ def test_instrument_file_with_undefined_points() -> None:
     assert s.n_undefined_filled == 116
     assert np.isfinite(s.heights_m).all()
     assert s.nb_grid_pts == (640, 480)
+
+
+# ---------------------------------------------------------------- integrity (issue 11)
+
+ALL_SHARED = ["al3d-1.al3d", "frt-1.frt", "mnt-1.mnt", "opd-1.opd", "plu-1.plu", "sur-2.sur", "x3p-2.x3p"]
+
+
+def _shared(name: str) -> Path:
+    path = SHARED / name
+    if not path.is_file():
+        if os.environ.get("CI"):
+            pytest.fail(f"{path} is missing (CI is set: the shared instrument files must be present)")
+        pytest.skip(f"{path} not available")
+    return path
+
+
+def _detrended_sq(z: np.ndarray) -> float:
+    nx, ny = z.shape
+    ii, jj = np.meshgrid(np.arange(nx), np.arange(ny), indexing="ij")
+    a = np.stack([np.ones(z.size), ii.ravel(), jj.ravel()], axis=1)
+    coef, *_ = np.linalg.lstsq(a, z.ravel(), rcond=None)
+    return float(np.std(z.ravel() - a @ coef))
+
+
+def _flip(src: Path, dst: Path) -> Path:
+    """Invert 4 consecutive bytes at three places in the second half of the file."""
+    data = bytearray(src.read_bytes())
+    n = len(data)
+    for start in (n // 2, n // 2 + 40_001, (3 * n) // 4):
+        for k in range(4):
+            data[start + k] ^= 0xFF
+    dst.write_bytes(bytes(data))
+    return dst
+
+
+@pytest.mark.parametrize("name", ALL_SHARED)
+def test_no_real_shared_file_trips_the_plausibility_check(name: str) -> None:
+    s = read_surface(_shared(name), fill_undefined=True)
+    assert s.info["warnings"] == []
+    # margin: the largest excess over the median map's range stays well below SPIKE_SQ
+    assert plausibility_warnings(s.heights_m, spike_sq=0.9 * SPIKE_SQ) == []
+
+
+@pytest.mark.parametrize(("name", "sq_nm"), [("plu-1.plu", 18.28), ("sur-2.sur", 17.29)])
+def test_flipped_bytes_are_reported_and_name_the_file(name: str, sq_nm: float, tmp_path: Path) -> None:
+    good = read_surface(_shared(name), fill_undefined=True)
+    assert _detrended_sq(np.asarray(good.heights_m)) == pytest.approx(sq_nm * 1e-9, rel=1e-3)  # PROVENANCE.md
+    bad_path = _flip(_shared(name), tmp_path / f"corrupt-{name}")
+    bad = read_surface(bad_path, fill_undefined=True)
+    assert _detrended_sq(np.asarray(bad.heights_m)) > 3 * sq_nm * 1e-9  # the corruption matters
+    (w,) = bad.info["warnings"]
+    assert w["code"] == "implausible-spike"
+    assert f"corrupt-{name}" in w["message"] and w["worst_excess_sq"] > SPIKE_SQ
+
+
+def test_spike_rule_on_a_synthetic_surface() -> None:
+    rng = np.random.default_rng(3)
+    z = rng.normal(size=(64, 64)) * 1e-7  # Sq = 0.1 µm
+    assert plausibility_warnings(z) == []
+    z[20, 30] = 40e-7  # 40 Sq: beyond the median map's range (about ±4 Sq) by > 20 Sq
+    (w,) = plausibility_warnings(z, name="syn")
+    assert w["count"] == 1 and w["worst_index"] == [20, 30] and w["message"].startswith("syn: ")
+    z[20, 30] = 15e-7  # 15 Sq: within 20 Sq of the range
+    assert plausibility_warnings(z) == []
+    # a 3x3 block is a feature, not an isolated spike: the median map contains it
+    z[10:13, 10:13] = 60e-7
+    assert plausibility_warnings(z) == []
+
+
+def test_x3p_checksums_are_verified(tmp_path: Path) -> None:
+    src = _shared("x3p-2.x3p")
+    assert verify_checksums(src) == "zip CRC-32, main.xml MD5, point-data MD5"
+    assert verify_checksums(default_surface_path()) == "none"
+    # 1) a flipped byte inside the compressed data: the zip CRC (or inflate) fails
+    bad = _flip(src, tmp_path / "flipped.x3p")
+    with pytest.raises(SurfaceError, match=r"flipped\.x3p is corrupt"):
+        read_surface(bad)
+    # 2) a consistent zip whose point data no longer match the MD5 recorded in main.xml
+    repacked = tmp_path / "md5.x3p"
+    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(repacked, "w", zipfile.ZIP_DEFLATED) as zout:
+        for item in zin.infolist():
+            data = zin.read(item.filename)
+            if item.filename == "bindata/data.bin":
+                data = data[:100] + bytes([data[100] ^ 0x40]) + data[101:]
+            zout.writestr(item, data)
+    with pytest.raises(SurfaceError, match=r"md5\.x3p is corrupt: the MD5 of its point data"):
+        read_surface(repacked)
+    # 3) main.xml edited: md5checksum.hex no longer matches
+    edited = tmp_path / "xml.x3p"
+    with zipfile.ZipFile(src) as zin, zipfile.ZipFile(edited, "w", zipfile.ZIP_DEFLATED) as zout:
+        for item in zin.infolist():
+            data = zin.read(item.filename)
+            if item.filename == "main.xml":
+                data = data.replace(b"</p:ISO5436_2>", b"<!-- edited --></p:ISO5436_2>")
+            zout.writestr(item, data)
+    with pytest.raises(SurfaceError, match=r"xml\.x3p is corrupt: the MD5 of main.xml"):
+        read_surface(edited)
