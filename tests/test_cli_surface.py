@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 from pathlib import Path
 
 import numpy as np
@@ -188,3 +189,79 @@ def test_parsers() -> None:
         parse_size_um("a:b")
     with pytest.raises(SurfaceError):
         parse_size_um("1:-2")
+
+
+# ---------------------------------------------------------------- every shared file (issue 9 §1, §6)
+
+ALL_SHARED = ["al3d-1.al3d", "frt-1.frt", "mnt-1.mnt", "opd-1.opd", "plu-1.plu", "sur-2.sur", "x3p-2.x3p"]
+
+
+def _shared(name: str) -> Path:
+    path = SHARED / name
+    if not path.is_file():
+        if os.environ.get("CI"):
+            pytest.fail(f"{path} is missing (CI is set: the shared instrument files must be present)")
+        pytest.skip(f"{path} not available")
+    return path
+
+
+@pytest.mark.parametrize("name", ALL_SHARED)
+def test_every_shared_file_runs_surface_and_contact(app: typer.Typer, name: str) -> None:
+    """surface + contact (brake-pad, dc04) on each real file; the default range is sensible."""
+    path = str(_shared(name))
+    code, out, err = _run(app, "surface", path, "--fill-undefined", "--material", "brake-pad", "--json")
+    assert code == 0, err
+    s = json.loads(out)
+    assert s["n_summits"] >= 10 and s["summit_height_std_m"] > 0
+    assert isinstance(s["warnings"], list)
+    for material in ("brake-pad", "dc04"):
+        code, out, err = _run(app, "contact", path, "--fill-undefined", "--material", material, "--json")
+        assert code == 0, err
+        d = json.loads(out)
+        mu = np.array(d["mu"], dtype=float)
+        assert np.all(np.isfinite(mu)) and np.all(mu > 0)
+        # the surface-derived default range starts at a few contacts and reaches the bulk of
+        # the summits (>= 10 contacts) even where the highest summit is an outlier
+        assert d["n_contacts"][0] >= 1 and d["n_contacts"][-1] >= 10
+        assert np.all(np.array(d["area_fraction"]) <= 1.0)
+        codes = {w["code"] for w in d["warnings"]}
+        # every warning is on stderr too, one line each
+        assert err.count("warning: [") == len(d["warnings"])
+        if material == "dc04" and d["plasticity_index"] > 1:
+            assert "plastic" in codes
+
+
+def test_contact_warnings_of_issue_9(app: typer.Typer) -> None:
+    """plu-1 with the pad: μ ≫ 1; mnt-1: few contacts; the default surface pushed 100–200 µm: A_c > A_nom."""
+    code, out, err = _run(app, "contact", str(_shared("plu-1.plu")), "--material", "brake-pad", "--json")
+    assert code == 0
+    d = json.loads(out)
+    assert max(d["mu"]) > 1
+    assert "mu-above-one" in {w["code"] for w in d["warnings"]}
+    assert "warning: [mu-above-one] plu-1.plu: mu > 1" in err
+    code, out, err = _run(app, "contact", str(_shared("mnt-1.mnt")), "--material", "brake-pad", "--json")
+    d = json.loads(out)
+    few = [w for w in d["warnings"] if w["code"] == "few-contacts"]
+    assert few and all(d["n_contacts"][i] < 10 for i in few[0]["indices"])
+    code, out, err = _run(app, "contact", "--material", "brake-pad", "--approach-um", "100:200:3")
+    assert code == 0
+    assert "warning: [area-fraction-above-one]" in err
+    assert "use smaller approaches" in err
+
+
+def test_contact_rejects_a_corrupt_x3p_and_warns_on_a_corrupt_plu(app: typer.Typer, tmp_path: Path) -> None:
+    data = bytearray(_shared("x3p-2.x3p").read_bytes())
+    data[len(data) // 2] ^= 0xFF
+    bad = tmp_path / "bad.x3p"
+    bad.write_bytes(bytes(data))
+    code, _, err = _run(app, "contact", str(bad), "--material", "dc04")
+    assert code == 2 and "error: bad.x3p is corrupt" in err
+    data = bytearray(_shared("plu-1.plu").read_bytes())
+    for k in range(4):
+        data[len(data) // 2 + k] ^= 0xFF
+    bad = tmp_path / "bad.plu"
+    bad.write_bytes(bytes(data))
+    code, out, err = _run(app, "surface", str(bad), "--json")
+    assert code == 0
+    assert "warning: [implausible-spike] bad.plu" in err
+    assert json.loads(out)["warnings"][0]["code"] == "implausible-spike"

@@ -19,6 +19,7 @@ import typer
 
 from stochfric.contact.asperity import ContactError, ContactResult, asperity_contact
 from stochfric.contact.materials import Material, MaterialError, load_material, material_names
+from stochfric.contact.validity import plasticity_validity, result_validity
 from stochfric.io_utils import OutputPathError, check_output_path
 from stochfric.surface.io import Surface, SurfaceError, default_surface_path, read_surface
 from stochfric.surface.preprocess import Preparation, prepare
@@ -136,6 +137,28 @@ def _echo_json(payload: dict[str, Any]) -> None:
     typer.echo(json.dumps(payload, indent=2, allow_nan=False))
 
 
+def _surface_warnings(raw: Surface) -> list[dict[str, Any]]:
+    return [dict(w) for w in raw.info.get("warnings", [])]
+
+
+def _echo_warnings(items: list[dict[str, Any]]) -> None:
+    """One line ``warning: [code] message`` per warning on stderr."""
+    for w in items:
+        typer.echo(f"warning: [{w['code']}] {w['message']}", err=True)
+
+
+def _summit_gamma(material: Material, summits: Summits) -> float | None:
+    if summits.count < 2:
+        return None
+    beta = float(np.mean(summits.radius_m))
+    sigma = float(np.std(summits.heights_m))
+    if not (sigma > 0.0 and beta > 0.0):
+        return None
+    return plasticity_index(
+        e_star_pa=material.e_star_pa, hardness_pa=material.hardness, sigma_s_m=sigma, beta_mean_m=beta
+    )
+
+
 # ------------------------------------------------------------------ options
 
 FileArg = Annotated[
@@ -226,6 +249,7 @@ def surface_command(
             "fine": fine_stats,
             "coarse": coarse_stats,
         }
+        warn = _surface_warnings(raw)
         if mat is not None:
             g_coarse = _gamma(mat, coarse_stats)
             g_fine = _gamma(mat, fine_stats)
@@ -233,6 +257,9 @@ def surface_command(
             payload["plasticity_index"] = g_coarse
             payload["plasticity_verdict"] = plasticity_verdict(g_coarse) if g_coarse is not None else None
             payload["plasticity_index_fine"] = g_fine
+            if g_coarse is not None:
+                warn += [w.to_dict() for w in plasticity_validity(g_coarse, name=Path(record["file"]).name)]
+        payload["warnings"] = warn
         figures: list[str] = []
         if plot is not None:
             from stochfric.surface.figures import write_surface_figures
@@ -246,6 +273,7 @@ def surface_command(
             payload["figures"] = figures
     except _INPUT_ERRORS as exc:
         raise _fail(str(exc)) from None
+    _echo_warnings(payload["warnings"])
     if as_json:
         _echo_json(payload)
         return
@@ -292,8 +320,29 @@ def contact_command(
     ] = None,
     method: Annotated[
         MethodChoice,
-        typer.Option("--method", help="asperity (GW/Hertz sums) or halfspace (boundary elements)."),
+        typer.Option(
+            "--method",
+            help="asperity (GW/Hertz sums) or halfspace (boundary elements at the GW loads: equal-load comparison).",
+        ),
     ] = MethodChoice.asperity,
+    bem_refine: Annotated[
+        int,
+        typer.Option(
+            "--bem-refine",
+            help="halfspace: solve on a K-times finer grid (cubic-spline interpolation); 1 = the analysed grid.",
+            min=1,
+            max=4,
+        ),
+    ] = 1,
+    bem_frame: Annotated[
+        int | None,
+        typer.Option(
+            "--bem-frame",
+            help="halfspace: border frame [points] lowered out of reach; default the summit rule's "
+            "margin (2 thesis, 1 8-neighbour).",
+            min=0,
+        ),
+    ] = None,
     median_radius: MedianOpt = 0,
     step: StepOpt = 1,
     detrend: DetrendOpt = "plane",
@@ -317,7 +366,7 @@ def contact_command(
         mat = load_material(material)
         prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
         approach = parse_approach_um(approach_um) if approach_um is not None else None
-        _raw, _fine, coarse, _fs, cs, record = _load_and_prepare(
+        raw, _fine, coarse, _fs, cs, record = _load_and_prepare(
             file,
             size_um=size_um,
             height_unit=height_unit,
@@ -332,18 +381,30 @@ def contact_command(
         if method is MethodChoice.halfspace:
             from stochfric.contact.halfspace import halfspace_contact
 
-            main = halfspace_contact(coarse, mat, gw.approach_m, summits=cs, preparation=dict(gw.preparation))
+            main = halfspace_contact(
+                coarse, mat, normal_force_n=gw.normal_force_n, summits=cs, frame_points=bem_frame,
+                refine=bem_refine, preparation=dict(gw.preparation),
+            )  # fmt: skip
             results = [gw, main]
         payload = main.to_dict()
         if main is not gw:
             payload["asperity"] = {
+                "comparison": "equal load: the half-space carries the GW normal force",
+                "approach_m": gw.to_dict()["approach_m"],
                 "contact_area_m2": gw.to_dict()["contact_area_m2"],
+                "area_fraction": gw.to_dict()["area_fraction"],
                 "pressure_pa": gw.to_dict()["pressure_pa"],
                 "n_contacts": [int(v) for v in gw.n_contacts],
                 "mu": gw.to_dict()["mu"],
                 "area_ratio_halfspace_to_asperity": _ratio(main.contact_area_m2, gw.contact_area_m2),
-                "pressure_ratio_halfspace_to_asperity": _ratio(main.pressure_pa, gw.pressure_pa),
+                "mu_ratio_halfspace_to_asperity": _ratio(main.mu, gw.mu),
+                "approach_ratio_halfspace_to_asperity": _ratio(main.approach_m, gw.approach_m),
             }
+        gamma = _summit_gamma(mat, cs)
+        payload["plasticity_index"] = gamma
+        payload["warnings"] = _surface_warnings(raw) + [
+            w.to_dict() for w in result_validity(gw, plasticity_index=gamma, name=Path(record["file"]).name)
+        ]
         if output is not None:
             payload["output"] = str(main.to_netcdf(output))
         if plot is not None:
@@ -352,6 +413,7 @@ def contact_command(
             payload["figures"] = [str(p) for p in write_contact_figures(plot, results)]
     except _INPUT_ERRORS as exc:
         raise _fail(str(exc)) from None
+    _echo_warnings(payload["warnings"])
     if as_json:
         _echo_json(payload)
         return
@@ -368,6 +430,10 @@ def contact_command(
             f"{main.area_fraction[k]:10.4g} {main.pressure_pa[k] / 1e6:10.4g} "
             f"{int(main.n_contacts[k]):9d} {main.mu[k]:7.4g}"
         )
+    if main is not gw:
+        ratio = payload["asperity"]["area_ratio_halfspace_to_asperity"]
+        typer.echo("equal load: A_c(BEM)/A_c(GW) = mu(BEM)/mu(GW): " + " ".join(_fmt(r, 1.0) for r in ratio))
+        typer.echo("GW mu:  " + " ".join(f"{v:.4g}" for v in gw.mu))
     for key in ("output",):
         if key in payload:
             typer.echo(f"{key:<9} {payload[key]}")

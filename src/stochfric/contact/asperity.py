@@ -48,7 +48,8 @@ FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
 
 #: Default approach range in units of σ_S: ``linspace(σ_S/4, 3σ_S, 12)`` (ratio 1:12 as the
-#: thesis's brake range 1…12 µm).
+#: thesis's brake range 1…12 µm), stretched when the highest summit stands far above the rest
+#: (see :func:`default_approach_m`).
 DEFAULT_APPROACH_SIGMA = (0.25, 3.0)
 DEFAULT_APPROACH_NUM = 12
 
@@ -83,7 +84,15 @@ def _as_approach(approach_m: npt.ArrayLike) -> FloatArray:
 
 
 def default_approach_m(summits: Summits, num: int = DEFAULT_APPROACH_NUM) -> FloatArray:
-    """Default approaches ``linspace(σ_S/4, 3σ_S, num)`` [m], σ_S = std of summit heights.
+    """Default approaches ``linspace(u_hi/12, u_hi, num)`` [m] from the surface's own summits.
+
+    ``u_hi = max(3 σ_S, z_s,max − z̄_s)``, σ_S the standard deviation and z̄_s the mean of the
+    summit heights.  For a Gaussian-like surface the highest of K summits lies about
+    √(2 ln K) σ_S ≈ 3 σ_S above the mean, so this is ``linspace(σ_S/4, 3σ_S, num)`` (the thesis's
+    ratio 1:12): the flat reaches down to about the mean summit height.  When the highest
+    summits stand far above the rest (a dust grain or an outlier: 8–22 σ_S on frt-1, sur-2,
+    mnt-1 of the shared files), 3 σ_S would never leave those few summits, so the range is
+    stretched to reach the mean summit height all the same.
 
     The range follows the surface: real measurements span nm to tens of µm in roughness, so
     the thesis's µm ranges (brake 1…12 µm, sheet 0.1…0.8 µm) are not a usable default.
@@ -93,11 +102,13 @@ def default_approach_m(summits: Summits, num: int = DEFAULT_APPROACH_NUM) -> Flo
             f"{summits.count} summit(s) found: the default approach range needs the summit "
             "height spread σ_S; give an explicit range"
         )
-    sigma = float(np.std(summits.heights_m))
+    z = np.asarray(summits.heights_m, dtype=np.float64)
+    sigma = float(np.std(z))
     if not sigma > 0.0:
         raise ContactError("all summits have the same height (σ_S = 0); give an explicit range")
     lo, hi = DEFAULT_APPROACH_SIGMA
-    return np.linspace(lo * sigma, hi * sigma, int(num))
+    u_hi = max(hi * sigma, float(z.max() - z.mean()))
+    return np.linspace(u_hi * lo / hi, u_hi, int(num))
 
 
 def asperity_sums(

@@ -154,3 +154,23 @@ def test_failed_write_leaves_no_file(tmp_path: Path, monkeypatch: pytest.MonkeyP
     with pytest.raises(OSError, match="disk full"):
         res.to_netcdf(tmp_path / "c.nc")
     assert list(tmp_path.iterdir()) == []
+
+
+def test_default_range_reaches_the_bulk_when_the_highest_summit_is_an_outlier() -> None:
+    """u_hi = max(3 σ_S, z_max − z̄_s): unchanged for Gaussian-like summits, stretched by an outlier."""
+    s = _surface()
+    sm = summits_of(s)
+    z = sm.heights_m
+    sigma = float(np.std(z))
+    assert z.max() - z.mean() < 3 * sigma  # Gaussian-like: the 3 σ_S branch
+    np.testing.assert_allclose(default_approach_m(sm), np.linspace(sigma / 4, 3 * sigma, 12))
+    h = np.array(s.heights_m)
+    i, j = int(sm.i[0]), int(sm.j[0])
+    h[i, j] += 30 * sigma  # one summit 30 σ_S up (a dust grain)
+    sm2 = summits_of(Surface(heights_m=h, physical_size_m=s.physical_size_m))
+    z2 = sm2.heights_m
+    u = default_approach_m(sm2)
+    assert u[-1] == pytest.approx(z2.max() - z2.mean()) and u[-1] > 3 * float(np.std(z2))
+    assert u[0] == pytest.approx(u[-1] / 12)
+    res = asperity_contact(Surface(heights_m=h, physical_size_m=s.physical_size_m), sm2, get_material("dc04"))
+    assert res.n_contacts[0] == 1 and res.n_contacts[-1] >= 10
