@@ -93,7 +93,7 @@ def test_human_output_and_report(app: typer.Typer, tmp_path: Path) -> None:
         (["study", "damping", "--white-intensity", "pink"], "white_intensity"),
         (["study", "forcing", "--white-intensity", "sigma"], "'sigma_mu', 'spectral_level' or 'thesis'"),
         (["study", "lyapunov", "--path-coordinate", "global"], "path_coordinate"),
-        (["study", "normal-force", "--path-coordinate", "x"], "'mass' or 'relative'"),
+        (["study", "normal-force", "--path-coordinate", "x"], "'mass', 'relative' or 'position'"),
         (["study", "damping", "--phase-damping", "0.1,1.5"], "phase_damping"),
         (["study", "damping", "--phase-force", "-5"], "phase_force"),
     ],

@@ -72,6 +72,7 @@ class WhiteIntensityChoice(StrEnum):
 class PathChoice(StrEnum):
     mass = "mass"
     relative = "relative"
+    position = "position"
 
 
 def fail(message: str) -> typer.Exit:

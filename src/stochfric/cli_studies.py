@@ -35,7 +35,8 @@ OutOpt = Annotated[Path | None, typer.Option("--out", help="Write <study>.nc and
 ReportOpt = Annotated[Path | None, typer.Option("--report", help="Write an HTML report into this directory.")]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON object.")]
 PathOpt = Annotated[str, typer.Option(
-    "--path-coordinate", help="Where the contact process is read: mass (thesis, path of the mass) | relative.")]
+    "--path-coordinate", help="Where the contact process is read: mass (thesis text, path of the mass) | relative | "
+                              "position (reproduction mode: at x1, eq. 4.36/4.38 as printed; euler only).")]
 WhiteOpt = Annotated[str, typer.Option(
     "--white-intensity", help="σ_ζ of the white-noise model: sigma_mu (thesis, σ_ζ = σ_μ(p)) | spectral_level "
                               "(the process's low-frequency spectral level) | thesis (reproduction mode: printed "

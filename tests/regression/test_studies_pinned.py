@@ -46,10 +46,17 @@ def test_forcing_and_lyapunov_brake() -> None:
                                PIN["forcing"], rtol=RTOL)
     ly = lyapunov_study(LyapunovConfig(normal_forces=(4000.0,), eta=(1.2, 2.0), runs=3, seed=2, tau_end=100.0))
     s = ly.to_json_dict()
-    got = np.array(s["lyapunov"]["deterministic"], dtype=float).ravel()
+    # issue 10: the numbers of (4.43)/(4.44) as printed are unchanged; since then they are kept under
+    # `separation_index_443` (with a status: "nonlinear" where the twin check finds w not ∝ δ, here
+    # white, q = 5e-5, η = 2.0), and `lyapunov` is the δ-independent exponent per transition.
+    got = np.array(s["separation_index_443"]["deterministic"], dtype=float).ravel()
     np.testing.assert_allclose(got, PIN["lyapunov_det"], rtol=RTOL)
-    got = np.array(s["lyapunov"]["white"], dtype=float).ravel()
+    got = np.array(s["separation_index_443"]["white"], dtype=float).ravel()
     np.testing.assert_allclose(got, PIN["lyapunov_white"], rtol=RTOL)
+    assert list(np.array(s["separation_index_status"]["white"]).ravel()) == ["ok", "nonlinear", "ok", "ok"]
+    for m in ("deterministic", "white", "contact"):
+        lam = np.array(s["lyapunov"][m], dtype=float).ravel()
+        np.testing.assert_array_equal(np.isnan(lam), np.array(s["status"][m]).ravel() != "ok")
 
 
 #: generated once with the calls above (seeded), numpy 2.4.6, numba 0.68.1, Python 3.11.7

@@ -44,7 +44,7 @@ MODELS = ("deterministic", "white", "contact")
 #: √Δτ increment — a reproduction mode whose intensity depends on the time step.
 WHITE_INCREMENTS = ("ito", "thesis")
 INTEGRATORS = ("euler", "milstein", "accurate")
-PATH_COORDINATES = {"mass": _k.PATH_MASS, "relative": _k.PATH_RELATIVE}
+PATH_COORDINATES = {"mass": _k.PATH_MASS, "relative": _k.PATH_RELATIVE, "position": _k.PATH_POSITION}
 
 #: Above this Δτ the Euler methods are refused: fewer than ~25 steps per natural period
 #: 2π turn the solution's character (thesis Fig. 4.7/4.8 already shows it at 0.05/0.1).
@@ -283,8 +283,10 @@ def simulate(
     runs, seed, common_random_numbers:
         Monte Carlo runs per set; the root seed; see the module docstring.
     path_coordinate:
-        Where the contact process is read: ``mass`` (thesis: the mass's own path |Δx1| in
-        slip) or ``relative`` (relative sliding distance |γ0 − x2|Δτ) (METHOD §7.7).
+        Where the contact process is read: ``mass`` (thesis text §4.1.3: the mass's own path
+        |Δx1| in slip), ``relative`` (relative sliding distance |γ0 − x2|Δτ) (METHOD §7.7) or
+        ``position`` (reproduction mode: μ̂ at the mass position x1, μ̂_SD(X_1, ξ) as printed in
+        eq. 4.36/4.38; ``euler`` only; docs/friction_process.md).
     save_trajectory, save_every:
         Keep every ``save_every``-th grid state (τ, x1, x2).
     max_events:
@@ -329,7 +331,13 @@ def simulate(
         )
     if path_coordinate not in PATH_COORDINATES:
         raise ParameterError(
-            f"unknown path coordinate {path_coordinate!r}; choose 'mass' (thesis) or 'relative'"
+            f"unknown path coordinate {path_coordinate!r}; choose 'mass' (thesis text), 'relative' "
+            "or 'position' (eq. 4.36/4.38 as printed)"
+        )
+    if path_coordinate == "position" and integrator == "accurate":
+        raise ParameterError(
+            "path coordinate 'position' (a reproduction mode) is implemented for the fixed-step "
+            "'euler' scheme only"
         )
     if isinstance(runs, bool) or not isinstance(runs, int | np.integer) or runs < 1:
         raise ParameterError(f"runs must be a positive integer, got {runs!r}")
@@ -467,7 +475,7 @@ def simulate(
         "n_breakaway": _k.D_N_BREAKAWAY, "n_slip_phases": _k.D_N_SLIP_PHASES,
     }
     diagnostics = {k: diag[:, j].reshape(npar, runs).copy() for k, j in diag_names.items()}
-    warn_list += _post_warnings(counts, nev, diag, model, process, plist)
+    warn_list += _post_warnings(counts, nev, diag, model, process, plist, path_mode)
     for w in warn_list:
         warnings.warn(w.message, SimulationWarningCategory, stacklevel=2)
     return SimulationResult(
@@ -508,6 +516,7 @@ def _post_warnings(
     model: str,
     process: ProcessModel | None,
     params: list[OscillatorParameters],
+    path_mode: int = _k.PATH_MASS,
 ) -> list[SimulationWarning]:
     out: list[SimulationWarning] = []
     over = int(np.sum(counts > nev))
@@ -527,7 +536,8 @@ def _post_warnings(
         length_scale = params[0].length_scale
         path_m = diag[:, _k.D_PATH] * length_scale
         worst = float(np.max(path_m))
-        if worst > process.length:
+        # in 'position' mode the process is read at x1, which stays within the cycle's amplitude
+        if worst > process.length and path_mode != _k.PATH_POSITION:
             out.append(SimulationWarning(
                 "process-exhausted",
                 f"process exhausted: slip path {worst:.4g} m exceeds process length "

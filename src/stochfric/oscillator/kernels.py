@@ -55,6 +55,9 @@ NOISE_PROCESS = 2
 
 PATH_MASS = 0  # thesis: x_glob grows by |Δx1| in every slip step (4.1.3)
 PATH_RELATIVE = 1  # relative sliding distance: grows by |γ0 − x2| Δτ
+#: reproduction mode: μ̂ read at the mass position x1 itself, μ̂_SD(X_1, ξ) as printed in eq.
+#: (4.36)/(4.38); the path diagnostics still accumulate |Δx1| (the mass path)
+PATH_POSITION = 2
 
 # --- layout of the per-trajectory parameter row --------------------------------
 P_GAMMA0 = 0
@@ -207,7 +210,7 @@ LOCKSTEP = 32
 def _advance(
     jj: int, j: int, k: int, dt: float, fs: npt.NDArray[np.float64], ist: npt.NDArray[np.int64],
     cs: npt.NDArray[np.float64], shapes: npt.NDArray[np.int64], lawp: npt.NDArray[np.float64],
-    white: bool, contact: bool, milstein: bool, mass_path: bool, noise: int,
+    white: bool, contact: bool, milstein: bool, mass_path: bool, position: bool, noise: int,
     dw: npt.NDArray[np.float64], proc: npt.NDArray[np.float64], n_proc: npt.NDArray[np.int64],
     xgh: npt.NDArray[np.float64], tgh: npt.NDArray[np.float64],
 ) -> None:  # pragma: no cover
@@ -278,7 +281,7 @@ def _advance(
             avr = abs(vr)
             mu = mu_kinetic_row(shape, vscale * avr, lawp, j)
             if contact:
-                mu += process_value_row(proc, j, n_proc[j], pdx, path)
+                mu += process_value_row(proc, j, n_proc[j], pdx, x1 if position else path)
             drift = -x1 - dd2 * x2 + nn * mu * s
             if forced:
                 drift += qq * math.cos(x30 + eta * tau)
@@ -328,7 +331,7 @@ def _advance(
                     tau = tc
                     stick = True
                     lim_b = _breakaway_limit(lim, nn, cs[_C_MUK0, jj], noise, proc, j, n_proc[j],
-                                             pdx, path)
+                                             pdx, x1c if position else path)
                 else:
                     # belt speed reached, static friction cannot hold: keep slipping
                     ist[_I_NNOSTICK, jj] += 1
@@ -395,7 +398,8 @@ def run_fixed_step_batch(
     white = noise == NOISE_WHITE
     contact = noise == NOISE_PROCESS
     milstein = scheme == SCHEME_MILSTEIN
-    mass_path = path_mode == PATH_MASS
+    position = path_mode == PATH_POSITION
+    mass_path = path_mode == PATH_MASS or position
     nsave = traj.shape[1]
     ntraj = prm.shape[0]
     for g0 in range(0, ntraj, LOCKSTEP):
@@ -446,7 +450,7 @@ def run_fixed_step_batch(
             fs[_F_S, jj] = -1.0 if x2 > gamma0 else 1.0
             fs[_F_PATH, jj] = 0.0
             fs[_F_LIMB, jj] = _breakaway_limit(lim, nn, mu_k0, noise, proc, j, n_proc[j],
-                                               row[P_PROC_DX], 0.0)
+                                               row[P_PROC_DX], x1 if position else 0.0)
             fs[_F_PSS, jj] = 0.0
             fs[_F_MINSLIP, jj] = np.inf
             stick = (x2 == gamma0) and (abs(_stick_force(x1, 0.0, row)) <= lim)
@@ -542,7 +546,8 @@ def run_fixed_step_batch(
                             path = vpath[jj]
                             mu = mu_kinetic_row(shapes[j], cvs[jj] * avr, lawp, j)
                             if contact:
-                                mu += process_value_row(proc, j, n_proc[j], cs[_C_PDX, jj], path)
+                                mu += process_value_row(proc, j, n_proc[j], cs[_C_PDX, jj],
+                                                        a1 if position else path)
                             drift = -a1 - cd2[jj] * a2 + nn * mu * s
                             if cs[_C_FORCED, jj] != 0.0:
                                 drift += cs[_C_QQ, jj] * math.cos(cs[_C_X30, jj] + cs[_C_ETA, jj] * (k * dt))
@@ -568,7 +573,7 @@ def run_fixed_step_batch(
                 j = g0 + jj
                 if vdone[jj] == 0.0:
                     _advance(jj, j, k, dt, fs, ist, cs, shapes, lawp, white, contact, milstein,
-                             mass_path, noise, dw, proc, n_proc, xgh, tgh)
+                             mass_path, position, noise, dw, proc, n_proc, xgh, tgh)
                 if save:
                     isave = ist[_I_ISAVE, jj]
                     if isave < nsave:

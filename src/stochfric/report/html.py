@@ -187,12 +187,18 @@ def lyapunov_reading(summary: dict[str, Any]) -> tuple[str, str]:
     rows = []
     for m in summary["models"]:
         c = summary["counts"][m]
-        rows.append([m, c.get("ok"), c.get("merged"), c.get("too-few-transitions"),
-                     summary["positive_fraction"].get(m)])
-    txt = "Fraction of (q, N, η) cells with a positive exponent (chaotic character): " + ", ".join(
-        f"{m} {_fmt(summary['positive_fraction'].get(m), '.2f')}" for m in summary["models"]) + \
-        f"; perturbation δ = {summary['perturbation']:g}, τ_end = {summary['tau_end']:g}."
-    return _table(["model", "ok", "merged (w = 0)", "too few transitions", "fraction λ > 0"], rows), txt
+        sig = summary.get("significance", {}).get(m, {})
+        rows.append([m, c.get("ok"), c.get("merged"), c.get("too-few-transitions"), c.get("nonlinear"),
+                     sig.get("positive"), sig.get("negative")])
+    txt = ("Exponent per slip→stick transition from the linear regime (twin check; NaN = undefined, with the "
+           "reason counted). Cells positive / negative by more than 2 standard errors: " + ", ".join(
+               f"{m} {summary.get('significance', {}).get(m, {}).get('positive')} / "
+               f"{summary.get('significance', {}).get(m, {}).get('negative')}" for m in summary["models"])
+           + f"; perturbation δ = {summary['perturbation']:g}, τ_end = {summary['tau_end']:g}. For the contact "
+           "model the path offset of the two runs is a neutral direction, so a positive value is no evidence "
+           "of chaos by itself.")
+    return _table(["model", "ok", "merged (w = 0)", "too few transitions", "nonlinear (undefined)",
+                   "λ > 2 SE", "λ < −2 SE"], rows), txt
 
 
 def normal_force_reading(summary: dict[str, Any]) -> tuple[str, str]:

@@ -35,7 +35,7 @@ from ..process.model import FrictionProcessModel, load_process_model
 from ..process.presets import Preset, get_preset
 
 MODELS: tuple[str, ...] = ("deterministic", "white", "contact")
-PATH_COORDINATES: tuple[str, ...] = ("mass", "relative")
+PATH_COORDINATES: tuple[str, ...] = ("mass", "relative", "position")
 WHITE_INTENSITY_RULES: tuple[str, ...] = ("sigma_mu", "spectral_level", "thesis")
 
 

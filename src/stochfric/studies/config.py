@@ -29,7 +29,7 @@ from .common import MODELS, STICK_WINDOW, parse_grid
 
 Grid = Annotated[tuple[float, ...], BeforeValidator(parse_grid)]
 ModelName = Literal["deterministic", "white", "contact"]
-PathCoordinate = Literal["mass", "relative"]
+PathCoordinate = Literal["mass", "relative", "position"]
 WhiteIntensity = Literal["sigma_mu", "spectral_level", "thesis"]
 
 
@@ -50,7 +50,9 @@ class StudyConfig(BaseModel):
     integrator: Literal["euler", "accurate"] = "euler"
     sde_integrator: Literal["euler", "milstein"] = "euler"
     path_coordinate: PathCoordinate = Field(
-        default="mass", description="where the contact process is read: mass (thesis) | relative"
+        default="mass",
+        description="where the contact process is read: mass (thesis text) | relative | position (reproduction "
+                    "mode: at x1, eq. 4.36/4.38 as printed; euler only)"
     )
     white_intensity: WhiteIntensity = Field(
         default="sigma_mu",
@@ -148,6 +150,9 @@ class LyapunovConfig(StudyConfig):
     eta: Grid = Field(default_factory=lambda: parse_grid("0.1:3:30"))
     damping: float | None = Field(default=None, ge=0, lt=1)
     perturbation: float = Field(default=1e-6, gt=0, description="shift of the initial x1 of the comparison run")
+    linearity_tolerance: float = Field(
+        default=0.1, gt=0, lt=1,
+        description="a pair is linear when the twin run (2δ) separates by 2w within this relative tolerance")
 
     @field_validator("eta", "forcing_q")
     @classmethod

@@ -31,6 +31,7 @@ from .common import (
 )
 from .config import ForcingConfig
 from .executors import Executor
+from .stats import sample_summary, std_ratio_over_cells
 
 
 def forcing_tasks(config: ForcingConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
@@ -115,6 +116,17 @@ def forcing_study(
     }
     summary["sigma_zeta"] = summary["sigma_zeta"][0]  # one normal force
     summary["sigma_zeta_effective"] = summary["sigma_zeta_effective"][0]
+    # Monte Carlo uncertainty of E and σ per cell: bootstrap over runs (the run is the unit)
+    se = np.full((nm, nq, ne, 2), np.nan)
+    for mi, qi, ei in np.ndindex(nm, nq, ne):
+        runs = 1 if models[mi] == "deterministic" else nr
+        g = np.random.default_rng(np.random.SeedSequence(config.seed, spawn_key=(2**31 - 1, mi, qi, ei)))
+        sm = sample_summary([xw[mi, qi, ei, r] for r in range(runs)], n_boot=200, rng=g)
+        se[mi, qi, ei] = [sm.se_mean_boot, sm.se_std_boot]
+    data["x_gh_mean_se"] = (dims5[:3], se[..., 0], {"units": "1", "long_name": "bootstrap SE of E[X_gh]"})
+    data["x_gh_std_se"] = (dims5[:3], se[..., 1], {"units": "1", "long_name": "bootstrap SE of sigma(X_gh)"})
+    summary["x_gh_mean_se"] = {m: se[i, ..., 0].tolist() for i, m in enumerate(models)}
+    summary["x_gh_std_se"] = {m: se[i, ..., 1].tolist() for i, m in enumerate(models)}
     if "white" in models and "contact" in models:
         with np.errstate(invalid="ignore", divide="ignore"):
             ratio = std[models.index("contact")] / std[models.index("white")]
@@ -123,6 +135,20 @@ def forcing_study(
         summary["sigma_ratio"] = {f"{q:g}": ratio[i].tolist() for i, q in enumerate(qs)}
         summary["sigma_ratio_median"] = {f"{q:g}": float(np.nanmedian(ratio[i])) if np.isfinite(ratio[i]).any()
                                          else None for i, q in enumerate(qs)}
+        ci, cw = models.index("contact"), models.index("white")
+        lo_hi = np.full((nq, ne, 2), np.nan)
+        med_ci: dict[str, dict[str, Any]] = {}
+        for qi, q in enumerate(qs):
+            g = np.random.default_rng(np.random.SeedSequence(config.seed, spawn_key=(2**31 - 2, qi)))
+            per, med = std_ratio_over_cells([[xw[ci, qi, e, r] for r in range(nr)] for e in range(ne)],
+                                            [[xw[cw, qi, e, r] for r in range(nr)] for e in range(ne)], rng=g)
+            lo_hi[qi] = [[p.low, p.high] for p in per]
+            med_ci[f"{q:g}"] = med.to_dict()
+        data["sigma_ratio_low"] = (("forcing_q", "eta"), lo_hi[..., 0], {"units": "1", "long_name": "95 % bootstrap"})
+        data["sigma_ratio_high"] = (("forcing_q", "eta"), lo_hi[..., 1], {"units": "1", "long_name": "95 % bootstrap"})
+        summary["sigma_ratio_interval"] = {f"{q:g}": lo_hi[i].tolist() for i, q in enumerate(qs)}
+        # the median over η with its bootstrap SE and 95 % interval (all η resampled together)
+        summary["sigma_ratio_median_ci"] = med_ci
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(provenance_attrs("forcing", config, setup, config.seed, executor))
     ds.attrs["stick_window"] = config.stick_window

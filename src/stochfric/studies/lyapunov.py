@@ -2,18 +2,47 @@
 
 Poincaré section: the stick line x2 = γ0, crossed at the slip→stick transitions.  For each
 (model, q, N, η) a reference run starts at ``x0`` (default: sticking at the origin,
-(0, γ0)) and a comparison run at ``x0 + (δ, 0)``, δ = ``perturbation`` (default 10⁻⁶,
-dimensionless, i.e. 1 µm for L = 1 m; the thesis gives no value — METHOD §7.9; the
-sensitivity to δ is a table in ``docs/studies.md``).  Both runs use the same noise
-realisation (two parameter sets with ``common_random_numbers=True``).
+(0, γ0)), a comparison run at ``x0 + (δ, 0)`` and a *twin* at ``x0 + (2δ, 0)``, δ =
+``perturbation`` (default 10⁻⁶, dimensionless, i.e. 1 µm for L = 1 m; the thesis gives no
+value — METHOD §7.9).  All three use the same noise realisation (``common_random_numbers``).
 
     w(i) = |X_gh,ref(i) − X_gh,pert(i)|,  λ = (1/K) Σ_{i=1}^{K} ln(w(i)/w(1))        (4.43)
     E[Λ] = (1/K) Σ_{i=1}^{K} ln(E[W(i)]/E[W(1)])   (mean over R run pairs)           (4.44)
 
 K = the number of transitions both runs have (stochastic: the smallest over the runs).
-If w(i) = 0 for some i ≤ K (the trajectories merged exactly, thesis: "liegen exakt
-aufeinander") λ is undefined: status ``merged`` and λ = NaN, never an error.  Fewer than two
-transitions: status ``too-few-transitions``.  Per-run λ (4.43) are stored too.
+
+**What is measured, and when it is undefined (issue 10).**  A finite-difference exponent is a
+property of the dynamics only while the separation stays in the *linear regime*: there w(i)
+is proportional to δ.  Once w reaches the scale of the attractor (or, for the contact model,
+of the process grid: the two runs then read unrelated parts of the surface) it saturates, and
+(4.43) becomes a function of δ (issue: median 3.4 / 2.8 / 1.2 for δ = 1e-8 / 1e-6 / 1e-4).
+
+* **Twin check.**  In the linear regime the signed differences obey d₂(i) = 2 d(i); a pair is
+  *linear* when |d₂(i) − 2 d(i)| ≤ ``linearity_tolerance`` · 2 max_{j≤i} |d(j)| (default 0.1)
+  for every i ≤ K.  This catches saturation and the non-smooth parts of the switching logic (a
+  breakaway moved across a grid step; the white noise's slip remainder ΔW_k √(h/Δτ), not
+  Lipschitz in h at h = 0; the contact model's breakaway check) alike, without a length scale.
+* ``lyapunov`` (with ``lyapunov_se``, ``status``) is the exponent *per slip→stick transition*:
+  the least-squares slope of ln w(i) over all i = 1 … K (deterministic: SE from the regression;
+  stochastic: mean over the R run pairs, SE = s/√R).  It is reported only when every pair is
+  linear, else NaN with status ``nonlinear``; ``merged`` (some w = 0: the runs coincide exactly,
+  thesis: no value) and ``too-few-transitions`` (K < 5) are the other reasons.  The window does
+  not depend on δ, so a reported value is the δ → 0 limit up to the linearisation error (test:
+  δ = 1e-8 … 1e-4 agree within their standard errors).  A window "until w saturates" would not
+  do: for the contact model ln w(i) is no straight line, so a δ-dependent window gives
+  δ-dependent slopes.
+* ``separation_index_443`` is (4.43)/(4.44) evaluated exactly as printed, at this δ, with its
+  own ``separation_index_status`` (``nonlinear`` where the twin check fails: then the number
+  depends on δ).  Note that for w(i) = w(1) e^{a(i−1)} it equals a(K − 1)/2, not a; it weights
+  near-zero w(i) through the logarithm, so even in the linear regime it is ill-conditioned.
+  It is kept to compare with the thesis's figures, not under the name of an exponent.
+
+For the contact model the exponent is that of the extended state (x1, x2, x3, path coordinate)
+in the frozen process realisation: the tangent dynamics contain the slope of the interpolated
+process, dμ̂/dx ~ σ_μ/Δx, so it measures the sensitivity to the surface's fine structure as much
+as the oscillator's.  The path offset of the runs is never reset (each reads the process where
+it is), so it is a neutral direction: the contact model's largest exponent is ≥ 0 in the long
+run, and a positive finite-time value alone is no evidence of chaos (docs/studies.md).
 """
 
 from __future__ import annotations
@@ -28,11 +57,21 @@ import xarray as xr
 
 from ..io_utils import package_versions
 from .base import StudyResult, provenance_attrs, sweep
-from .common import TaskSpec, integrator_for, model_choices, pad_events, runs_for, setup_for, warnings_of
+from .common import (
+    TaskSpec,
+    integrator_for,
+    model_choices,
+    pad_events,
+    runs_for,
+    setup_for,
+    warnings_of,
+)
 from .config import LyapunovConfig
 from .executors import Executor
 
-STATUS = ("ok", "merged", "too-few-transitions")
+STATUS = ("ok", "merged", "too-few-transitions", "nonlinear")
+#: Fewest transitions in the linear regime for a growth rate.
+MIN_LINEAR = 5
 
 
 def lyapunov_exponent(w: npt.ArrayLike) -> tuple[float, str, int]:
@@ -52,8 +91,63 @@ def lyapunov_exponent(w: npt.ArrayLike) -> tuple[float, str, int]:
     return float(np.mean(np.log(arr / arr[0]))), "ok", k
 
 
+def lyapunov_rate(w: npt.ArrayLike, linear: bool = True) -> tuple[float, float, str, int]:
+    """Exponent per slip→stick transition: least-squares slope of ln w(i) over i = 1 … K.
+
+    ``w`` are the separations w(1..K) (NaN entries end the sequence).  The window is always all
+    K transitions, so in the linear regime (w ∝ δ) the slope does not depend on δ; ``linear`` is
+    the twin check (:func:`is_linear`); without it the value would depend on δ: status
+    ``nonlinear``, NaN.  Other statuses:
+    ``merged`` (some w = 0: the runs coincide exactly, the map contracts to a point; thesis: no
+    value), ``too-few-transitions`` (K < :data:`MIN_LINEAR`).
+    Returns ``(rate, se, status, K)``; ``se`` is the regression standard error of the slope.
+    """
+    arr = np.asarray(w, dtype=float)
+    fin = np.isfinite(arr)
+    k = int(np.argmin(fin)) if not fin.all() else arr.size
+    arr = arr[:k]
+    if k < MIN_LINEAR:
+        return math.nan, math.nan, "too-few-transitions", k
+    if np.any(arr == 0.0):
+        return math.nan, math.nan, "merged", k
+    if not linear:
+        return math.nan, math.nan, "nonlinear", k
+    i = np.arange(k, dtype=float)
+    y = np.log(arr)
+    slope, icpt = np.polyfit(i, y, 1)
+    res = y - (slope * i + icpt)
+    sxx = float(np.sum((i - i.mean()) ** 2))
+    se = math.sqrt(float(np.sum(res**2)) / (k - 2) / sxx)
+    return float(slope), se, "ok", k
+
+
+def _significant(rate: npt.NDArray[np.float64], se: npt.NDArray[np.float64]) -> dict[str, int]:
+    ok = np.isfinite(rate)
+    se0 = np.where(np.isfinite(se), se, 0.0)
+    return {"defined": int(ok.sum()), "positive": int(np.sum(ok & (rate - 2 * se0 > 0))),
+            "negative": int(np.sum(ok & (rate + 2 * se0 < 0)))}
+
+
+def is_linear(d: npt.ArrayLike, d_twin: npt.ArrayLike, tolerance: float) -> bool:
+    """True when the twin run's signed X_gh differences (perturbation 2δ) are twice the pair's.
+
+    ``d(i) = X_gh,pert(i) − X_gh,ref(i)``, ``d_twin(i)`` the same for the twin; linear when
+    |d_twin(i) − 2 d(i)| ≤ ``tolerance`` · 2 max_{j ≤ i} |d(j)| for every finite d(i) (the running
+    maximum keeps zero crossings of d from counting as nonlinear).  w = |d|.
+    """
+    a = np.asarray(d, dtype=float)
+    fin = np.isfinite(a)
+    k = int(np.argmin(fin)) if not fin.all() else a.size
+    a = a[:k]
+    b = np.asarray(d_twin, dtype=float)[:k]
+    if b.size < k or np.any(~np.isfinite(b)):
+        return False
+    scale = 2.0 * np.maximum.accumulate(np.abs(a)) if k else a
+    return bool(np.all(np.abs(b - 2.0 * a) <= tolerance * scale))
+
+
 def lyapunov_tasks(config: LyapunovConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
-    """One task per (model, q, N): parameter sets (η0, η0, η1, η1, …) = (ref, pert) pairs."""
+    """One task per (model, q, N): parameter sets (η0, η0, η0, η1, …) = (ref, pert δ, twin 2δ)."""
     setup = setup_for(config, tau_end=200.0)
     sp = setup.preset.study_parameters
     forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
@@ -68,8 +162,8 @@ def lyapunov_tasks(config: LyapunovConfig) -> tuple[list[TaskSpec], dict[str, An
                 for eta in config.eta:
                     p = setup.parameters(nf, d, q * setup.preset.stiffness, eta)
                     base = config.x0 if config.x0 is not None else (0.0, p.gamma0)
-                    params += [p, p]
-                    x0s += [(float(base[0]), float(base[1])), (float(base[0]) + config.perturbation, float(base[1]))]
+                    params += [p, p, p]
+                    x0s += [(float(base[0]) + k * config.perturbation, float(base[1])) for k in (0, 1, 2)]
                 tasks.append(TaskSpec(
                     index=idx, label=f"{model} q={q:g} N={nf:g}", model=model, params=tuple(params),
                     runs=runs_for(model, config.runs), tau_end=setup.tau_end, dt=setup.dt,
@@ -98,29 +192,58 @@ def lyapunov_study(
     flat = pad_events([results[t.index]["x_gh"] for t in tasks])
     nev = flat[0].shape[-1]
     w = np.full((nm, nq, nn, ne, nr, nev), np.nan)
+    dd = np.full_like(w, np.nan)  # signed differences of the pair and of the twin
+    dd2 = np.full_like(w, np.nan)
     warns: list[dict[str, str]] = []
     for t, a in zip(tasks, flat, strict=True):
         mi, rest = divmod(t.index, nq * nn)
         qi, ni = divmod(rest, nn)
-        ref, pert = a[0::2], a[1::2]  # [eta, run, event]
+        ref, pert, twin = a[0::3], a[1::3], a[2::3]  # [eta, run, event]
         w[mi, qi, ni, :, : t.runs] = np.abs(ref - pert)
+        dd[mi, qi, ni, :, : t.runs] = pert - ref
+        dd2[mi, qi, ni, :, : t.runs] = twin - ref
         warns += warnings_of(results[t.index])
-    lam = np.full((nm, nq, nn, ne), np.nan)
-    status = np.full((nm, nq, nn, ne), "", dtype=object)
-    kk = np.zeros((nm, nq, nn, ne), dtype=np.int64)
-    lam_runs = np.full((nm, nq, nn, ne, nr), np.nan)
-    status_runs = np.full((nm, nq, nn, ne, nr), "", dtype=object)
-    for idx in np.ndindex(nm, nq, nn, ne):
+    shape = (nm, nq, nn, ne)
+    sep443 = np.full(shape, np.nan)  # (4.43)/(4.44) as printed, whether linear or not
+    status = np.full(shape, "", dtype=object)
+    kk = np.zeros(shape, dtype=np.int64)
+    lam_runs = np.full((*shape, nr), np.nan)
+    rate = np.full(shape, np.nan)
+    rate_se = np.full(shape, np.nan)
+    rate_status = np.full(shape, "", dtype=object)
+    n_lin = np.zeros(shape, dtype=np.int64)
+    rate_runs = np.full((*shape, nr), np.nan)
+    rate_status_runs = np.full((*shape, nr), "", dtype=object)
+    tol = config.linearity_tolerance
+    for idx in np.ndindex(*shape):
         mi = idx[0]
         runs = 1 if models[mi] == "deterministic" else nr
         ww = w[idx][:runs]
+        linear = np.array([is_linear(dd[idx][r], dd2[idx][r], tol) for r in range(runs)])
         for r in range(runs):
-            lam_runs[(*idx, r)], status_runs[(*idx, r)], _ = lyapunov_exponent(ww[r])
+            lam_runs[(*idx, r)], _, _ = lyapunov_exponent(ww[r])
+            rate_runs[(*idx, r)], se_r, rate_status_runs[(*idx, r)], k_fit = lyapunov_rate(ww[r], bool(linear[r]))
+            if runs == 1:
+                rate_se[idx], n_lin[idx] = se_r, k_fit
         # E[W(i)] over the runs, up to the smallest number of transitions
         counts = np.sum(np.isfinite(ww), axis=-1)
         kmin = int(counts.min()) if counts.size else 0
         ew = ww[:, :kmin].mean(axis=0) if kmin else np.zeros(0)
-        lam[idx], status[idx], kk[idx] = lyapunov_exponent(ew)
+        sep443[idx], status[idx], kk[idx] = lyapunov_exponent(ew)
+        if status[idx] == "ok" and not linear.all():
+            status[idx] = "nonlinear"  # w not ∝ δ: the printed value is a function of δ here
+        rs = rate_status_runs[idx][:runs]
+        if runs == 1:
+            rate[idx], rate_status[idx] = rate_runs[(*idx, 0)], rs[0]
+        elif np.all(rs == "ok"):
+            vals = rate_runs[idx][:runs]
+            rate[idx], rate_status[idx] = float(np.mean(vals)), "ok"
+            rate_se[idx] = float(np.std(vals, ddof=1) / math.sqrt(runs))
+            n_lin[idx] = runs
+        else:  # one undefined pair makes the ensemble mean undefined (no selection bias)
+            bad = [s_ for s_ in ("merged", "nonlinear", "too-few-transitions") if np.any(rs == s_)]
+            rate_status[idx] = bad[0]
+            n_lin[idx] = int(np.sum(rs == "ok"))
     coords: dict[str, Any] = {
         "model": models,
         "forcing_q": ("forcing_q", np.asarray(qs), {"units": "1"}),
@@ -132,27 +255,46 @@ def lyapunov_study(
     d4 = ("model", "forcing_q", "normal_force", "eta")
     ds = xr.Dataset({
         "w": ((*d4, "run", "event"), w, {"units": "1", "long_name": "w(i) = |X_gh,ref(i) - X_gh,pert(i)|"}),
-        "lyapunov": (d4, lam, {"units": "1", "long_name": "lambda (4.43) / E[Lambda] (4.44), NaN unless ok"}),
-        "status": (d4, status.astype(str), {"long_name": "ok | merged | too-few-transitions"}),
+        "d_pair": ((*d4, "run", "event"), dd, {"units": "1", "long_name": "X_gh,pert - X_gh,ref (delta)"}),
+        "d_twin": ((*d4, "run", "event"), dd2, {"units": "1", "long_name": "X_gh,twin - X_gh,ref (2 delta)"}),
+        "lyapunov": (d4, rate, {"units": "1", "long_name": "largest Lyapunov exponent per slip->stick transition: "
+                                "slope of ln w(i), i = 1..K (mean over run pairs); NaN unless status ok"}),
+        "lyapunov_se": (d4, rate_se, {"units": "1", "long_name": "standard error of lyapunov"}),
+        "status": (d4, rate_status.astype(str), {"long_name": "ok | merged | too-few-transitions | nonlinear"}),
         "n_transitions": (d4, kk, {"units": "1", "long_name": "K used in (4.43)/(4.44)"}),
-        "lyapunov_runs": ((*d4, "run"), lam_runs, {"units": "1", "long_name": "lambda of each run pair (4.43)"}),
-        "status_runs": ((*d4, "run"), status_runs.astype(str), {}),
+        "n_ok_pairs": (d4, n_lin, {"units": "1", "long_name": "deterministic: K of the fit; stochastic: pairs ok"}),
+        "lyapunov_runs": ((*d4, "run"), rate_runs, {"units": "1", "long_name": "exponent of each run pair"}),
+        "status_runs": ((*d4, "run"), rate_status_runs.astype(str), {}),
+        "separation_index_443": (d4, sep443, {"units": "1", "long_name": "(4.43)/(4.44) evaluated as printed at "
+                                              "this delta, also where the pair is nonlinear (then delta-dependent; "
+                                              "not a Lyapunov exponent)"}),
+        "separation_index_status": (d4, status.astype(str), {"long_name": "ok | merged | too-few-transitions | "
+                                                            "nonlinear (twin check failed)"}),
+        "separation_index_443_runs": ((*d4, "run"), lam_runs, {"units": "1"}),
     }, coords=coords)
     ds.attrs.update(provenance_attrs("lyapunov", config, setup, config.seed, executor))
     ds.attrs["perturbation"] = config.perturbation
+    ds.attrs["linearity_tolerance"] = tol
     ds.attrs["checkpoint_hash"] = chash or ""
     codes = sorted({x["code"] for x in warns})
+    sig = {m: _significant(rate[i], rate_se[i]) for i, m in enumerate(models)}
     summary: dict[str, Any] = {
         "study": "lyapunov", "preset": setup.preset.name, "process_source": setup.process_source,
         "normal_force": list(forces), "forcing_q": qs, "eta": etas.tolist(), "damping": info["damping"],
         "runs": config.runs, "seed": config.seed, "tau_end": setup.tau_end, "dt": setup.dt,
-        "perturbation": config.perturbation, "models": models, **model_choices(config, setup, forces),
-        "lyapunov": {m: lam[i].tolist() for i, m in enumerate(models)},
-        "status": {m: status[i].tolist() for i, m in enumerate(models)},
+        "perturbation": config.perturbation, "linearity_tolerance": tol, "models": models,
+        **model_choices(config, setup, forces),
+        "lyapunov": {m: rate[i].tolist() for i, m in enumerate(models)},
+        "lyapunov_se": {m: rate_se[i].tolist() for i, m in enumerate(models)},
+        "status": {m: rate_status[i].tolist() for i, m in enumerate(models)},
         "n_transitions": {m: kk[i].tolist() for i, m in enumerate(models)},
-        "counts": {m: {s: int(np.sum(status[i] == s)) for s in STATUS} for i, m in enumerate(models)},
-        "positive_fraction": {m: float(np.mean(lam[i][np.isfinite(lam[i])] > 0)) if np.isfinite(lam[i]).any()
-                              else None for i, m in enumerate(models)},
+        "counts": {m: {s_: int(np.sum(rate_status[i] == s_)) for s_ in STATUS} for i, m in enumerate(models)},
+        # cells whose exponent is positive (negative) by more than 2 standard errors, of the defined ones
+        "significance": sig,
+        "positive_fraction": {m: (sig[m]["positive"] / sig[m]["defined"]) if sig[m]["defined"] else None
+                              for m in models},
+        "separation_index_443": {m: sep443[i].tolist() for i, m in enumerate(models)},
+        "separation_index_status": {m: status[i].tolist() for i, m in enumerate(models)},
         "warnings": [{"code": c, "count": sum(x["code"] == c for x in warns)} for c in codes],
         "versions": package_versions(),
     }

@@ -11,7 +11,7 @@ are correlated).  One task per (model, D): all forces in one simulate call.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from typing import Any
 
 import numpy as np
@@ -31,7 +31,7 @@ from .common import (
 )
 from .config import NormalForceConfig
 from .executors import Executor
-from .stats import sample_summary
+from .stats import sample_summary, std_ratio
 
 _SE_FIELDS = ("mean", "std", "vark", "se_mean_iid", "se_std_iid", "se_vark_iid", "se_mean_boot", "se_std_boot",
               "se_vark_boot", "n", "n_runs")
@@ -150,7 +150,25 @@ def normal_force_study(
         "x_gh_mean_se_iid": tab("se_mean_iid"), "x_gh_std_se_iid": tab("se_std_iid"),
         "varK_se_iid": tab("se_vark_iid"), "n_events": tab("n"),
         "layout": "model -> [damping][normal_force]",
+        **_sigma_ratio(models, xw, nd, nn, nr, config.seed),
         "warnings": [{"code": c, "count": sum(w["code"] == c for w in warns)} for c in codes],
         "versions": package_versions(),
     }
     return StudyResult("normal-force", ds, summary, stats)
+
+
+def _sigma_ratio(models: Sequence[str], xw: Any, nd: int, nn: int, nr: int, seed: int) -> dict[str, Any]:
+    """σ(X_gh) contact / white per (D, N) with delta-method SE and 95 % bootstrap interval (runs
+    resampled, fixed seed); empty without both models.  Layout [damping][normal_force]."""
+    if not ("white" in models and "contact" in models):
+        return {}
+    ci, cw = models.index("contact"), models.index("white")
+    out = []
+    for di in range(nd):
+        row = []
+        for ni in range(nn):
+            g = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(2**31 - 2, di, ni)))
+            row.append(std_ratio([xw[ci, di, ni, r] for r in range(nr)], [xw[cw, di, ni, r] for r in range(nr)],
+                                 rng=g).to_dict())
+        out.append(row)
+    return {"sigma_ratio_contact_white": out}

@@ -175,3 +175,55 @@ def std_ratio(
     a = (1 - confidence) / 2
     lo, hi = np.quantile(br[ok], [a, 1 - a])
     return RatioEstimate(r, r * rel, float(lo), float(hi), confidence)
+
+
+def std_ratio_over_cells(
+    cells_a: list[list[npt.NDArray[np.float64]]],
+    cells_b: list[list[npt.NDArray[np.float64]]],
+    *,
+    n_boot: int = 200,
+    confidence: float = 0.95,
+    rng: np.random.Generator | None = None,
+) -> tuple[list[RatioEstimate], RatioEstimate]:
+    """σ_a/σ_b per cell (e.g. per η of the forcing study) and their median over the cells.
+
+    ``cells_a[e]`` / ``cells_b[e]`` are the per-run samples of cell e.  Every cell is resampled by
+    runs, independently for a and b; the median's interval comes from the same replicates (the
+    median of the per-cell bootstrap ratios of each replicate), so it carries the uncertainty of
+    every cell.  Cells with fewer than two values on either side are NaN and left out of the median.
+    """
+    g = rng if rng is not None else np.random.default_rng(0)
+    a = (1 - confidence) / 2
+    per: list[RatioEstimate] = []
+    reps = np.full((n_boot, len(cells_a)), math.nan)
+    for e, (ca, cb) in enumerate(zip(cells_a, cells_b, strict=True)):
+        ra = [r for r in (np.asarray(x, dtype=float)[np.isfinite(x)] for x in ca) if r.size]
+        rb = [r for r in (np.asarray(x, dtype=float)[np.isfinite(x)] for x in cb) if r.size]
+        xa = np.concatenate(ra) if ra else np.zeros(0)
+        xb = np.concatenate(rb) if rb else np.zeros(0)
+        if xa.size < 2 or xb.size < 2 or not np.std(xb) > 0:
+            per.append(RatioEstimate(math.nan, math.nan, math.nan, math.nan, confidence))
+            continue
+        sa, sb = float(np.std(xa, ddof=1)), float(np.std(xb, ddof=1))
+        ba, bb = _boot_std(ra, n_boot, g), _boot_std(rb, n_boot, g)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            reps[:, e] = ba / bb
+        ok = np.isfinite(reps[:, e])
+        if np.sum(ok) < 2:
+            per.append(RatioEstimate(sa / sb, math.nan, math.nan, math.nan, confidence))
+            continue
+        rel = math.sqrt((float(np.nanstd(ba, ddof=1)) / sa) ** 2 + (float(np.nanstd(bb, ddof=1)) / sb) ** 2)
+        lo, hi = np.quantile(reps[ok, e], [a, 1 - a])
+        per.append(RatioEstimate(sa / sb, sa / sb * rel, float(lo), float(hi), confidence))
+    vals = np.array([p.value for p in per])
+    if not np.isfinite(vals).any():
+        return per, RatioEstimate(math.nan, math.nan, math.nan, math.nan, confidence)
+    med = float(np.nanmedian(vals))
+    use = np.isfinite(vals)
+    with np.errstate(invalid="ignore"):
+        bmed = np.nanmedian(np.where(np.isfinite(reps[:, use]), reps[:, use], np.nan), axis=1)
+    bmed = bmed[np.isfinite(bmed)]
+    if bmed.size < 2:
+        return per, RatioEstimate(med, math.nan, math.nan, math.nan, confidence)
+    lo, hi = np.quantile(bmed, [a, 1 - a])
+    return per, RatioEstimate(med, float(np.std(bmed, ddof=1)), float(lo), float(hi), confidence)

@@ -64,7 +64,7 @@ def test_defaults_and_grids(tmp_path: Path) -> None:
         ("[[study]]\nkind = 'damping'\nwhite_intensity = 'pink'\n",
          "study[0].white_intensity: Input should be 'sigma_mu', 'spectral_level' or 'thesis'"),
         ("[defaults]\npath_coordinate = 'global'\n[[study]]\nkind = 'forcing'\n",
-         "study[0].path_coordinate: Input should be 'mass' or 'relative'"),
+         "study[0].path_coordinate: Input should be 'mass', 'relative' or 'position'"),
         ("[[study]]\nkind = 'damping'\nphase_damping = [0.1, 1.1]\n", "study[0].phase_damping"),
         ("[[study]]\nkind = 'damping'\nphase_runs = -1\n", "study[0].phase_runs"),
         ("[[study]]\nkind = 'forcing'\nphase_force = 1000\n", "study[0].phase_force: Extra inputs"),
