@@ -16,7 +16,7 @@ from stochfric.oscillator.integrate import simulate
 from stochfric.oscillator.parameters import PhysicalParameters
 from stochfric.process.model import TabulatedProcessModel, load_process_model
 
-SMALL = ["--realizations", "8", "--long-surfaces", "3", "--length-factor", "4", "--ergodic-windows", "6"]
+SMALL = ["--realizations", "8", "--long-surfaces", "3", "--length-factor", "4"]
 
 
 @pytest.fixture(scope="module")
@@ -74,7 +74,7 @@ def test_same_seed_same_result_and_text_output(app: typer.Typer) -> None:
 
 
 def test_iaaft_surrogates(app: typer.Typer) -> None:
-    tiny = ["--realizations", "3", "--long-surfaces", "2", "--length-factor", "2", "--ergodic-windows", "2"]
+    tiny = ["--realizations", "3", "--long-surfaces", "3", "--length-factor", "2"]
     res = CliRunner().invoke(
         app, ["friction-process", "--material", "brake-pad", *tiny, "--surrogate", "iaaft", "--seed", "1",
               "--window-shift-um", "20", "--approach-um", "0.1:0.5:5", "--json"],

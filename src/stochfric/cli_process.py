@@ -55,6 +55,14 @@ class SurrogateChoice(StrEnum):
     iaaft = "iaaft"
 
 
+class AmplitudeChoice(StrEnum):
+    """Amplitude estimates of the measured map (:func:`stochfric.surface.synthesis.amplitude_spectrum`)."""
+
+    tukey = "tukey"
+    hann = "hann"
+    raw = "raw"
+
+
 class PressureRuleChoice(StrEnum):
     """How the spectrum at a pressure between the analysed ones is chosen."""
 
@@ -104,9 +112,6 @@ def friction_process_command(
         typer.Option("--window-shift-um", help="Window shift a_y [µm], rounded to whole grid points; "
                      "default 0.0566 × the window length (thesis 0.3 of 5.3 mm)."),
     ] = None,
-    ergodic_windows: Annotated[
-        int, typer.Option("--ergodic-windows", help="Windows on the one long surface of the ergodicity check.")
-    ] = 50,
     approach_um: Annotated[
         str | None,
         typer.Option("--approach-um", help="START:STOP:NUM in µm; default σ_S/4 … 3σ_S in 12 steps."),
@@ -114,6 +119,11 @@ def friction_process_command(
     surrogate: Annotated[
         SurrogateChoice, typer.Option("--surrogate", help="phase (thesis, Gaussian) or iaaft (keeps the heights).")
     ] = SurrogateChoice.phase,
+    amplitude: Annotated[
+        AmplitudeChoice,
+        typer.Option("--amplitude", help="Amplitude estimate of the measured map: tukey (default) or hann "
+                     "(edge jump removed, variance restored) or raw (the thesis's DFT of the non-periodic map)."),
+    ] = AmplitudeChoice.tukey,
     max_area_fraction: Annotated[
         float, typer.Option("--max-area-fraction", help="Fits use points with mean A_c/A_nom up to this.")
     ] = 0.015,
@@ -176,7 +186,7 @@ def friction_process_command(
             )
         cfg = AnalysisConfig(
             realizations=realizations, long_surfaces=long_surfaces, length_factor=length_factor,
-            window_shift_points=shift, ergodic_windows=ergodic_windows, surrogate=surrogate.value,
+            window_shift_points=shift, surrogate=surrogate.value, amplitude=amplitude.value,
             summit_rule=summit_rule.value, max_area_fraction=max_area_fraction,
             pressure_rule=pressure_rule.value, variance_rule=variance_rule.value,
             sigma_zeta_rule=sigma_zeta_rule.value, seed=seed,
@@ -232,9 +242,10 @@ def _figures(analysis: Any, heights: Any, directory: Path, seed: int | None) -> 
     from stochfric.surface.synthesis import iaaft_heights, random_phase_heights
 
     paths = write_process_figures(analysis, directory)
+    amp = analysis.config.amplitude
     sur = {
-        "phase": random_phase_heights(heights, seed),
-        "iaaft": iaaft_heights(heights, seed, tol=1e-3).heights,
+        "phase": random_phase_heights(heights, seed, amplitude=amp),
+        "iaaft": iaaft_heights(heights, seed, tol=1e-3, amplitude=amp).heights,
     }
     paths.append(plot_surrogates(heights, sur, directory / "surrogates.png"))
     return paths
@@ -280,8 +291,22 @@ def _print(payload: dict[str, Any], analysis: Any) -> None:
             f"fit {label:<5} a = {f['a']:.5g} ± {_num(f['a_se'], '.2g')}, b = {f['b']:.4g} ± "
             f"{_num(f['b_se'], '.2g')}, c = {f['c']:.5g} ± {_num(f['c_se'], '.2g')} ({f['n_points']} points)"
         )
+    sc = payload["surrogate_check"]
+    zs = sc["z"]
+    typer.echo(
+        f"surrogates vs measured map ({sc['surrogate']}, amplitude {sc['amplitude']}): summits "
+        f"{sc['measured']['summit_count']:.0f} vs {sc['ensemble_mean']['summit_count']:.0f} "
+        f"± {sc['ensemble_std']['summit_count']:.0f} (z {zs['summit_count']:+.1f}), β̄ "
+        f"{sc['measured']['summit_radius_mean_m'] / um:.3g} vs "
+        f"{sc['ensemble_mean']['summit_radius_mean_m'] / um:.3g} µm "
+        f"(z {zs['summit_radius_mean_m']:+.1f}), σ_S z {zs['summit_height_std_m']:+.1f}, max |z| of μ(u) "
+        f"{_num(sc['max_abs_mu_z'], '.1f')} → {'credible' if sc['credible'] else 'NOT credible'}"
+    )
     erg = payload["ergodicity"]
-    typer.echo(f"ergodicity: max |z| = {erg['max_abs_z']:.2f} (threshold {erg['threshold']:.2f}) → {erg['verdict']}")
+    typer.echo(
+        f"ergodicity ({erg['surfaces']} long surfaces × {erg['windows_per_surface']} windows): max |z| = "
+        f"{erg['max_abs_z']:.2f} (threshold {erg['threshold']:.2f}) → {erg['verdict']}"
+    )
     sz = payload["sigma_zeta"]
     typer.echo("σ_ζ       p [MPa]: " + " ".join(f"{p / 1e6:.3g}" for p in sz["pressure_pa"]))
     typer.echo("  sigma_mu       : " + " ".join(_num(v, ".3g") for v in sz["sigma_mu"]))

@@ -17,7 +17,7 @@ from stochfric.surface.summits import summits_of
 def analysis():  # type: ignore[no-untyped-def]
     fine, _ = prepare(read_surface(default_surface_path()))
     u = default_approach_m(summits_of(fine), num=8)
-    cfg = AnalysisConfig(realizations=30, long_surfaces=4, length_factor=6, ergodic_windows=20, seed=3,
+    cfg = AnalysisConfig(realizations=30, long_surfaces=4, length_factor=6, seed=3,
                          check_realizations=300)
     return analyse(fine, get_material("brake-pad"), u, cfg, name="al3d-1")
 

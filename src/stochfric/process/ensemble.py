@@ -10,15 +10,20 @@ Thesis 3.1.4, 3.2.4, 3.2.5.  Three kinds of samples, each an array over (sample,
   referenced to its own highest summit** (METHOD §4c): the flat starts at the window's highest
   summit and the approach u is measured from there, exactly as if the window were analysed on
   its own.
-* :func:`path_contact` — §4c over K long surfaces: μ(y) per approach, shape (K, W, U).
+* :func:`path_contact` — §4c over K long surfaces: μ(y) per approach, shape (K, W, U), and
+  the same long surfaces cut into non-overlapping windows, shape (K, J, U), for the ergodicity
+  check (§4b, windows of one long surface against windows of independent long surfaces from the
+  same generator).
 
 Fast windows.  The summits of a long surface are found **once**; a window analysed on its own
 finds exactly the long surface's summits whose column lies at least the rule's margin (2 points
 for the thesis rule, 1 for the 8-neighbour rule) inside the window, with the same radii (the
 summit test and the curvature only look 1–2 points around a summit).  So the summits are sorted
 by column once, every window is a contiguous slice found by :func:`numpy.searchsorted`, the
-slices are gathered into a padded (window × summit) matrix, the reference is its row maximum
-and the GW sums are formed by broadcasting over (window, approach, summit) in blocks.
+GW sums of every window are formed by one compiled loop (:func:`_window_sums`) that first finds the
+window's highest summit and then adds only the summits above ``ref − max(u)`` (the others cannot
+touch at any approach).  Memory beyond the summit list is O(windows × approaches), whatever the
+size of the surface (a 1700 × 17000-point long surface included).
 :func:`naive_window_contact` does the same window by window (crop, find summits, GW sums) and is
 kept as the reference for the tests and the benchmark (``benchmarks/bench_process.py``).
 
@@ -33,6 +38,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+import numba
 import numpy as np
 import numpy.typing as npt
 
@@ -41,16 +47,16 @@ from stochfric.contact.materials import Material
 from stochfric.random import SeedLike, spawn_generators
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import find_summits
-from stochfric.surface.synthesis import SURROGATE_METHODS, similar_surface
+from stochfric.surface.synthesis import DEFAULT_AMPLITUDE, SURROGATE_METHODS, similar_surface
 
 __all__ = [
     "SUMMIT_MARGIN",
     "ContactSamples",
     "PathContact",
     "ensemble_contact",
-    "ergodic_contact",
     "naive_window_contact",
     "path_contact",
+    "summit_statistics",
     "window_contact",
     "window_starts",
 ]
@@ -61,10 +67,6 @@ Progress = Callable[[int, int], None]
 
 #: Points a summit must lie inside the grid border, per summit rule.
 SUMMIT_MARGIN: dict[str, int] = {"thesis": 2, "8-neighbour": 1}
-
-#: Elements of the (window, approach, summit) broadcast formed at once.
-_BLOCK_ELEMENTS = 1 << 22
-
 
 @dataclass(frozen=True, kw_only=True, eq=False)
 class ContactSamples:
@@ -81,6 +83,9 @@ class ContactSamples:
     nominal_area_m2: float
     shear_strength_pa: float
     info: dict[str, Any] = field(default_factory=dict)
+    #: Per sample (leading axes): summit count, mean summit radius β̄ [m], summit-height
+    #: standard deviation σ_S [m] — shape (..., 3); recorded by :func:`ensemble_contact`.
+    summit_stats: FloatArray | None = None
 
     @property
     def pressure_pa(self) -> FloatArray:
@@ -116,10 +121,24 @@ def _approach(approach_m: npt.ArrayLike) -> FloatArray:
 def _one_surface(
     heights: FloatArray, spacing: tuple[float, float], material: Material, u: FloatArray, rule: str
 ) -> tuple[FloatArray, FloatArray, IntArray]:
+    area, force, count, _stats = _one_surface_with_stats(heights, spacing, material, u, rule)
+    return area, force, count
+
+
+def summit_statistics(heights: FloatArray, radius: FloatArray) -> FloatArray:
+    """(count, mean summit radius β̄ [m], summit-height standard deviation σ_S [m]) (METHOD §1.5)."""
+    n = heights.size
+    return np.array([float(n), float(radius.mean()) if n else np.nan, float(heights.std()) if n > 1 else np.nan])
+
+
+def _one_surface_with_stats(
+    heights: FloatArray, spacing: tuple[float, float], material: Material, u: FloatArray, rule: str
+) -> tuple[FloatArray, FloatArray, IntArray, FloatArray]:
     s = find_summits(heights, spacing, rule=rule)
     if s.count == 0:
         raise ContactError(f"a {heights.shape[0]}×{heights.shape[1]} sample has no summit (rule {rule!r})")
-    return asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=material.e_star_pa)
+    area, force, count = asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=material.e_star_pa)
+    return area, force, count, summit_statistics(s.heights_m, s.radius_m)
 
 
 def ensemble_contact(
@@ -132,12 +151,15 @@ def ensemble_contact(
     seed: SeedLike = None,
     rule: str = "thesis",
     iaaft_tol: float = 1e-3,
+    amplitude: str = DEFAULT_AMPLITUDE,
     progress: Progress | None = None,
 ) -> ContactSamples:
     """Contact of R similar surfaces of original size over ``approach_m`` (METHOD §4a).
 
     Realisation r is :func:`~stochfric.surface.synthesis.similar_surface` with the r-th child
-    stream of ``seed``; each is referenced to its own highest summit.  Shape (R, U).
+    stream of ``seed`` and the amplitude estimate ``amplitude``; each is referenced to its own
+    highest summit.  Shape (R, U); ``summit_stats`` (R, 3) holds every realisation's summit
+    count, β̄ and σ_S for the measured-vs-surrogate check.
     """
     r_count = _check_count("realizations", realizations)
     if method not in SURROGATE_METHODS:
@@ -146,9 +168,12 @@ def ensemble_contact(
     area = np.empty((r_count, u.size))
     force = np.empty((r_count, u.size))
     count = np.empty((r_count, u.size), dtype=np.int64)
+    stats = np.empty((r_count, 3))
     for r, gen in enumerate(spawn_generators(seed, r_count)):
-        sim = similar_surface(surface, gen, method=method, tol=iaaft_tol)
-        area[r], force[r], count[r] = _one_surface(sim.heights_m, sim.grid_spacing_m, material, u, rule)
+        sim = similar_surface(surface, gen, method=method, tol=iaaft_tol, amplitude=amplitude)
+        area[r], force[r], count[r], stats[r] = _one_surface_with_stats(
+            sim.heights_m, sim.grid_spacing_m, material, u, rule
+        )
         if progress is not None:
             progress(r + 1, r_count)
     return ContactSamples(
@@ -158,7 +183,9 @@ def ensemble_contact(
         n_contacts=count,
         nominal_area_m2=surface.nominal_area_m2,
         shear_strength_pa=material.shear_strength_pa,
-        info={"kind": "ensemble", "surrogate": method, "realizations": r_count, "summit_rule": rule},
+        info={"kind": "ensemble", "surrogate": method, "amplitude": amplitude, "realizations": r_count,
+              "summit_rule": rule},
+        summit_stats=stats,
     )
 
 
@@ -170,6 +197,51 @@ def window_starts(total_points: int, window_points: int, shift_points: int) -> I
     if win > total:
         raise ContactError(f"the window ({win} points) is longer than the surface ({total} points)")
     return np.arange(0, total - win + 1, shift, dtype=np.int64)
+
+
+@numba.njit(cache=True, nogil=True)
+def _window_sums(
+    heights: FloatArray,
+    radius: FloatArray,
+    lo: IntArray,
+    hi: IntArray,
+    u: FloatArray,
+    area: FloatArray,
+    force: FloatArray,
+    count: IntArray,
+) -> None:  # pragma: no cover - compiled
+    """GW sums (3.11–3.13) of every window w over the summits ``lo[w]:hi[w]`` (column-sorted).
+
+    Each window is referenced to its own highest summit; only summits above ``ref − max(u)``
+    can touch, so the approach loop runs over those alone.  ``force`` is Σ √β d^{3/2}
+    (the factor (4/3)E* is applied by the caller).  Memory: O(1) beyond the outputs.
+    """
+    n_u = u.size
+    u_max = u.max()
+    for w in range(lo.size):
+        a = lo[w]
+        b = hi[w]
+        ref = -np.inf
+        for i in range(a, b):
+            if heights[i] > ref:
+                ref = heights[i]
+        for k in range(n_u):
+            area[w, k] = 0.0
+            force[w, k] = 0.0
+            count[w, k] = 0
+        floor = ref - u_max
+        for i in range(a, b):
+            zi = heights[i]
+            if zi <= floor:
+                continue
+            bi = radius[i]
+            sb = np.sqrt(bi)
+            for k in range(n_u):
+                d = zi - (ref - u[k])
+                if d > 0.0:
+                    area[w, k] += np.pi * bi * d
+                    force[w, k] += sb * d * np.sqrt(d)
+                    count[w, k] += 1
 
 
 def window_contact(
@@ -205,27 +277,10 @@ def window_contact(
     if np.any(n_in == 0):
         bad = int(np.argmin(n_in))
         raise ContactError(f"window {bad} (columns {int(starts[bad])}…) has no summit; use larger windows")
-    s_max = int(n_in.max())
-    idx = lo[:, None] + np.arange(s_max)[None, :]
-    valid = np.arange(s_max)[None, :] < n_in[:, None]
-    idx = np.where(valid, idx, 0)
-    h = np.where(valid, zs[idx], -np.inf)
-    sqrt_b = np.where(valid, np.sqrt(beta[idx]), 0.0)
-    b = np.where(valid, beta[idx], 0.0)
-    ref = h.max(axis=1)
-    n_win = starts.size
-    area = np.empty((n_win, u.size))
-    force = np.empty((n_win, u.size))
-    count = np.empty((n_win, u.size), dtype=np.int64)
-    rows = max(1, _BLOCK_ELEMENTS // max(1, u.size * s_max))
-    for a in range(0, n_win, rows):
-        sl = slice(a, a + rows)
-        # d[w, k, i] = z_i − (z_ref,w − u_k) (3.11)
-        d = h[sl, None, :] - (ref[sl, None, None] - u[None, :, None])
-        np.maximum(d, 0.0, out=d)
-        area[sl] = np.pi * np.einsum("wki,wi->wk", d, b)  # (3.12)
-        force[sl] = np.einsum("wki,wi->wk", d * np.sqrt(d), sqrt_b)  # (3.13) without (4/3)E*
-        count[sl] = np.count_nonzero(d > 0.0, axis=2)
+    area = np.empty((starts.size, u.size))
+    force = np.empty((starts.size, u.size))
+    count = np.empty((starts.size, u.size), dtype=np.int64)
+    _window_sums(zs, beta, lo.astype(np.int64), hi.astype(np.int64), u, area, force, count)
     force *= (4.0 / 3.0) * material.e_star_pa
     return area, force, count
 
@@ -258,11 +313,14 @@ def naive_window_contact(
 class PathContact:
     """μ along the path (METHOD §4c): K long surfaces × W windows × U approaches.
 
-    ``window_shift_m`` = a_y, the spacing of μ(y); ``samples`` holds A_c, N, counts of shape
-    (K, W, U).
+    ``samples`` holds A_c, N, counts of the windows shifted by ``window_shift_m`` = a_y, shape
+    (K, W, U).  ``blocks`` holds the **non-overlapping** windows of the same long surfaces
+    (shift = window length), shape (K, J, U): the populations of the ergodicity check
+    (:func:`stochfric.process.statistics.ergodicity_check`).
     """
 
     samples: ContactSamples
+    blocks: ContactSamples
     window_shift_m: float
     window_shift_points: int
     window_length_m: float
@@ -281,35 +339,32 @@ def _long_windows(
     *,
     surfaces: int,
     factor: int,
-    shift_points: int,
+    shifts: tuple[int, ...],
     method: str,
     seed: SeedLike,
     rule: str,
     iaaft_tol: float,
+    amplitude: str,
     progress: Progress | None,
-) -> tuple[FloatArray, FloatArray, IntArray]:
+) -> list[tuple[FloatArray, FloatArray, IntArray]]:
+    """GW sums of the windows of K long surfaces, one (K, W_s, U) triple per window shift."""
     ny = surface.nb_grid_pts[1]
-    out: list[tuple[FloatArray, FloatArray, IntArray]] = []
+    out: list[list[tuple[FloatArray, FloatArray, IntArray]]] = [[] for _ in shifts]
     for k, gen in enumerate(spawn_generators(seed, surfaces)):
-        long = similar_surface(surface, gen, method=method, factor=factor, tol=iaaft_tol)
-        out.append(
-            window_contact(
-                long.heights_m,
-                long.grid_spacing_m,
-                material,
-                u,
-                window_points=ny,
-                shift_points=shift_points,
-                rule=rule,
+        long = similar_surface(surface, gen, method=method, factor=factor, tol=iaaft_tol, amplitude=amplitude)
+        for s_idx, shift in enumerate(shifts):
+            out[s_idx].append(
+                window_contact(
+                    long.heights_m, long.grid_spacing_m, material, u, window_points=ny, shift_points=shift, rule=rule
+                )
             )
-        )
+        del long
         if progress is not None:
             progress(k + 1, surfaces)
-    return (
-        np.stack([o[0] for o in out]),
-        np.stack([o[1] for o in out]),
-        np.stack([o[2] for o in out]),
-    )
+    return [
+        (np.stack([o[0] for o in per]), np.stack([o[1] for o in per]), np.stack([o[2] for o in per]))
+        for per in out
+    ]
 
 
 def path_contact(
@@ -324,67 +379,43 @@ def path_contact(
     seed: SeedLike = None,
     rule: str = "thesis",
     iaaft_tol: float = 1e-3,
+    amplitude: str = DEFAULT_AMPLITUDE,
     progress: Progress | None = None,
 ) -> PathContact:
     """μ(y) over K long surfaces of ``length_factor`` × the original length (METHOD §4c).
 
     Windows of the original size are shifted by ``shift_points`` grid points (a_y) along y;
-    long surface k uses the k-th child stream of ``seed``.
+    long surface k uses the k-th child stream of ``seed``.  The same long surfaces are also cut
+    into ``length_factor`` non-overlapping windows (``blocks``) for the ergodicity check.
     """
     k_count = _check_count("long_surfaces", long_surfaces)
     factor = _check_count("length_factor", length_factor, 2)
     shift = _check_count("shift_points", shift_points)
     u = _approach(approach_m)
-    area, force, count = _long_windows(
-        surface, material, u, surfaces=k_count, factor=factor, shift_points=shift,
-        method=method, seed=seed, rule=rule, iaaft_tol=iaaft_tol, progress=progress,
+    ny = surface.nb_grid_pts[1]
+    (area, force, count), (b_area, b_force, b_count) = _long_windows(
+        surface, material, u, surfaces=k_count, factor=factor, shifts=(shift, ny), method=method,
+        seed=seed, rule=rule, iaaft_tol=iaaft_tol, amplitude=amplitude, progress=progress,
     )  # fmt: skip
     dy = surface.grid_spacing_m[1]
-    samples = ContactSamples(
-        approach_m=u,
-        contact_area_m2=area,
-        normal_force_n=force,
-        n_contacts=count,
-        nominal_area_m2=surface.nominal_area_m2,
-        shear_strength_pa=material.shear_strength_pa,
-        info={"kind": "path", "surrogate": method, "long_surfaces": k_count, "length_factor": factor},
-    )
+    info = {"surrogate": method, "amplitude": amplitude, "long_surfaces": k_count, "length_factor": factor}
+
+    def samples(a: FloatArray, n: FloatArray, c: IntArray, kind: str) -> ContactSamples:
+        return ContactSamples(
+            approach_m=u,
+            contact_area_m2=a,
+            normal_force_n=n,
+            n_contacts=c,
+            nominal_area_m2=surface.nominal_area_m2,
+            shear_strength_pa=material.shear_strength_pa,
+            info={"kind": kind, **info},
+        )
+
     return PathContact(
-        samples=samples,
+        samples=samples(area, force, count, "path"),
+        blocks=samples(b_area, b_force, b_count, "blocks"),
         window_shift_m=shift * dy,
         window_shift_points=shift,
         window_length_m=surface.physical_size_m[1],
         surface_length_m=factor * surface.physical_size_m[1],
-    )
-
-
-def ergodic_contact(
-    surface: Surface,
-    material: Material,
-    approach_m: npt.ArrayLike,
-    *,
-    windows: int,
-    method: str = "phase",
-    seed: SeedLike = None,
-    rule: str = "thesis",
-    iaaft_tol: float = 1e-3,
-) -> ContactSamples:
-    """Windows of original size, shifted by their own length, on ONE long surface (METHOD §4b).
-
-    The long surface is ``windows`` times the original length; shape (W, U).
-    """
-    w_count = _check_count("windows", windows, 2)
-    u = _approach(approach_m)
-    area, force, count = _long_windows(
-        surface, material, u, surfaces=1, factor=w_count, shift_points=surface.nb_grid_pts[1],
-        method=method, seed=seed, rule=rule, iaaft_tol=iaaft_tol, progress=None,
-    )  # fmt: skip
-    return ContactSamples(
-        approach_m=u,
-        contact_area_m2=area[0],
-        normal_force_n=force[0],
-        n_contacts=count[0],
-        nominal_area_m2=surface.nominal_area_m2,
-        shear_strength_pa=material.shear_strength_pa,
-        info={"kind": "ergodic", "surrogate": method, "windows": w_count},
     )

@@ -84,24 +84,29 @@ def plot_contact_fraction(a: StatisticalContactAnalysis, path: str | Path) -> Pa
 
 
 def plot_ergodicity(a: StatisticalContactAnalysis, path: str | Path) -> Path:
-    """μ of every realisation / window with mean ± σ: ensemble vs one long surface (Fig. 3.18)."""
+    """Ergodicity (Fig. 3.18b): σ of μ along one long surface vs across independent surfaces.
+
+    Left: μ of the non-overlapping windows of every long surface (one colour per surface) with
+    the ensemble mean; right: σ along a path (mean over surfaces) and σ across surfaces at a fixed
+    position (mean over positions), the two populations of :func:`ergodicity_check`.
+    """
     fig = _figure(9.0, 3.6)
-    axes = fig.subplots(1, 2, sharey=True)
+    axes = fig.subplots(1, 2)
     u = a.ensemble.approach_m / MICROMETRE
-    for ax, mu, title in (
-        (axes[0], a.ensemble.mu, f"{a.config.realizations} realisations"),
-        (axes[1], a.ergodic.mu, f"{a.ergodic.mu.shape[0]} windows of one long surface"),
-    ):
-        ax.plot(u, mu.T, color="0.8", lw=0.5)
-        m, s = mu.mean(axis=0), mu.std(axis=0, ddof=1)
-        ax.plot(u, m, "k-", label="E[μ]")
-        ax.plot(u, m + s, "k--", label="E[μ] ± σ")
-        ax.plot(u, m - s, "k--")
-        ax.set_xlabel("u [µm]")
-        ax.set_title(title)
+    blocks = a.path.blocks.mu  # (K, J, U)
+    for k in range(blocks.shape[0]):
+        axes[0].plot(u, blocks[k].T, color=f"C{k % 10}", lw=0.5, alpha=0.6)
+    axes[0].plot(u, blocks.mean(axis=(0, 1)), "k-", lw=2, label="mean of all windows")
+    axes[0].set_xlabel("u [µm]")
     axes[0].set_ylabel("μ")
+    axes[0].set_title(f"{blocks.shape[0]} long surfaces × {blocks.shape[1]} windows")
     axes[0].legend()
     erg = a.ergodicity
+    axes[1].plot(u, erg.path_std, "o-", label="σ along one surface")
+    axes[1].plot(u, erg.ensemble_std, "s--", label="σ across surfaces")
+    axes[1].set_xlabel("u [µm]")
+    axes[1].set_ylabel("σ_μ")
+    axes[1].legend()
     fig.suptitle(
         f"ergodicity: max |z| = {erg.max_abs_z:.2f} vs threshold {erg.threshold:.2f} → "
         + ("consistent" if erg.consistent else "NOT consistent")

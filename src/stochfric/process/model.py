@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from stochfric.io_utils import write_json_atomic
+from stochfric.process.spectra import psd_level
 from stochfric.process.spectral import (
     band_limited_frequencies,
     generate_process,
@@ -494,7 +495,13 @@ class TabulatedProcessModel:
     sigma_zeta_rule:
         ``"sigma_mu"`` or ``"spectral_level"`` (see :meth:`sigma_zeta`).
     psd_level:
-        Optional fitted E[S](p) [m] (METHOD §0 convention), recorded as metadata.
+        Optional fitted E[S](p) = S(f → 0) [m] (METHOD §0 convention), recorded as metadata.
+    window_length_m:
+        Length ℓ of the contact windows whose μ the spectra describe [m] (the analysis's window
+        = the measured map's length).  μ of a window is a moving average over ℓ, so the
+        tabulated spectra carry the window's low-pass ≈ 1/(πfℓ)² above 1/ℓ; it is kept as
+        physics (a contact patch of length ℓ averages its friction) and made explicit here.  The
+        ``"spectral_level"`` σ_ζ rule uses S(f → 0) below 1/(4ℓ) (:meth:`sigma_zeta`).
 
     Notes
     -----
@@ -516,8 +523,11 @@ class TabulatedProcessModel:
     variance_rule: VarianceRule = "sigma_mu"
     sigma_zeta_rule: SigmaZetaRule = "sigma_mu"
     psd_level: ModelFunction | None = None
+    window_length_m: float | None = None
 
     def __post_init__(self) -> None:
+        if self.window_length_m is not None:
+            object.__setattr__(self, "window_length_m", _positive("window_length_m", self.window_length_m, "m"))
         if not isinstance(self.name, str) or not self.name:
             raise ValueError(f"name must be a non-empty string, got {self.name!r}")
         for attr in ("mu_mean", "mu_std"):
@@ -651,13 +661,20 @@ class TabulatedProcessModel:
         """White-noise intensity σ_ζ(p) for the white-noise model (METHOD §5.1, eq. 4.17).
 
         ``"sigma_mu"`` (thesis §4.1.2): σ_ζ = σ_μ(p).  ``"spectral_level"``: the noise term of
-        eq. (4.17) has E[η(x)η(x')] = σ_ζ δ(x − x') (a path increment of variance σ_ζ|dx|), so its
-        two-sided PSD is σ_ζ at every f and its one-sided PSD (METHOD §0) is 2σ_ζ; matching it to
-        the process's low-frequency level S0 (:func:`low_frequency_level`) gives σ_ζ = S0/2.
+        eq. (4.17) has a one-sided PSD 2σ_ζ at every f (see
+        :meth:`BandLimitedProcessModel.sigma_zeta`), matched to the process's level at f → 0:
+        σ_ζ = S(0)/2.  With :attr:`window_length_m` known, S(0) is
+        :func:`stochfric.process.spectra.psd_level` of the model spectrum (bins f ≤ 1/(4ℓ),
+        window response divided out), which does not depend on the window shift of the
+        analysis; without it, the mean over the lowest quarter of the band.
         """
         if self.sigma_zeta_rule == "sigma_mu":
             return self.std(p_pa)
-        return 0.5 * low_frequency_level(self.spectrum(self.frequencies(), p_pa))
+        band = self.frequencies()
+        spec = self.spectrum(band, p_pa)
+        if self.window_length_m is None:
+            return 0.5 * low_frequency_level(spec)
+        return 0.5 * psd_level(band, spec, self.window_length_m)
 
     # --- realisations ------------------------------------------------------------------
 
@@ -685,6 +702,7 @@ class TabulatedProcessModel:
             "variance_rule": self.variance_rule,
             "sigma_zeta_rule": self.sigma_zeta_rule,
             "psd_level": None if self.psd_level is None else self.psd_level.to_dict(),
+            "window_length_m": self.window_length_m,
             "units": dict(_UNITS),
             "nyquist_frequency": nyquist_frequency(self.dx),
         }
@@ -716,6 +734,7 @@ class TabulatedProcessModel:
             variance_rule=data.get("variance_rule", "sigma_mu"),
             sigma_zeta_rule=data.get("sigma_zeta_rule", "sigma_mu"),
             psd_level=None if level is None else ModelFunction.from_dict(level),
+            window_length_m=data.get("window_length_m"),
         )
 
     def save(self, path: str | os.PathLike[str]) -> Path:

@@ -14,6 +14,8 @@ window index last (K long surfaces × W windows per approach).
   (:func:`stochfric.process.spectral.one_sided_psd`: S_k = 2 a_y |X_k|²/W, Σ_k S_k Δf = sample
   variance), averaged over the records; frequencies f_k = k/(W a_y) [1/m], S in m.
   Each record's own mean is removed (this only affects the DC bin, which is not returned).
+* the spectrum level E[S] is the low-frequency level S(f → 0) (:func:`psd_level`): above 1/ℓ
+  the spectrum of μ(y) is the window's moving average, not the surface's.
 """
 
 from __future__ import annotations
@@ -26,11 +28,13 @@ import numpy.typing as npt
 from stochfric.process.spectral import one_sided_psd
 
 __all__ = [
+    "LOW_FREQUENCY_LIMIT",
     "autocorrelation",
     "correlation_length",
     "mean_psd",
     "normalise",
     "psd_level",
+    "window_response",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -94,18 +98,38 @@ def mean_psd(mu: npt.ArrayLike, spacing_m: float) -> tuple[FloatArray, FloatArra
     return f, s.mean(axis=0), se
 
 
-def psd_level(frequencies: npt.ArrayLike, psd: npt.ArrayLike, spacing_m: float) -> float:
-    """Spectrum level E[S] [m]: the mean of S over the bins 0 < f_k < 1/(2 a_y).
+#: Upper end of the band used for the low-frequency level S(f → 0), in units of 1/ℓ (ℓ = window
+#: length): there the window's response sinc²(fℓ) is still ≥ 0.81.
+LOW_FREQUENCY_LIMIT = 0.25
 
-    The thesis's constant approximation of a flat spectrum (Fig. 3.20/3.21).  The Nyquist bin
-    of an even record (half weight in the convention of METHOD §0) is left out, so a white
-    record of variance σ² has E[S] = 2 a_y σ² in expectation for either parity.
+
+def window_response(frequencies: npt.ArrayLike, window_length_m: float) -> FloatArray:
+    """|H(f)|² = sinc²(fℓ) = (sin(πfℓ)/(πfℓ))² of a moving average over a window of length ℓ."""
+    return np.asarray(np.sinc(np.asarray(frequencies, dtype=np.float64) * float(window_length_m)) ** 2)
+
+
+def psd_level(frequencies: npt.ArrayLike, psd: npt.ArrayLike, window_length_m: float) -> float:
+    """Low-frequency level S(f → 0) [m] of μ along the path (the E[S] of eq. 3.21 / Table 3.3).
+
+    μ(y) of windows of length ℓ is a moving average of the surface's local friction over ℓ:
+    above 1/ℓ its spectrum is the window's (≈ 1/(πfℓ)²), and a mean over the whole band
+    0 < f < 1/(2a_y) would scale with the window shift a_y (E[S] ≈ 2a_y σ_μ²).  The level that
+    belongs to the surface is the one at f → 0, where the moving average passes everything:
+    the mean of S(f)/sinc²(fℓ) over the bins 0 < f ≤ ``LOW_FREQUENCY_LIMIT``/ℓ (the boxcar
+    correction is at most 1/0.81; at least the lowest bin is used).  It does not depend on a_y
+    (tests/statistical/test_psd_shift.py).  For white local friction S(0) = 2σ_μ²ℓ.
     """
     f = np.asarray(frequencies, dtype=np.float64)
     s = np.asarray(psd, dtype=np.float64)
-    keep = f * (2.0 * float(spacing_m)) < 1.0 - 1e-9
     if s.ndim != 1 or s.shape != f.shape:
         raise ValueError("psd must be 1-D with one value per frequency")
+    ell = float(window_length_m)
+    if not (math.isfinite(ell) and ell > 0.0):
+        raise ValueError(f"window length must be > 0 m, got {window_length_m!r}")
+    pos = f > 0.0
+    if not np.any(pos):
+        raise ValueError("no frequency bin above f = 0")
+    keep = pos & (f * ell <= LOW_FREQUENCY_LIMIT * (1.0 + 1e-9))
     if not np.any(keep):
-        raise ValueError("no frequency bin below the Nyquist frequency")
-    return float(np.mean(s[keep]))
+        keep = pos & (f == f[pos].min())
+    return float(np.mean(s[keep] / window_response(f[keep], ell)))

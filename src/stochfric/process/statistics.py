@@ -5,8 +5,10 @@ METHOD.md §3–§4 (thesis 3.1.4, 3.2.4, 3.2.5, 3.3.3, 3.3.4).  :func:`analyse`
 a) the **ensemble** (:func:`~stochfric.process.ensemble.ensemble_contact`): R surrogates of
    original size → E[μ], σ_μ, PDFs of μ per approach, mean A_c/A_nom over the mean pressure
    E[N]/A_nom with a linear fit (Fig. 3.16–3.18a);
-b) the **ergodicity check** (:func:`ergodicity_check`): windows of original size shifted by
-   their own length over one long surface against a) (Fig. 3.18b);
+b) the **ergodicity check** (:func:`ergodicity_check`): non-overlapping windows of original
+   size along each of K long surfaces against the same windows across the independent
+   surfaces, all from one generator (Fig. 3.18b; the thesis compared with a), whose
+   realisations come from another generator — see the class docstring);
 c) **μ along the path** (:func:`~stochfric.process.ensemble.path_contact`): K long surfaces,
    windows shifted by a_y → μ(y), autocorrelation, correlation length, PSD (METHOD §0),
    averaged over the surfaces (Fig. 3.19–3.21);
@@ -35,14 +37,14 @@ import numpy as np
 import numpy.typing as npt
 from scipy import stats as sps
 
-from stochfric.contact.asperity import ContactError
+from stochfric.contact.asperity import ContactError, asperity_sums
 from stochfric.contact.materials import Material
 from stochfric.process.ensemble import (
     ContactSamples,
     PathContact,
     ensemble_contact,
-    ergodic_contact,
     path_contact,
+    summit_statistics,
 )
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION, ModelFit, fit_mask, fit_model_function
 from stochfric.process.model import FrictionProcessModel, TabulatedProcessModel
@@ -50,17 +52,21 @@ from stochfric.process.spectra import autocorrelation, correlation_length, mean_
 from stochfric.process.spectral import one_sided_psd
 from stochfric.random import SeedLike, as_seed_sequence, seed_entropy, spawn_generators, spawn_seed_sequences
 from stochfric.surface.io import Surface
+from stochfric.surface.summits import find_summits
+from stochfric.surface.synthesis import AMPLITUDE_METHODS, DEFAULT_AMPLITUDE
 
 __all__ = [
     "AnalysisConfig",
     "ErgodicityCheck",
     "ProcessCheck",
     "StatisticalContactAnalysis",
+    "SurrogateCheck",
     "analyse",
     "check_generated_process",
     "ergodicity_check",
     "linear_fit",
     "mean_and_std_errors",
+    "surrogate_check",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -75,16 +81,18 @@ class AnalysisConfig:
     """Settings of :func:`analyse` (defaults: the thesis's proportions, §3.2.4–3.2.5).
 
     ``window_shift_points`` is a_y in grid points of y; ``length_factor`` the long surfaces'
-    length in units of the original (thesis: 53 mm / 5.3 mm = 10); ``ergodic_windows`` the
-    number of windows of the ergodicity surface.
+    length in units of the original (thesis: 53 mm / 5.3 mm = 10), which is also the number of
+    non-overlapping windows per long surface in the ergodicity check; ``amplitude`` the
+    amplitude estimate of the measured map (``"hann"``: edge jump removed, default; ``"raw"``:
+    the thesis's DFT of the map as it is, :func:`stochfric.surface.synthesis.amplitude_spectrum`).
     """
 
     realizations: int = 100
     long_surfaces: int = 10
     length_factor: int = 10
     window_shift_points: int = 16
-    ergodic_windows: int = 50
     surrogate: str = "phase"
+    amplitude: str = DEFAULT_AMPLITUDE
     summit_rule: str = "thesis"
     iaaft_tol: float = 1e-3
     max_area_fraction: float = DEFAULT_MAX_AREA_FRACTION
@@ -100,12 +108,18 @@ class AnalysisConfig:
             v = getattr(self, name)
             if isinstance(v, bool) or not isinstance(v, int) or v < 1:
                 raise ContactError(f"{name} must be an integer >= 1, got {v!r}")
-        for name in ("length_factor", "ergodic_windows"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, int) or v < 2:
-                raise ContactError(f"{name} must be an integer >= 2, got {v!r}")
+        v = self.length_factor
+        if isinstance(v, bool) or not isinstance(v, int) or v < 2:
+            raise ContactError(f"length_factor must be an integer >= 2, got {v!r}")
         if self.realizations < 2:
             raise ContactError("realizations must be >= 2 (a standard deviation needs two)")
+        if self.long_surfaces < 3:
+            raise ContactError(
+                f"long_surfaces must be >= 3 (the ergodicity check and the standard errors of the path "
+                f"statistics use the scatter between independent long surfaces), got {self.long_surfaces}"
+            )
+        if self.amplitude not in AMPLITUDE_METHODS:
+            raise ContactError(f"amplitude must be one of {AMPLITUDE_METHODS}, got {self.amplitude!r}")
         if not 0.0 < self.max_area_fraction <= 1.0:
             raise ContactError(f"max_area_fraction must lie in (0, 1], got {self.max_area_fraction!r}")
 
@@ -133,62 +147,194 @@ def mean_and_std_errors(samples: npt.ArrayLike) -> tuple[FloatArray, FloatArray,
 
 @dataclass(frozen=True, kw_only=True)
 class ErgodicityCheck:
-    """Ensemble vs windows on one long surface (METHOD §4b), per approach.
+    """Path statistics of one long surface against the ensemble of independent ones (METHOD §4b).
 
-    ``z_mean``/``z_std``: difference of the estimators in units of their combined standard
-    error, (θ_win − θ_ens)/√(SE_win² + SE_ens²).  Verdict: ergodic (consistent) if every |z| ≤
-    ``threshold`` = Φ⁻¹(1 − α/(2m)) with m = 2U comparisons and α = 0.05 (Bonferroni: the chance
-    that an ergodic process fails is at most 5 %).
+    Like with like: both populations are the **non-overlapping windows of long surfaces from the
+    same generator** (K surfaces × J windows, :attr:`PathContact.blocks`).  Per approach:
+
+    * **mean** — one-way analysis of variance: F = J·Σ(m_k − m̄)²/(K−1) over
+      ΣΣ(μ_kj − m_k)²/(K(J−1)), m_k the path mean of surface k.  A non-ergodic process gives every
+      realisation its own mean, and the path means scatter more than the windows along a path
+      explain (F large).  ``z_mean`` is the two-sided-equivalent z of the one-sided p-value.
+    * **standard deviation** — D = mean_k sd_j(μ_kj) − mean_j sd_k(μ_kj): the scatter *along*
+      one surface against the scatter *across* independent surfaces at a fixed position;
+      ``z_std`` = D / SE, SE by the jackknife over surfaces (the surfaces are the independent
+      units, so correlation between windows of one surface is accounted for).
+
+    Verdict: consistent if every |z| ≤ ``threshold`` = Φ⁻¹(1 − α/(4U)) (two-sided, Bonferroni
+    over the 2U tests, α = 0.05).  The false-alarm rate measured on a surface that is ergodic by
+    construction is in docs/statistical_contact.md and tests/statistical/test_ergodicity.py.
     """
 
     z_mean: tuple[float, ...]
     z_std: tuple[float, ...]
+    p_mean: tuple[float, ...]
+    path_std: tuple[float, ...]
+    ensemble_std: tuple[float, ...]
     threshold: float
     consistent: bool
     max_abs_z: float
-    windows: int
-    realizations: int
+    surfaces: int
+    windows_per_surface: int
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary."""
         return {
             "z_mean": list(self.z_mean),
             "z_std": list(self.z_std),
+            "p_mean": list(self.p_mean),
+            "path_std": list(self.path_std),
+            "ensemble_std": list(self.ensemble_std),
             "threshold": self.threshold,
             "max_abs_z": self.max_abs_z,
             "consistent": self.consistent,
             "verdict": "consistent with ergodicity" if self.consistent else "NOT consistent with ergodicity",
-            "rule": "|difference| / combined standard error <= Bonferroni threshold (alpha = 0.05, 2U tests)",
-            "windows": self.windows,
-            "realizations": self.realizations,
+            "rule": "non-overlapping windows of K independent long surfaces of one generator: ANOVA of the path "
+            "means and jackknife z of sd along a path minus sd across surfaces; |z| <= Bonferroni threshold "
+            "(alpha = 0.05, 2U tests)",
+            "surfaces": self.surfaces,
+            "windows_per_surface": self.windows_per_surface,
         }
 
 
-def ergodicity_check(
-    ensemble_mu: npt.ArrayLike, window_mu: npt.ArrayLike, *, alpha: float = ERGODICITY_ALPHA
-) -> ErgodicityCheck:
-    """Compare E[μ] and σ_μ of the ensemble (R, U) with those of the windows (W, U)."""
-    e = np.asarray(ensemble_mu, dtype=np.float64)
-    w = np.asarray(window_mu, dtype=np.float64)
-    if e.ndim != 2 or w.ndim != 2 or e.shape[1] != w.shape[1]:
-        raise ValueError("ensemble and window μ must be (samples, approaches) with the same approaches")
-    me, se_, sme, sse = mean_and_std_errors(e)
-    mw, sw, smw, ssw = mean_and_std_errors(w)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        z_mean = (mw - me) / np.sqrt(smw**2 + sme**2)
-        z_std = (sw - se_) / np.sqrt(ssw**2 + sse**2)
-    m = 2 * e.shape[1]
-    threshold = float(sps.norm.ppf(1.0 - alpha / (2.0 * m)))
-    all_z = np.concatenate((z_mean, z_std))
-    max_abs = float(np.nanmax(np.abs(all_z)))
+def _sd_difference(mu: FloatArray) -> float:
+    """mean over surfaces of sd along the path − mean over positions of sd across surfaces."""
+    return float(np.mean(mu.std(axis=1, ddof=1)) - np.mean(mu.std(axis=0, ddof=1)))
+
+
+def ergodicity_check(blocks_mu: npt.ArrayLike, *, alpha: float = ERGODICITY_ALPHA) -> ErgodicityCheck:
+    """Ergodicity of μ along the path from non-overlapping windows, shape (K surfaces, J, U)."""
+    mu = np.asarray(blocks_mu, dtype=np.float64)
+    if mu.ndim != 3 or mu.shape[0] < 3 or mu.shape[1] < 2:
+        raise ValueError("need μ of shape (surfaces >= 3, windows per surface >= 2, approaches)")
+    if not np.all(np.isfinite(mu)):
+        raise ContactError("a window carries no load at some approach (μ undefined); use larger approaches")
+    k_count, j_count, n_u = mu.shape
+    z_mean, z_std, p_mean, path_sd, ens_sd = [], [], [], [], []
+    for u in range(n_u):
+        x = mu[:, :, u]
+        m_k = x.mean(axis=1)
+        msb = j_count * float(np.sum((m_k - m_k.mean()) ** 2)) / (k_count - 1)
+        msw = float(np.sum((x - m_k[:, None]) ** 2)) / (k_count * (j_count - 1))
+        if msw > 0.0:
+            p = float(sps.f.sf(msb / msw, k_count - 1, k_count * (j_count - 1)))
+        else:
+            p = 1.0 if msb == 0.0 else 0.0
+        p_mean.append(p)
+        z_mean.append(float(sps.norm.isf(max(p, 1e-300) / 2.0)))
+        d = _sd_difference(x)
+        loo = np.array([_sd_difference(np.delete(x, k, axis=0)) for k in range(k_count)])
+        se = math.sqrt((k_count - 1) / k_count * float(np.sum((loo - loo.mean()) ** 2)))
+        z_std.append(d / se if se > 0.0 else (0.0 if d == 0.0 else math.copysign(math.inf, d)))
+        path_sd.append(float(np.mean(x.std(axis=1, ddof=1))))
+        ens_sd.append(float(np.mean(x.std(axis=0, ddof=1))))
+    threshold = float(sps.norm.isf(alpha / (4.0 * n_u)))
+    max_abs = float(np.max(np.abs(np.concatenate((z_mean, z_std)))))
     return ErgodicityCheck(
-        z_mean=tuple(float(v) for v in z_mean),
-        z_std=tuple(float(v) for v in z_std),
+        z_mean=tuple(z_mean),
+        z_std=tuple(z_std),
+        p_mean=tuple(p_mean),
+        path_std=tuple(path_sd),
+        ensemble_std=tuple(ens_sd),
         threshold=threshold,
         consistent=bool(max_abs <= threshold),
         max_abs_z=max_abs,
-        windows=int(w.shape[0]),
-        realizations=int(e.shape[0]),
+        surfaces=k_count,
+        windows_per_surface=j_count,
+    )
+
+
+#: |z| of the measured map against the surrogate ensemble above which the surrogates are not
+#: credible for that surface (the measured value lies outside ±3 ensemble standard deviations).
+SURROGATE_Z_LIMIT = 3.0
+
+_SUMMIT_STAT_NAMES = ("summit_count", "summit_radius_mean_m", "summit_height_std_m")
+
+
+@dataclass(frozen=True, kw_only=True)
+class SurrogateCheck:
+    """Does the measured map look like a member of its own surrogate ensemble? (METHOD §3)
+
+    z = (measured − ensemble mean) / ensemble standard deviation (the ensemble's *spread*, not
+    the standard error of its mean: the question is whether the measured map could be one of the
+    realisations).  Checked: summit count, mean summit radius β̄, summit-height standard deviation
+    σ_S, and μ(u) at every approach (the measured map referenced to its own highest summit, like
+    every realisation).  Credible if every |z| < :data:`SURROGATE_Z_LIMIT`.
+    """
+
+    measured: dict[str, float]
+    ensemble_mean: dict[str, float]
+    ensemble_std: dict[str, float]
+    z: dict[str, float]
+    mu_measured: tuple[float, ...]
+    mu_z: tuple[float, ...]
+    limit: float
+    credible: bool
+    surrogate: str
+    amplitude: str
+
+    def failures(self) -> list[str]:
+        """Names of the quantities with |z| ≥ limit (μ as ``mu(u_k)``)."""
+        out = [n for n, v in self.z.items() if not abs(v) < self.limit]
+        out += [f"mu(u_{k})" for k, v in enumerate(self.mu_z) if not abs(v) < self.limit]
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary."""
+        return {
+            "measured": dict(self.measured),
+            "ensemble_mean": dict(self.ensemble_mean),
+            "ensemble_std": dict(self.ensemble_std),
+            "z": dict(self.z),
+            "mu_measured": list(self.mu_measured),
+            "mu_z": list(self.mu_z),
+            "max_abs_mu_z": float(np.nanmax(np.abs(self.mu_z))) if self.mu_z else None,
+            "limit": self.limit,
+            "credible": self.credible,
+            "failures": self.failures(),
+            "surrogate": self.surrogate,
+            "amplitude": self.amplitude,
+            "rule": "z = (measured - ensemble mean) / ensemble sd; credible if every |z| < limit",
+        }
+
+
+def surrogate_check(
+    surface: Surface, material: Material, ensemble: ContactSamples, *, rule: str = "thesis"
+) -> SurrogateCheck:
+    """Compare the measured ``surface`` with its surrogate ``ensemble`` (:func:`ensemble_contact`)."""
+    if ensemble.summit_stats is None:
+        raise ValueError("the ensemble carries no summit statistics (use ensemble_contact)")
+    s = find_summits(surface.heights_m, surface.grid_spacing_m, rule=rule)
+    meas = summit_statistics(s.heights_m, s.radius_m)
+    stats = ensemble.summit_stats
+    e_mean = stats.mean(axis=0)
+    e_sd = stats.std(axis=0, ddof=1)
+    u = ensemble.approach_m
+    if s.count:
+        area, force, _count = asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=material.e_star_pa)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            mu_meas = np.where(force > 0.0, area * material.shear_strength_pa / force, np.nan)
+    else:
+        mu_meas = np.full(u.size, np.nan)
+    mu_e = ensemble.mu
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mu_z = (mu_meas - np.nanmean(mu_e, axis=0)) / np.nanstd(mu_e, axis=0, ddof=1)
+        z = (meas - e_mean) / e_sd
+    z = np.where(np.isfinite(z), z, np.where(meas == e_mean, 0.0, np.inf))
+    mu_z = np.where(np.isfinite(mu_z), mu_z, np.inf)
+    names = _SUMMIT_STAT_NAMES
+    credible = bool(np.all(np.abs(z) < SURROGATE_Z_LIMIT) and np.all(np.abs(mu_z) < SURROGATE_Z_LIMIT))
+    return SurrogateCheck(
+        measured={n: float(v) for n, v in zip(names, meas, strict=True)},
+        ensemble_mean={n: float(v) for n, v in zip(names, e_mean, strict=True)},
+        ensemble_std={n: float(v) for n, v in zip(names, e_sd, strict=True)},
+        z={n: float(v) for n, v in zip(names, z, strict=True)},
+        mu_measured=tuple(float(v) for v in mu_meas),
+        mu_z=tuple(float(v) for v in mu_z),
+        limit=SURROGATE_Z_LIMIT,
+        credible=credible,
+        surrogate=str(ensemble.info.get("surrogate", "")),
+        amplitude=str(ensemble.info.get("amplitude", "")),
     )
 
 
@@ -307,7 +453,6 @@ class StatisticalContactAnalysis:
     material: dict[str, Any]
     surface_info: dict[str, Any]
     ensemble: ContactSamples
-    ergodic: ContactSamples
     path: PathContact
     # ensemble statistics (a)
     ensemble_mu_mean: FloatArray
@@ -320,6 +465,7 @@ class StatisticalContactAnalysis:
     pdf_density: FloatArray
     contact_fraction_fit: dict[str, float]
     ergodicity: ErgodicityCheck
+    surrogate_check: SurrogateCheck
     # path statistics (c)
     pressure_pa: FloatArray
     area_fraction: FloatArray
@@ -387,6 +533,7 @@ class StatisticalContactAnalysis:
                 "contact_fraction_fit": self.contact_fraction_fit,
             },
             "ergodicity": self.ergodicity.to_dict(),
+            "surrogate_check": self.surrogate_check.to_dict(),
             "sigma_zeta": self.sigma_zeta_table(),
             "process_check": self.process_check.to_dict(),
             "model": self.model.to_dict(),
@@ -405,7 +552,7 @@ class StatisticalContactAnalysis:
 
         from stochfric.io_utils import package_versions
 
-        ens, erg, path = self.ensemble, self.ergodic, self.path.samples
+        ens, blocks, path = self.ensemble, self.path.blocks, self.path.samples
         u = ("approach",)
 
         def var(dims: tuple[str, ...], data: npt.ArrayLike, units: str, long_name: str) -> Any:
@@ -421,9 +568,16 @@ class StatisticalContactAnalysis:
             "ensemble_mean_area_fraction": var(u, self.ensemble_area_fraction, "1", "E[A_c]/A_nom"),
             "mu_pdf": var((*u, "pdf_bin"), self.pdf_density, "1", "PDF of mu over the ensemble"),
             "mu_pdf_edges": var((*u, "pdf_edge"), self.pdf_edges, "1", "bin edges of mu_pdf"),
-            "ergodic_mu": var(("ergodic_window", *u), erg.mu, "1", "mu of the windows of one long surface"),
-            "ergodic_z_mean": var(u, self.ergodicity.z_mean, "1", "(E_win - E_ens)/combined SE"),
-            "ergodic_z_std": var(u, self.ergodicity.z_std, "1", "(sd_win - sd_ens)/combined SE"),
+            "block_mu": var(("surface", "block", *u), blocks.mu, "1",
+                            "mu of the non-overlapping windows of the long surfaces (ergodicity check)"),
+            "ergodic_z_mean": var(u, self.ergodicity.z_mean, "1", "ANOVA of the path means, as a two-sided z"),
+            "ergodic_z_std": var(u, self.ergodicity.z_std, "1", "(sd along - sd across surfaces)/jackknife SE"),
+            "surrogate_summit_stats": var(("realization", "summit_stat"),
+                                          ens.summit_stats if ens.summit_stats is not None else np.empty((0, 3)),
+                                          "mixed",
+                                          "summit count [1], mean radius [m], summit-height sd [m] per realisation"),
+            "measured_mu": var(u, self.surrogate_check.mu_measured, "1", "mu of the measured map itself"),
+            "measured_mu_z": var(u, self.surrogate_check.mu_z, "1", "(measured - ensemble mean)/ensemble sd"),
             "path_mu": var(("surface", "window", *u), path.mu, "1", "mu(y) along the path (windows shifted by a_y)"),
             "path_pressure_pa": var(("surface", "window", *u), path.pressure_pa, "Pa", "p(y) of each window"),
             "pressure_pa": var(u, self.pressure_pa, "Pa", "mean pressure p(u) of the path windows"),
@@ -436,7 +590,7 @@ class StatisticalContactAnalysis:
             "correlation_length_m": var(u, self.correlation_length_m, "m", "first zero crossing of the ACF"),
             "psd": var((*u, "frequency"), self.psd, "m", "one-sided PSD of mu-hat, METHOD 0, mean over surfaces"),
             "psd_se": var((*u, "frequency"), self.psd_se, "m", "SE of psd over surfaces"),
-            "psd_level": var(u, self.psd_level, "m", "mean PSD level E[S]"),
+            "psd_level": var(u, self.psd_level, "m", "low-frequency PSD level E[S] = S(f->0)"),
             "psd_level_se": var(u, self.psd_level_se, "m", "SE of E[S] over surfaces"),
             "fit_used": var(u, np.asarray(self.fits["mu_mean"].used, dtype=np.int8), "1", "point used in the fits"),
         }
@@ -448,6 +602,7 @@ class StatisticalContactAnalysis:
             "surface": json.dumps(self.surface_info, sort_keys=True, default=str),
             "fits": json.dumps({k: f.to_dict() for k, f in self.fits.items()}, sort_keys=True),
             "ergodicity": json.dumps(self.ergodicity.to_dict(), sort_keys=True),
+            "surrogate_check": json.dumps(self.surrogate_check.to_dict(), sort_keys=True),
             "contact_fraction_fit": json.dumps(self.contact_fraction_fit, sort_keys=True),
             "window_shift_m": self.path.window_shift_m,
             "window_length_m": self.path.window_length_m,
@@ -499,13 +654,13 @@ def analyse(
     """Run the statistical contact analysis a)–e) of the module docstring on ``surface``.
 
     ``surface`` is the prepared (detrended, filtered, coarsened) surface; windows run along y
-    (axis 1).  Three independent child streams of ``config.seed`` drive the ensemble, the
-    ergodicity surface and the long surfaces; inside each, realisation / surface k has its own
-    child stream.  ``progress(stage, done, total)`` is called after every realisation / surface.
+    (axis 1).  Independent child streams of ``config.seed`` drive the ensemble, the long
+    surfaces and the process check; inside each, realisation / surface k has its own child
+    stream.  ``progress(stage, done, total)`` is called after every realisation / surface.
     """
     cfg = config if config is not None else AnalysisConfig()
     root = as_seed_sequence(cfg.seed)
-    s_ens, s_erg, s_path, s_check = spawn_seed_sequences(root, 4)
+    s_ens, _s_unused, s_path, s_check = spawn_seed_sequences(root, 4)  # stream 1: retired one-surface check
     u = np.asarray(approach_m, dtype=np.float64)
 
     def stage(label: str) -> Callable[[int, int], None] | None:
@@ -515,18 +670,12 @@ def analyse(
 
     ens = ensemble_contact(
         surface, material, u, realizations=cfg.realizations, method=cfg.surrogate, seed=s_ens,
-        rule=cfg.summit_rule, iaaft_tol=cfg.iaaft_tol, progress=stage("ensemble"),
+        rule=cfg.summit_rule, iaaft_tol=cfg.iaaft_tol, amplitude=cfg.amplitude, progress=stage("ensemble"),
     )  # fmt: skip
-    erg = ergodic_contact(
-        surface, material, u, windows=cfg.ergodic_windows, method=cfg.surrogate, seed=s_erg,
-        rule=cfg.summit_rule, iaaft_tol=cfg.iaaft_tol,
-    )  # fmt: skip
-    if progress is not None:
-        progress("ergodicity", 1, 1)
     path = path_contact(
         surface, material, u, long_surfaces=cfg.long_surfaces, length_factor=cfg.length_factor,
         shift_points=cfg.window_shift_points, method=cfg.surrogate, seed=s_path, rule=cfg.summit_rule,
-        iaaft_tol=cfg.iaaft_tol, progress=stage("long surfaces"),
+        iaaft_tol=cfg.iaaft_tol, amplitude=cfg.amplitude, progress=stage("long surfaces"),
     )  # fmt: skip
     notes: list[str] = []
     mu_e = ens.mu
@@ -536,7 +685,15 @@ def analyse(
     e_p = ens.normal_force_n.mean(axis=0) / ens.nominal_area_m2
     e_frac = ens.contact_area_m2.mean(axis=0) / ens.nominal_area_m2
     edges, dens = _pdfs(mu_e, cfg.pdf_bins)
-    erg_check = ergodicity_check(mu_e, erg.mu)
+    erg_check = ergodicity_check(path.blocks.mu)
+    s_check_result = surrogate_check(surface, material, ens, rule=cfg.summit_rule)
+    if not s_check_result.credible:
+        notes.append(
+            "the measured map lies outside its surrogate ensemble (|z| >= 3) for "
+            + ", ".join(s_check_result.failures())
+            + ": the surrogates do not resemble this surface, so the statistics describe the surrogates, not it "
+            "(try --surrogate iaaft for a non-Gaussian height distribution, or check the preparation)"
+        )
 
     # --- path statistics (c) --------------------------------------------------------------
     mu_p = path.samples.mu  # (K, W, U)
@@ -561,8 +718,10 @@ def analyse(
         freqs, s_mean, s_se = mean_psd(mu_p[:, :, k], a_y)
         psd_rows.append(s_mean)
         psd_se_rows.append(s_se)
-        levels.append(psd_level(freqs, s_mean, a_y))
-        per_surface = [psd_level(freqs, one_sided_psd(mu_p[j, :, k], a_y)[1], a_y) for j in range(k_count)]
+        levels.append(psd_level(freqs, s_mean, path.window_length_m))
+        per_surface = [
+            psd_level(freqs, one_sided_psd(mu_p[j, :, k], a_y)[1], path.window_length_m) for j in range(k_count)
+        ]
         level_se.append(float(np.std(per_surface, ddof=1) / root_k) if k_count > 1 else math.nan)
     psd = np.stack(psd_rows)
     psd_se = np.stack(psd_se_rows)
@@ -595,6 +754,7 @@ def analyse(
         variance_rule=cfg.variance_rule,  # type: ignore[arg-type]
         sigma_zeta_rule=cfg.sigma_zeta_rule,  # type: ignore[arg-type]
         psd_level=fits["psd_level"].model_function(),
+        window_length_m=path.window_length_m,
     )
     used_p = p_path[mask]
     check_p = np.unique(np.array([used_p.min(), float(np.exp(np.mean(np.log(used_p)))), used_p.max()]))
@@ -609,7 +769,6 @@ def analyse(
         surface_info={"source": surface.source, "grid": list(surface.nb_grid_pts),
                       "physical_size_m": list(surface.physical_size_m), **surface.info},
         ensemble=ens,
-        ergodic=erg,
         path=path,
         ensemble_mu_mean=e_mean,
         ensemble_mu_std=e_std,
@@ -621,6 +780,7 @@ def analyse(
         pdf_density=dens,
         contact_fraction_fit=linear_fit(e_p, e_frac),
         ergodicity=erg_check,
+        surrogate_check=s_check_result,
         pressure_pa=p_path,
         area_fraction=frac_path,
         mu_mean=mu_mean,

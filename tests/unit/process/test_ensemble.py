@@ -11,7 +11,6 @@ from stochfric.contact.asperity import ContactError, asperity_sums, default_appr
 from stochfric.contact.materials import get_material
 from stochfric.process.ensemble import (
     ensemble_contact,
-    ergodic_contact,
     naive_window_contact,
     path_contact,
     window_contact,
@@ -73,15 +72,42 @@ def test_ensemble_streams_do_not_depend_on_the_number_of_realisations(fine: Surf
         ensemble_contact(fine, MAT, u, realizations=2, method="x")
 
 
-def test_path_and_ergodic_shapes(fine: Surface) -> None:
+def test_path_and_block_shapes(fine: Surface) -> None:
     u = default_approach_m(summits_of(fine), num=4)
     pc = path_contact(fine, MAT, u, long_surfaces=2, length_factor=3, shift_points=74, seed=1)
     assert pc.samples.mu.shape == (2, 9, 4)
     assert pc.window_shift_m == pytest.approx(74 * fine.grid_spacing_m[1])
     np.testing.assert_allclose(pc.positions_m[1], pc.window_shift_m)
-    erg = ergodic_contact(fine, MAT, u, windows=3, seed=2)
-    assert erg.mu.shape == (3, 4)
-    assert np.all(np.isfinite(erg.mu))
+    # the non-overlapping windows of the same long surfaces are every 4th shifted window
+    assert pc.blocks.mu.shape == (2, 3, 4)
+    np.testing.assert_allclose(pc.blocks.mu, pc.samples.mu[:, ::4], rtol=1e-12)
+
+
+def test_large_surface_many_windows_equal_naive() -> None:
+    """Windows with thousands of summits each (the old blocked path crashed on any real file)."""
+    rng = np.random.default_rng(0)
+    z = rng.standard_normal((300, 1200)) * 1e-7
+    u = np.array([1e-8, 5e-8, 2e-7, 4e-7])
+    kw: dict[str, Any] = dict(window_points=400, shift_points=23)
+    fast = window_contact(z, (1e-6, 1e-6), MAT, u, **kw)
+    naive = naive_window_contact(z, (1e-6, 1e-6), MAT, u, **kw)
+    assert find_summits(z[:, :400], (1e-6, 1e-6)).count > 5000
+    np.testing.assert_allclose(fast[0], naive[0], rtol=1e-10)
+    np.testing.assert_allclose(fast[1], naive[1], rtol=1e-10)
+    np.testing.assert_array_equal(fast[2], naive[2])
+
+
+def test_ensemble_records_summit_statistics(fine: Surface) -> None:
+    u = default_approach_m(summits_of(fine), num=3)
+    ens = ensemble_contact(fine, MAT, u, realizations=3, seed=1)
+    assert ens.summit_stats is not None and ens.summit_stats.shape == (3, 3)
+    s = find_summits(
+        __import__("stochfric.surface.synthesis", fromlist=["x"]).similar_surface(
+            fine, np.random.default_rng(np.random.SeedSequence(1).spawn(3)[0])
+        ).heights_m,
+        fine.grid_spacing_m,
+    )
+    np.testing.assert_allclose(ens.summit_stats[0], [s.count, s.radius_m.mean(), s.heights_m.std()])
 
 
 def test_window_without_summit_is_refused() -> None:

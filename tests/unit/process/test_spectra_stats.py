@@ -45,11 +45,30 @@ def test_mean_psd_parseval_and_white_level(n: int) -> None:
     df = 1.0 / (n * 1e-5)
     np.testing.assert_allclose(f, np.arange(1, n // 2 + 1) * df)
     assert np.sum(s) * df == pytest.approx(mu.var(axis=1).mean(), rel=1e-12)
-    # white noise: E[S] = 2 a_y σ² (1 − 1/n for the removed record mean), within 4 SE of the mean
+    # white samples at spacing a_y = ℓ (non-overlapping windows): S(f → 0) = 2ℓσ² divided by
+    # the boxcar response over f ≤ 1/(4ℓ); within 4 SE of the mean of the bins used
     level = psd_level(f, s, 1e-5)
-    expected = 2e-5 * (1.0 - 1.0 / n)
-    assert abs(level - expected) < 4.0 * np.mean(se) / np.sqrt(s.size)
+    keep = f * 1e-5 <= 0.25
+    expected = float(np.mean(2e-5 * (1.0 - 1.0 / n) / np.sinc(f[keep] * 1e-5) ** 2))
+    assert abs(level - expected) < 4.0 * float(np.mean(se[keep])) / np.sqrt(keep.sum())
     assert np.all(se > 0)
+
+
+def test_psd_level_of_a_moving_average_is_its_zero_frequency_level() -> None:
+    """μ(y) of windows of length ℓ shifted by a_y ≪ ℓ: S(f → 0) = 2σ_local² ℓ_local for any a_y."""
+    rng = np.random.default_rng(8)
+    dy, ell_pts = 1e-6, 100
+    local = rng.standard_normal((200, 4000))  # white local friction at spacing dy
+    csum = np.concatenate((np.zeros((200, 1)), np.cumsum(local, axis=1)), axis=1)
+    levels = []
+    for shift in (5, 50):
+        starts = np.arange(0, 4000 - ell_pts + 1, shift)
+        mu = (csum[:, starts + ell_pts] - csum[:, starts]) / ell_pts
+        f, s, _se = mean_psd(mu, shift * dy)
+        levels.append(psd_level(f, s, ell_pts * dy))
+    expected = 2.0 * dy  # S_local(0) = 2 σ² dy for white samples of unit variance
+    assert levels[0] == pytest.approx(expected, rel=0.1)
+    assert levels[1] == pytest.approx(expected, rel=0.1)
 
 
 def test_mean_and_std_errors_match_the_scatter() -> None:
@@ -62,15 +81,18 @@ def test_mean_and_std_errors_match_the_scatter() -> None:
 
 def test_ergodicity_verdict() -> None:
     rng = np.random.default_rng(5)
-    a = 0.3 + 0.05 * rng.standard_normal((100, 6))
-    b = 0.3 + 0.05 * rng.standard_normal((60, 6))
-    same = ergodicity_check(a, b)
+    ergodic = 0.3 + 0.05 * rng.standard_normal((10, 10, 6))  # K surfaces × J windows × U
+    same = ergodicity_check(ergodic)
     assert same.consistent and same.max_abs_z <= same.threshold
-    assert same.threshold == pytest.approx(2.865, abs=0.01)  # Φ⁻¹(1 − 0.05/24)
-    shifted = ergodicity_check(a, b + 0.03)
-    assert not shifted.consistent and shifted.max_abs_z > 4
-    wider = ergodicity_check(a, 0.3 + 2.0 * (b - 0.3))
-    assert not wider.consistent and max(np.abs(wider.z_std)) > wider.threshold
+    assert same.threshold == pytest.approx(2.865, abs=0.01)  # Φ⁻¹(1 − 0.05/24): 2U = 12 two-sided tests
+    # a non-ergodic process: every realisation has its own mean (offset per surface)
+    offsets = 0.05 * rng.standard_normal((10, 1, 6))
+    biased = ergodicity_check(ergodic + offsets)
+    assert not biased.consistent and max(biased.z_mean) > biased.threshold
+    # along one surface the scatter is smaller than across surfaces -> z_std negative
+    assert np.mean(biased.z_std) < -2.0
+    with pytest.raises(ValueError):
+        ergodicity_check(ergodic[:2])
 
 
 def test_linear_fit() -> None:

@@ -36,9 +36,16 @@ def _aniso(shape: tuple[int, int], seed: int) -> np.ndarray:
 @pytest.mark.parametrize("shape", [(32, 48), (31, 47), (32, 47), (31, 48)])
 def test_random_phase_keeps_amplitudes_exactly(shape: tuple[int, int]) -> None:
     z = _aniso(shape, 1)
-    s = random_phase_heights(z, 7)
+    s = random_phase_heights(z, 7, amplitude="raw")
     assert s.shape == z.shape and s.dtype == np.float64
     np.testing.assert_allclose(np.abs(np.fft.fft2(s)), np.abs(np.fft.fft2(z)), rtol=1e-10, atol=1e-10 * z.size)
+    # every estimate: the surrogate's amplitudes are the estimate's exactly, variance restored
+    for method in ("tukey", "hann"):
+        t = random_phase_heights(z, 7, amplitude=method)
+        np.testing.assert_allclose(
+            np.abs(np.fft.fft2(t)) / np.sqrt(z.size), amplitude_spectrum(z, method), rtol=1e-10, atol=1e-10
+        )
+        assert t.var() == pytest.approx(z.var(), rel=1e-10)
     assert s.mean() == pytest.approx(z.mean(), rel=1e-12)
     assert s.var() == pytest.approx(z.var(), rel=1e-10)
     assert not np.allclose(s, z)
@@ -98,7 +105,8 @@ def test_iaaft_keeps_heights_exactly_and_spectrum_within_bound(shipped: np.ndarr
     ks = stats.ks_2samp(res.heights.ravel(), shipped.ravel())
     assert ks.statistic == 0.0
     # documented bound: ε <= 1 % of the amplitude spectrum (measured 1e-4 … 4e-4 on this surface)
-    target = np.abs(np.fft.rfft2(shipped))
+    # the target is the default (Tukey) amplitude estimate, rfft2 layout, unnormalised
+    target = amplitude_spectrum(shipped, "tukey")[:, : shipped.shape[1] // 2 + 1] * np.sqrt(shipped.size)
     assert res.amplitude_error == pytest.approx(amplitude_error(res.heights, target))
     assert res.amplitude_error < 0.01
     # the iteration matters: one rank remap of a phase surrogate is worse
