@@ -4,8 +4,8 @@
 numbers, a short computed reading of the results, and the parameters, seeds and package
 versions of each study.  A chapter-3 section analyses the shipped real surface
 (:func:`stochfric.surface.io.default_surface_path`) with the surface and contact code
-(METHOD §1–2) and :func:`process_statistics_section` the statistics of μ and the
-friction-process model from that surface (METHOD §3–§4; module ``process_section``).
+(method §1–2) and :func:`process_statistics_section` the statistics of μ and the
+friction-process model from that surface (method §3–§4; module ``process_section``).
 """
 
 from __future__ import annotations
@@ -376,14 +376,14 @@ def warnings_section(results: Sequence[Any]) -> str:
 
 READERS = {"damping": damping_reading, "forcing": forcing_reading, "lyapunov": lyapunov_reading,
            "normal-force": normal_force_reading}
-TITLES = {"damping": "Damping: D_max^d, D_max^s and the Hopf boundary (METHOD §6.2)",
-          "forcing": "Forcing: bifurcation diagrams over η (METHOD §6.3)",
-          "lyapunov": "Largest Lyapunov exponent (METHOD §6.4)",
-          "normal-force": "Normal force: phase diagrams, PDFs, E[X_gh] ± σ, VarK (METHOD §6.1)"}
+TITLES = {"damping": "Damping: D_max^d, D_max^s and the Hopf boundary (method §6.2)",
+          "forcing": "Forcing: bifurcation diagrams over η (method §6.3)",
+          "lyapunov": "Largest Lyapunov exponent (method §6.4)",
+          "normal-force": "Normal force: phase diagrams, PDFs, E[X_gh] ± σ, VarK (method §6.1)"}
 
 
 def contact_section(directory: Path) -> str:
-    """Chapter-3 analysis of the shipped real surface: statistics, summits, GW contact (METHOD §1–2)."""
+    """Chapter-3 analysis of the shipped real surface: statistics, summits, GW contact (method §1–2)."""
     try:
         from ..contact.asperity import asperity_contact
         from ..contact.materials import load_material
@@ -417,13 +417,13 @@ def contact_section(directory: Path) -> str:
            f"{_fmt((stats['summit_radius_mean_m'] or math.nan) / um)} µm; material {html.escape(mat.name)} "
            f"(E* = {mat.e_star_pa / 1e9:.3g} GPa, τ_max = {mat.shear_strength_pa / 1e6:.3g} MPa).</p>",
            _table(["u [µm]", "A_c [m²]", "A_c/A_nom", "p [MPa]", "contacts", "μ (3.16)"], rows)]
-    out += [_figure(p, f"Surface / contact analysis: {p.stem.replace('_', ' ')} (METHOD §1–2, thesis Fig. 3.9–3.11)",
+    out += [_figure(p, f"Surface / contact analysis: {p.stem.replace('_', ' ')} (method §1–2, thesis Fig. 3.9–3.11)",
                     directory) for p in figs if p.suffix == ".png"]
     return "".join(out)
 
 
 def process_statistics_section(directory: Path, *, quick: bool = False) -> str:
-    """Statistics of μ and the friction-process model of the shipped surface (METHOD §3–§4)."""
+    """Statistics of μ and the friction-process model of the shipped surface (method §3–§4)."""
     from .process_section import friction_process_section
 
     try:
@@ -446,7 +446,8 @@ def write_report(
     d.mkdir(parents=True, exist_ok=True)
     body = [f"<h1>{html.escape(title)}</h1>",
             "<p>Friction oscillator driven by deterministic, white-noise and contact-analysis friction, side by "
-            "side (N. Gaus, KIT 2013, chapter 4). Dimensionless x = y/L (L = 1 m), τ = ω0 t; forces in N.</p>"]
+            "side (N. Gaus, KIT 2013, chapter 4). Dimensionless x = y/L (L = 1 m), τ = ω0 t; forces in N. "
+            "\"method §…\" refers to the sections of docs/method.md in the stochfric repository.</p>"]
     readings = []
     for k, res in enumerate(results):
         kind = res.kind

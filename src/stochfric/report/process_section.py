@@ -1,4 +1,4 @@
-"""Report section for METHOD §3–§4: statistics of μ and the friction-process model of the
+"""Report section for method §3–§4: statistics of μ and the friction-process model of the
 shipped measured surface (statistical contact analysis, issue 4)."""
 
 from __future__ import annotations
@@ -62,7 +62,7 @@ def friction_process_section(directory: Path, *, quick: bool = False, seed: int 
     )
     erg = d["ergodicity"]
     parts = [
-        f"<p>Statistical contact analysis (METHOD §3–§4) of the shipped surface, brake-pad material, "
+        f"<p>Statistical contact analysis (method §3–§4) of the shipped surface, brake-pad material, "
         f"{cfg.realizations} random-phase realisations, {cfg.long_surfaces} long surfaces × "
         f"{cfg.length_factor} lengths, seed {seed}. Ergodicity: max |z| = {f(erg['max_abs_z'], '.2f')} "
         f"(threshold {f(erg['threshold'], '.2f')}) → {html.escape(str(erg['verdict']))}. "

@@ -1,4 +1,4 @@
-"""Executors for study sweeps: serial, local processes, Dask (METHOD §0 randomness rule).
+"""Executors for study sweeps: serial, local processes, Dask (method §0 randomness rule).
 
 A sweep is a list of independent :class:`~stochfric.studies.common.TaskSpec`; an executor
 runs :func:`~stochfric.studies.common.execute_task` on each and yields ``(task, arrays)``
