@@ -272,7 +272,7 @@ def damping_headline(summary: dict[str, Any]) -> str:
         unsafe = [m for m, v in zip(stoch, vals, strict=True) if _above(v, det[i])]
         edge = det[i] is not None and det[i] >= max(grid) - 1e-12
         if unsafe:
-            line += " — the deterministic limit is not safe"
+            line += f" — the deterministic limit is not safe ({' and '.join(unsafe)} sticks beyond it)"
         elif edge:
             line += " — the limits reach the grid end: extend the D grid to compare them"
         else:
