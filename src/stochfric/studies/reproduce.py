@@ -1,7 +1,7 @@
 """``stochfric reproduce``: every study of thesis chapter 4 for both presets, plus the report.
 
-``quick=True`` uses coarse grids and few runs (< 3 min on 2 cores); the full plan uses the
-thesis's resolution (D 0.05 … 0.25 × 41, 7 forces, 10 runs; 30 runs for the normal-force
+``quick=True`` uses coarse grids and few runs (measured times: README, "How long it takes");
+the full plan uses the thesis's resolution (D 0.05 … 0.25 × 41, 7 forces, 10 runs; 30 runs for the normal-force
 study; η 0 … 3 in steps of 0.05; Lyapunov τ = 200, 30 η, 3 forces, 10 runs).
 """
 
