@@ -175,11 +175,18 @@ def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:
 def forcing_reading(summary: dict[str, Any]) -> tuple[str, str]:
     """(table, reading) for a forcing study summary."""
     med = summary.get("sigma_ratio_median", {})
-    rows = [[q, med.get(f"{q:g}")] for q in summary["forcing_q"]]
-    txt = "; ".join(f"q = {q:g}: median σ_contact/σ_white over η = {_fmt(med.get(f'{q:g}'), '.3g')}"
+    ci = summary.get("sigma_ratio_median_ci", {})
+
+    def _ci(q: float) -> str:
+        c = ci.get(f"{q:g}") or {}
+        return f"{_fmt(c.get('low'), '.3g')} … {_fmt(c.get('high'), '.3g')}" if c else "—"
+
+    rows = [[q, med.get(f"{q:g}"), _ci(q)] for q in summary["forcing_q"]]
+    txt = "; ".join(f"q = {q:g}: median σ_contact/σ_white over η = {_fmt(med.get(f'{q:g}'), '.3g')} "
+                    f"(95 % bootstrap interval {_ci(q)})"
                     for q in summary["forcing_q"]) if med else "no white/contact pair"
     txt += " (thesis brake: ≈ 1.2 small q, ≈ 1.05 large q; sheet ≈ 2.5)."
-    return _table(["q", "median σ_contact/σ_white"], rows), txt
+    return _table(["q", "median σ_contact/σ_white", "95 % interval"], rows), txt
 
 
 def lyapunov_reading(summary: dict[str, Any]) -> tuple[str, str]:
@@ -223,8 +230,13 @@ def normal_force_reading(summary: dict[str, Any]) -> tuple[str, str]:
                 sw = summary["x_gh_std"]["white"][di][ni]
                 sc = summary["x_gh_std"]["contact"][di][ni]
                 if sw is not None and sc is not None and math.isfinite(sw) and math.isfinite(sc) and sw > 0:
-                    parts.append(f"N = {nf:g} N, D = {d:g}: {sc / sw:.2g}")
-        txt = "σ(X_gh) contact/white: " + "; ".join(parts) + ". Empty cells: no stick-slip after the transient."
+                    rc = (summary.get("sigma_ratio_contact_white") or [[{}] * len(summary["normal_force"])] *
+                          len(summary["damping"]))[di][ni] or {}
+                    iv = (f" [{_fmt(rc.get('low'), '.2g')}, {_fmt(rc.get('high'), '.2g')}]"
+                          if rc.get("low") is not None else "")
+                    parts.append(f"N = {nf:g} N, D = {d:g}: {sc / sw:.2g}{iv}")
+        txt = ("σ(X_gh) contact/white [95 % bootstrap interval]: " + "; ".join(parts)
+               + ". Empty cells: no stick-slip after the transient.")
     return _table(["model", "D", "N [N]", "E[X_gh]", "SE", "σ", "SE", "VarK %", "SE %", "events"], rows), txt
 
 
