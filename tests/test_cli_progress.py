@@ -62,3 +62,27 @@ def test_simulate_header_names_a_preset_only_when_there_is_one() -> None:
     assert "preset=" not in out and "stochfric simulate" in out
     out = CliRunner().invoke(app, ["simulate", "--preset", "brake", "--tau-end", "5"]).output
     assert "preset=brake" in out
+
+
+def test_reproduce_ctrl_c_says_what_is_saved(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    import stochfric.studies.executors as executors
+    from stochfric.studies.common import execute_task
+
+    class StopInSecondStudy(executors.Executor):
+        def __init__(self) -> None:
+            self.calls = 0
+
+        def run(self, fn: Any, tasks: Any) -> Any:
+            for t in tasks:
+                self.calls += 1
+                if self.calls > 3:  # the first tiny study has 2 tasks: stop after one of the second
+                    raise KeyboardInterrupt
+                yield t, execute_task(t, 1)
+
+    monkeypatch.setattr(reproduce_mod, "plan", _tiny_plan)
+    monkeypatch.setattr(executors, "make_executor", lambda *a, **k: StopInSecondStudy())
+    res = CliRunner().invoke(app, ["reproduce", "--out", str(tmp_path / "r")])
+    assert res.exit_code == 130, res.output
+    assert re.search(r"\(1 of 2 studies finished and saved\), study sheet/damping after 1 of \d+ tasks", res.output)
+    assert f"saved in {tmp_path / 'r' / 'checkpoints'}" in res.output and "Resume with:" in res.output
+    assert (tmp_path / "r" / "brake" / "damping.nc").exists()

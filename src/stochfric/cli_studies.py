@@ -425,7 +425,7 @@ def reproduce_command(
             def on_tasks(label: str, d: int, n: int) -> None:
                 nonlocal what
                 if label != prog.label:
-                    what = f"reproduce, study {label}"
+                    what = f"reproduce ({prog.finished} of {prog.n_studies} studies finished and saved), study {label}"
                     prog.start(label)
                 prog.tasks(d, n)
 
