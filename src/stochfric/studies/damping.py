@@ -61,7 +61,7 @@ from .common import (
 )
 from .config import DampingConfig
 from .executors import Executor, SweepStats
-from .stats import clopper_pearson
+from .stats import clopper_pearson, pooled_bootstrap_se
 
 
 def d_max_deterministic(damping: npt.ArrayLike, has_cycle: npt.ArrayLike) -> float:
@@ -238,6 +238,12 @@ def damping_study(
         xmean_nan = np.nanmean(xw, axis=(-2, -1))
         xstd_nan = np.nanstd(xw, axis=(-2, -1), ddof=1)
         m_mean = np.nanmean(sc, axis=-1)
+    # Monte Carlo uncertainty: E[M] over independent runs (s/√R); E[X_gh], σ(X_gh) by a bootstrap over runs
+    with np.errstate(invalid="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        m_se = np.nanstd(sc, axis=-1, ddof=1) / np.sqrt(n_runs)
+    x_se_mean, x_se_std = pooled_bootstrap_se(
+        xw, n_boot=200, rng=np.random.default_rng(np.random.SeedSequence(config.seed, spawn_key=(2**31 - 1,))))
     xmean = np.where(np.isfinite(xmean_nan), xmean_nan, 0.0)
     xstd = np.where(np.isfinite(xstd_nan), xstd_nan, 0.0)
     # D_max per model and force
@@ -280,6 +286,9 @@ def damping_study(
         "stick_probability_low": (dims3, lo, {"units": "1", "long_name": "Clopper-Pearson lower bound"}),
         "stick_probability_high": (dims3, hi, {"units": "1", "long_name": "Clopper-Pearson upper bound"}),
         "m_mean": (dims3, m_mean, {"units": "1", "long_name": "E[M] (deterministic: M_d)"}),
+        "m_mean_se": (dims3, m_se, {"units": "1", "long_name": "standard error of E[M] (runs independent)"}),
+        "x_gh_mean_se": (dims3, x_se_mean, {"units": "1", "long_name": "bootstrap SE of E[X_gh] (NaN: undefined)"}),
+        "x_gh_std_se": (dims3, x_se_std, {"units": "1", "long_name": "bootstrap SE of sigma(X_gh)"}),
         "x_gh_mean": (dims3, xmean, {"units": "1", "long_name": "E[X_gh] in the window, 0 where no stick (thesis)"}),
         "x_gh_std": (dims3, xstd, {"units": "1", "long_name": "sigma(X_gh) in the window, 0 where none"}),
         "x_gh_mean_nan": (dims3, xmean_nan, {"units": "1", "long_name": "E[X_gh] in the window, NaN where none"}),
@@ -416,6 +425,9 @@ def _summary(config: DampingConfig, setup: Any, ds: xr.Dataset, models: list[str
         for m in models
     }
     out["m_mean"] = {m: ds["m_mean"].sel(model=m).values.tolist() for m in models}
+    out["m_mean_se"] = {m: ds["m_mean_se"].sel(model=m).values.tolist() for m in models}
+    out["x_gh_mean_se"] = {m: ds["x_gh_mean_se"].sel(model=m).values.tolist() for m in models}
+    out["x_gh_std_se"] = {m: ds["x_gh_std_se"].sel(model=m).values.tolist() for m in models}
     if "m_diff" in ds:
         out["m_diff"] = {m: ds["m_diff"].sel(stochastic_model=m).values.tolist()
                          for m in ds["stochastic_model"].values.tolist()}

@@ -10,6 +10,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import asdict, dataclass
 from typing import Any
 
@@ -227,3 +228,37 @@ def std_ratio_over_cells(
         return per, RatioEstimate(med, math.nan, math.nan, math.nan, confidence)
     lo, hi = np.quantile(bmed, [a, 1 - a])
     return per, RatioEstimate(med, float(np.std(bmed, ddof=1)), float(lo), float(hi), confidence)
+
+
+def pooled_bootstrap_se(
+    x: npt.NDArray[np.float64], *, n_boot: int = 200, rng: np.random.Generator | None = None
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Bootstrap-over-runs SEs of the pooled mean and σ (ddof 1), vectorised over leading axes.
+
+    ``x[..., run, event]`` with NaN padding (as in the study arrays).  One set of run indices is
+    drawn per replicate and shared by all cells (each cell's SE is still a plain bootstrap over
+    its runs).  NaN where a cell has fewer than two runs with values or fewer than three values.
+    """
+    g = rng if rng is not None else np.random.default_rng(0)
+    fin = np.isfinite(x)
+    xs = np.where(fin, x, 0.0)
+    s1 = xs.sum(axis=-1)
+    s2 = (xs * xs).sum(axis=-1)
+    cnt = fin.sum(axis=-1).astype(float)
+    nr = x.shape[-2]
+    idx = g.integers(0, nr, size=(n_boot, nr))
+    b1 = s1[..., idx].sum(axis=-1)  # [..., boot]
+    b2 = s2[..., idx].sum(axis=-1)
+    bn = cnt[..., idx].sum(axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = b1 / bn
+        var = (b2 - bn * mean * mean) / (bn - 1)
+        sd = np.sqrt(np.where(var > 0, var, 0.0))
+        mean = np.where(bn > 0, mean, np.nan)
+        sd = np.where(bn > 1, sd, np.nan)
+    ok_cell = (np.sum(cnt > 0, axis=-1) >= 2) & (cnt.sum(axis=-1) >= 3)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        se_m = np.nanstd(mean, axis=-1, ddof=1)
+        se_s = np.nanstd(sd, axis=-1, ddof=1)
+    return np.where(ok_cell, se_m, np.nan), np.where(ok_cell, se_s, np.nan)
