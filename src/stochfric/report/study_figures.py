@@ -220,6 +220,7 @@ def _dmax_figure(ds: xr.Dataset, d: Path, prefix: str, models: list[str], dd: An
     (no cycle even at the first grid D) as ▼ "< grid start"."""
     fig, ax = plt.subplots(figsize=(6.4, 3.8))
     span = float(nn.max() - nn.min()) if nn.size > 1 else 1.0
+    labelled: set[tuple[int, str]] = set()
     for k, m in enumerate(models):
         y = ds["d_max"].sel(model=m).values
         hi = ds["d_max_high"].sel(model=m).values
@@ -230,17 +231,17 @@ def _dmax_figure(ds: xr.Dataset, d: Path, prefix: str, models: list[str], dd: An
         inside = ~at_end & ~below
         ax.plot(x, np.where(below, np.nan, y), "-", color=col, lw=1, alpha=0.6)
         ax.plot(x[inside], y[inside], "o", color=col, label=r"$D_\mathrm{max}$" + f", {m}")
+        y0 = float(np.min(dd))
         if at_end.any():
             ax.plot(x[at_end], y[at_end], "^", color=col, ms=8, mfc="none", mew=1.5)
-            for xi, yi in zip(x[at_end], y[at_end], strict=True):
-                ax.annotate("> grid", (xi, yi), textcoords="offset points", xytext=(0, 7), ha="center",
-                            fontsize=7, color=col)
         if below.any():
-            y0 = float(np.min(dd))
             ax.plot(x[below], np.full(int(below.sum()), y0), "v", color=col, ms=8, mfc="none", mew=1.5)
-            for xi in x[below]:
-                ax.annotate("< grid start", (xi, y0), textcoords="offset points", xytext=(0, -12), ha="center",
-                            fontsize=7, color=col)
+        for i in (int(j) for j in np.nonzero(at_end | below)[0]):  # one label per force, shared by the models
+            kind_txt = "> grid" if at_end[i] else "< grid start"
+            if (i, kind_txt) not in labelled:
+                labelled.add((i, kind_txt))
+                ax.annotate(kind_txt, (nn[i], y[i] if at_end[i] else y0), textcoords="offset points",
+                            xytext=(0, 8) if at_end[i] else (0, -14), ha="center", fontsize=7, color="0.25")
         if m != "deterministic":
             top = np.where(np.isfinite(hi), hi, np.nanmax(dd))
             ax.vlines(x[inside], y[inside], top[inside], color=col, alpha=0.5)
