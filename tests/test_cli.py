@@ -139,3 +139,13 @@ def test_simulate_white_intensity_thesis_mode() -> None:
     assert explicit["x_gh"] == thesis["x_gh"]  # the mode is exactly Itô EM with σ_ζ,eff
     default = _json(base)
     assert default["white_increment"] == "ito" and default["x_gh"] != thesis["x_gh"]
+
+
+def test_simulate_process_level_psd_level() -> None:
+    base = ["simulate", "--preset", "sheet", "--normal-force", "880", "--model", "contact", "--runs", "2",
+            "--seed", "1", "--tau-end", "10", "--json"]
+    d = _json([*base, "--process-level", "psd_level"])
+    assert d["process"]["kind"] == "psd_level" and d["process"]["calibration"] == pytest.approx(0.06293, rel=1e-3)
+    assert _json(base)["process"]["kind"] == "band_limited"
+    res = runner.invoke(app, ["simulate", "--gamma0", "1", "--n", "10", "--process-level", "psd_level"])
+    assert res.exit_code == 2 and "preset" in res.output

@@ -69,6 +69,11 @@ class WhiteIntensityChoice(StrEnum):
     thesis = "thesis"
 
 
+class ProcessLevelChoice(StrEnum):
+    sigma_mu = "sigma_mu"
+    psd_level = "psd_level"
+
+
 class PathChoice(StrEnum):
     mass = "mass"
     relative = "relative"
@@ -268,6 +273,11 @@ def simulate(
     path_coordinate: Annotated[
         PathChoice, typer.Option(help="Where the contact process is read (METHOD §7.7).")
     ] = PathChoice.mass,
+    process_level: Annotated[
+        ProcessLevelChoice | None,
+        typer.Option(help="Variance of the contact process: sigma_mu (σ_μ(p)², default) or psd_level "
+                     "(reproduction mode: from the thesis's E[S](p) fit; presets only)."),
+    ] = None,
     process_file: Annotated[
         Path | None,
         typer.Option("--process", help="Friction-process model file (JSON, `stochfric "
@@ -322,6 +332,13 @@ def simulate(
             # keep the grid spanning whole periods: n = round(length/dx) points of dx = length/n
             npts = max(2, round(process_length / process.dx))
             process = replace(process, length=process_length, dx=process_length / npts)
+        if process_level is ProcessLevelChoice.psd_level:
+            if pre is None or process_file is not None:
+                raise ParameterError("--process-level psd_level rescales a preset's process: use --preset, "
+                                     "not --process")
+            from .process.presets import psd_level_process
+
+            process = replace(psd_level_process(pre), base=process, sigma_zeta_rule=process.sigma_zeta_rule)
         # default: the pressure law (4.13) whenever a process model gives E[μ](p)
         law_name = friction_law.value if friction_law else (
             "pressure" if process is not None and params.pressure is not None else "III")

@@ -37,6 +37,10 @@ JsonOpt = Annotated[bool, typer.Option("--json", help="Print one JSON object.")]
 PathOpt = Annotated[str, typer.Option(
     "--path-coordinate", help="Where the contact process is read: mass (thesis text, path of the mass) | relative | "
                               "position (reproduction mode: at x1, eq. 4.36/4.38 as printed; euler only).")]
+LevelOpt = Annotated[str, typer.Option(
+    "--process-level", help="Variance of the contact process: sigma_mu (σ_μ(p)², default) | psd_level "
+                            "(reproduction mode: from the thesis's E[S](p) fit, normalised by its 0.08-at-0.5-MPa "
+                            "check; presets only).")]
 WhiteOpt = Annotated[str, typer.Option(
     "--white-intensity", help="σ_ζ of the white-noise model: sigma_mu (thesis, σ_ζ = σ_μ(p)) | spectral_level "
                               "(the process's low-frequency spectral level) | thesis (reproduction mode: printed "
@@ -160,9 +164,11 @@ def _models(spec: str | None) -> dict[str, Any]:
 
 def _common(preset: str, process: Path | None, runs: int | None, seed: int, tau_end: float | None,
             dt: float | None, integrator: str, stick_window: float, models: str | None,
-            path_coordinate: str = "mass", white_intensity: str = "sigma_mu") -> dict[str, Any]:
+            path_coordinate: str = "mass", white_intensity: str = "sigma_mu",
+            process_level: str = "sigma_mu") -> dict[str, Any]:
     d: dict[str, Any] = {"preset": preset, "seed": seed, "integrator": integrator, "stick_window": stick_window,
-                         "path_coordinate": path_coordinate, "white_intensity": white_intensity, **_models(models)}
+                         "path_coordinate": path_coordinate, "white_intensity": white_intensity,
+                         "process_level": process_level, **_models(models)}
     if process is not None:
         d["process_file"] = str(process)
     if runs is not None:
@@ -273,14 +279,14 @@ def damping_command(
                                 "lowest D to the first grid D above the largest D_max at the phase force).")] = None,
     phase_runs: Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for the phase diagrams "
                                                                         "(0: none).")] = 3,
-    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu",
+    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu", process_level: LevelOpt = "sigma_mu",
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
     """Damping study: D_max^d, D_max^s (with interval), D_H, M_diff, M_quot, phase diagrams over D (METHOD §6.2)."""
     try:
         cfg = _validate("damping", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
-                                              models, path_coordinate, white_intensity),
+                                              models, path_coordinate, white_intensity, process_level),
                                     "normal_forces": normal_force, "damping": damping, "confidence": confidence,
                                     "p_detect": p_detect, "x0": x0, "phase_force": phase_force,
                                     "phase_damping": phase_damping, "phase_runs": phase_runs})
@@ -297,14 +303,14 @@ def forcing_command(
     damping: Annotated[float | None, typer.Option("--damping", help="D (default 5e-6).")] = None,
     runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
     tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler", stick_window: WinOpt = 0.5,
-    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu",
+    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu", process_level: LevelOpt = "sigma_mu",
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
     """Forcing study: bifurcation data, E[X_gh] ± σ over η, σ_contact/σ_white (METHOD §6.3)."""
     try:
         cfg = _validate("forcing", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
-                                              models, path_coordinate, white_intensity),
+                                              models, path_coordinate, white_intensity, process_level),
                                     "normal_force": normal_force, "forcing_q": q, "eta": eta, "damping": damping})
     except StudyError as exc:
         raise _fail(str(exc)) from None
@@ -321,14 +327,14 @@ def lyapunov_command(
     damping: Annotated[float | None, typer.Option("--damping", help="D (default 5e-6).")] = None,
     runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
     tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler",
-    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu",
+    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu", process_level: LevelOpt = "sigma_mu",
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
     """Largest Lyapunov exponent λ (4.43) / E[Λ] (4.44) over η and N (METHOD §6.4)."""
     try:
         cfg = _validate("lyapunov", {**_common(preset, process, runs, seed, tau_end, dt, integrator, 0.5, models,
-                                               path_coordinate, white_intensity),
+                                               path_coordinate, white_intensity, process_level),
                                      "normal_forces": normal_force, "forcing_q": q, "eta": eta,
                                      "perturbation": perturbation, "damping": damping})
     except StudyError as exc:
@@ -343,14 +349,15 @@ def normal_force_command(
     phase_runs: Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for phase diagrams.")] = 5,
     runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
     tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler", stick_window: WinOpt = 0.5,
-    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu",
+    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu", process_level: LevelOpt = "sigma_mu",
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
     """Normal-force study: phase diagrams, PDFs, E[X_gh] ± σ, VarK with SEs (METHOD §6.1)."""
     try:
         cfg = _validate("normal-force", {**_common(preset, process, runs, seed, tau_end, dt, integrator,
-                                                   stick_window, models, path_coordinate, white_intensity),
+                                                   stick_window, models, path_coordinate, white_intensity,
+                                                   process_level),
                                          "normal_forces": normal_force, "dampings": damping,
                                          "phase_runs": phase_runs})
     except StudyError as exc:

@@ -20,19 +20,28 @@ deliberately not "fixed" (the fits are used exactly as printed):
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
 
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
 from stochfric.process.model import BandLimitedProcessModel, ModelFunction
+from stochfric.random import SeedLike
 
 __all__ = [
     "PRESETS",
+    "PROCESS_LEVELS",
     "Preset",
+    "PsdLevelProcessModel",
     "brake",
     "get_preset",
+    "process_with_level",
+    "psd_level_process",
     "sheet",
 ]
 
@@ -239,3 +248,127 @@ def get_preset(name: str) -> Preset:
     except (KeyError, TypeError):
         raise ValueError(f"unknown preset {name!r}; available presets: {sorted(PRESETS)}") from None
     return factory()
+
+
+# --- reproduction mode: the process level from the thesis's E[S](p) fits (issue 10) -----------
+
+#: The thesis's own check of a generated brake process (§3.2.5, Fig. 3.23): standard deviation
+#: σ_μ̂SD = 0.08 at p = 0.5 MPa.  It fixes the unstated normalisation of the E[S] fits.
+THESIS_CHECK_STD = 0.08
+THESIS_CHECK_PRESSURE_PA = 5e5
+
+#: Process-level rules: ``sigma_mu`` (default: variance σ_μ(p)², METHOD §4d) and ``psd_level``
+#: (reproduction mode, :class:`PsdLevelProcessModel`).
+PROCESS_LEVELS: tuple[str, ...] = ("sigma_mu", "psd_level")
+
+
+@dataclass(frozen=True, kw_only=True)
+class PsdLevelProcessModel:
+    """Reproduction mode ``psd_level``: the process level from the thesis's E[S](p) model function.
+
+    The thesis generates μ̂_SD from "the constant spectrum level of the model function" (brake,
+    §4.2.1) or "the spectrum of this pressure" (sheet, §3.3.4) — in its own, unstated PSD
+    normalisation (METHOD §7.8) — not from σ_μ(p).  This model keeps the base model's band and
+    spectrum shape and sets the variance to
+
+        σ_SD(p)² = C · E[S](p) · K Δf,    C = 0.08² / (E[S]_brake(0.5 MPa) · K_brake Δf_brake),
+
+    i.e. E[S](p) (Table 3.3/3.6, p in Pa) read as a one-sided PSD level over the band K Δf
+    [1/m], with the one constant C that makes the brake's process at 0.5 MPa have the standard
+    deviation the thesis reports for its check (σ_μ̂SD = 0.08, §3.2.5).  The same C is used for
+    the sheet (the same PSD estimator on both surfaces).  Result: brake σ_SD = 1.31 / 1.20 / 1.09
+    σ_μ(p) at 720 / 2720 / 8000 N, sheet 2.26 / 2.26 / 2.29 σ_μ(p) at 400 / 880 / 1750 N.
+
+    The white-noise intensity is *not* changed (σ_ζ = σ_μ(p) of the base model, thesis Table 4.4).
+    A reproduction mode, not a model: ``docs/friction_process.md`` §5.
+    """
+
+    base: BandLimitedProcessModel
+    psd_level: ModelFunction
+    calibration: float
+    sigma_zeta_rule: str = "sigma_mu"
+
+    @property
+    def name(self) -> str:
+        return f"{self.base.name} (psd_level)"
+
+    @property
+    def dx(self) -> float:
+        return self.base.dx
+
+    @property
+    def length(self) -> float:
+        return self.base.length
+
+    @property
+    def grid_is_periodic(self) -> bool:
+        return self.base.grid_is_periodic
+
+    def mean(self, p_pa: float) -> float:
+        """E[μ](p) of the base model (eq. 3.21)."""
+        return self.base.mean(p_pa)
+
+    def std(self, p_pa: float) -> float:
+        """σ_SD(p) = √(C · E[S](p) · K Δf) [-]; ValueError where the E[S] fit is not positive."""
+        level = self.psd_level(float(p_pa))
+        if not level > 0.0:
+            raise ValueError(f"the E[S] model function of {self.base.name!r} is not positive ({level:.4g}) at "
+                             f"p = {p_pa:.6g} Pa")
+        band = len(self.base.frequencies()) * self.base.frequency_step
+        return math.sqrt(self.calibration * level * band)
+
+    def _gain(self, p_pa: float) -> float:
+        return self.std(p_pa) / self.base.std(p_pa)
+
+    def frequencies(self) -> NDArray[np.float64]:
+        return self.base.frequencies()
+
+    def spectrum(self, f: ArrayLike, p_pa: float) -> NDArray[np.float64]:
+        """One-sided PSD [m] (METHOD §0): the base shape with variance σ_SD(p)²."""
+        out: NDArray[np.float64] = self.base.spectrum(f, p_pa) * self._gain(p_pa) ** 2
+        return out
+
+    def variance(self, p_pa: float) -> float:
+        return self.base.variance(p_pa) * self._gain(p_pa) ** 2
+
+    def sigma_zeta(self, p_pa: float) -> float:
+        """White-noise intensity of the base model under this rule (unchanged by the level)."""
+        return dataclasses.replace(self.base, sigma_zeta_rule=self.sigma_zeta_rule).sigma_zeta(p_pa)  # type: ignore[arg-type]
+
+    def generate(self, p_pa: float, rng: np.random.Generator | SeedLike) -> NDArray[np.float64]:
+        """The base realisation (same phases) scaled to σ_SD(p)."""
+        out: NDArray[np.float64] = self.base.generate(p_pa, rng) * self._gain(p_pa)
+        return out
+
+    def to_dict(self) -> dict[str, Any]:
+        """Provenance record (``kind = "psd_level"``; not readable by ``load_process_model``)."""
+        return {"kind": "psd_level", "base": self.base.to_dict(), "psd_level": self.psd_level.to_dict(),
+                "calibration": self.calibration, "sigma_zeta_rule": self.sigma_zeta_rule,
+                "rule": "sigma_SD(p)^2 = calibration * psd_level(p) * K * df; calibration from the thesis's "
+                        "check sigma = 0.08 at 0.5 MPa (brake, section 3.2.5)"}
+
+
+def _psd_calibration() -> float:
+    b = brake()
+    fit = b.recorded_psd_level_fit
+    assert fit is not None
+    band = len(b.process.frequencies()) * b.process.frequency_step
+    return THESIS_CHECK_STD**2 / (fit(THESIS_CHECK_PRESSURE_PA) * band)
+
+
+def psd_level_process(preset: Preset) -> PsdLevelProcessModel:
+    """The preset's process in the ``psd_level`` reproduction mode (:class:`PsdLevelProcessModel`)."""
+    fit = preset.recorded_psd_level_fit
+    if fit is None:
+        raise ValueError(f"preset {preset.name!r} records no E[S](p) fit")
+    return PsdLevelProcessModel(base=preset.process, psd_level=fit, calibration=_psd_calibration())
+
+
+def process_with_level(preset: Preset, level: str) -> Any:
+    """The preset's process model under the process-level rule ``level`` (:data:`PROCESS_LEVELS`)."""
+    if level == "sigma_mu":
+        return preset.process
+    if level == "psd_level":
+        return psd_level_process(preset)
+    raise ValueError(f"unknown process level {level!r}; choose one of {list(PROCESS_LEVELS)}")
+

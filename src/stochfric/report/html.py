@@ -121,8 +121,11 @@ def model_choices_text(summary: dict[str, Any]) -> str:
     if summary.get("white_increment") == "thesis" and eff is not None:
         vals = eff if isinstance(eff, list) else [eff]
         eff_txt = "; effective σ_ζ,eff = " + ", ".join(_fmt(v, ".4g") for v in vals)
+    lvl = summary.get("process_level", "sigma_mu")
+    lvl_txt = ("; contact-process variance: psd_level (REPRODUCTION MODE: from the thesis's E[S](p) fit, "
+               "normalised by its check σ = 0.08 at 0.5 MPa)" if lvl == "psd_level" else "")
     return (f"Contact process read along: {_PATH_TEXT.get(str(pc), str(pc))}; white-noise intensity rule: "
-            f"{_WHITE_TEXT.get(str(wi), str(wi))}; σ_ζ of the white model = {sz_txt}{eff_txt}.")
+            f"{_WHITE_TEXT.get(str(wi), str(wi))}; σ_ζ of the white model = {sz_txt}{eff_txt}{lvl_txt}.")
 
 
 def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:

@@ -32,7 +32,7 @@ import numpy.typing as npt
 from ..oscillator.friction_laws import FrictionLaw, pressure_law
 from ..oscillator.parameters import OscillatorParameters, PhysicalParameters
 from ..process.model import FrictionProcessModel, load_process_model
-from ..process.presets import Preset, get_preset
+from ..process.presets import PROCESS_LEVELS, Preset, get_preset, process_with_level
 
 MODELS: tuple[str, ...] = ("deterministic", "white", "contact")
 PATH_COORDINATES: tuple[str, ...] = ("mass", "relative", "position")
@@ -107,6 +107,7 @@ class StudySetup:
     tau_end: float
     dt: float
     white_intensity: str = "sigma_mu"
+    process_level: str = "sigma_mu"
 
     @property
     def white_increment(self) -> str:
@@ -144,6 +145,7 @@ class StudySetup:
             "dt": self.dt,
             "white_intensity": self.white_intensity,
             "white_increment": self.white_increment,
+            "process_level": self.process_level,
         }
 
 
@@ -176,30 +178,39 @@ def make_setup(
     tau_end: float | None = None,
     dt: float | None = None,
     white_intensity: str = "sigma_mu",
+    process_level: str = "sigma_mu",
 ) -> StudySetup:
     """Resolve a preset name and an optional friction-process model file (``--process FILE``);
-    the σ_ζ rule ``white_intensity`` is applied to the process model (it overrides a file's own)."""
+    the σ_ζ rule ``white_intensity`` is applied to the process model (it overrides a file's own).
+    ``process_level`` ``"psd_level"`` (reproduction mode, presets only) replaces the preset's
+    process by :class:`~stochfric.process.presets.PsdLevelProcessModel`."""
     try:
         pre = get_preset(preset)
     except ValueError as exc:
         raise StudyError(str(exc)) from None
+    if process_level not in PROCESS_LEVELS:
+        raise StudyError(f"process level must be one of {list(PROCESS_LEVELS)}, got {process_level!r}")
     if process_file is not None:
+        if process_level != "sigma_mu":
+            raise StudyError("process_level 'psd_level' rescales a preset's process; it cannot be combined with "
+                             "a process file (process_file / --process)")
         process = load_process_model(process_file)
         source = f"file:{process_file}"
     else:
-        process = pre.process
-        source = f"preset:{pre.name}"
+        process = process_with_level(pre, process_level)
+        source = f"preset:{pre.name}" + ("" if process_level == "sigma_mu" else f" ({process_level})")
     process = with_white_intensity(process, white_intensity)
     te = float(tau_end) if tau_end is not None else pre.tau_end
     step = float(dt) if dt is not None else pre.dt
     return StudySetup(preset=pre, process=process, process_source=source, tau_end=te, dt=step,
-                      white_intensity=white_intensity)
+                      white_intensity=white_intensity, process_level=process_level)
 
 
 def setup_for(config: Any, tau_end: float | None = None) -> StudySetup:
     """:func:`make_setup` from a study config (``tau_end`` overrides a missing ``config.tau_end``)."""
     te = config.tau_end if config.tau_end is not None else tau_end
-    return make_setup(config.preset, config.process_file, te, config.dt, config.white_intensity)
+    return make_setup(config.preset, config.process_file, te, config.dt, config.white_intensity,
+                      getattr(config, "process_level", "sigma_mu"))
 
 
 def white_sigma_zeta(setup: StudySetup, normal_force: float) -> float:
@@ -222,6 +233,7 @@ def model_choices(config: Any, setup: StudySetup, forces: Sequence[float]) -> di
         "path_coordinate": config.path_coordinate,
         "white_intensity": config.white_intensity,
         "white_increment": setup.white_increment,
+        "process_level": setup.process_level,
         "sigma_zeta": [white_sigma_zeta(setup, nf) for nf in forces],
         "sigma_zeta_effective": [white_sigma_zeta_effective(setup, nf) for nf in forces],
     }

@@ -60,6 +60,10 @@ class StudyConfig(BaseModel):
                     "spectral_level | thesis (printed eq. 4.31: σ_ζ,eff = σ_μ(p)·Lω0·Δτ, a Δτ-dependent "
                     "reproduction mode)",
     )
+    process_level: Literal["sigma_mu", "psd_level"] = Field(
+        default="sigma_mu",
+        description="variance of the contact process: sigma_mu (σ_μ(p)², METHOD §4d) | psd_level (reproduction "
+                    "mode: from the thesis's E[S](p) fit, normalised by its 0.08-at-0.5-MPa check)")
     stick_window: float = Field(default=STICK_WINDOW, ge=0.0, lt=1.0)
     x0: tuple[float, float] | None = None
 
