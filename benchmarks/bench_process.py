@@ -3,9 +3,11 @@
 Shipped surface (200 × 296 points), long surfaces 10 × its length, windows of original size
 shifted by a_y = 16 grid points (7 µm, the thesis's 0.3/5.3 of the window) → 167 windows per
 surface, 12 approaches.  The fast path (:func:`stochfric.process.ensemble.window_contact`: summits
-found once per long surface, windows as slices of the summits sorted by column, GW sums by
-broadcasting) is timed against the naive per-window loop (crop the window, find its summits,
-GW sums), on the same long surfaces; synthesis of the long surfaces is timed separately.
+found once per long surface, windows as slices of the summits sorted by column, GW sums of the
+summits that can touch in one compiled loop) is timed against the naive per-window loop (crop
+the window, find its summits, GW sums), on the same long surfaces; synthesis of the long
+surfaces is timed separately.  The whole command on real and thesis-size maps (time and peak
+memory): ``benchmarks/bench_process_files.py``.
 
 Run:  python benchmarks/bench_process.py [--surfaces K]
 """

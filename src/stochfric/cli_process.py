@@ -27,7 +27,9 @@ from stochfric.cli_surface import (
     StepOpt,
     SummitRuleChoice,
     UnitOpt,
+    _echo_warnings,
     _load_and_prepare,
+    _surface_warnings,
     parse_approach_um,
 )
 from stochfric.contact.asperity import ContactError, default_approach_m
@@ -194,6 +196,7 @@ def friction_process_command(
         name = Path(record["file"]).stem
         analysis = _run(coarse, mat, u, cfg, name, show_progress=not as_json)
         payload = analysis.to_json_dict()
+        payload["warnings"] = _surface_warnings(_raw) + payload["warnings"]
         payload["preparation"] = record
         if out is not None:
             payload["model_file"] = str(analysis.model.save(_mkdir(out) / MODEL_FILE))
@@ -204,6 +207,7 @@ def friction_process_command(
         raise _fail(str(exc)) from None
     except ValueError as exc:  # e.g. a fit without enough points
         raise _fail(str(exc)) from None
+    _echo_warnings(payload["warnings"])
     if as_json:
         typer.echo(json.dumps(_clean(payload), indent=1, allow_nan=False))
         return

@@ -214,10 +214,48 @@ def plot_surrogates(
     return _save(fig, path)
 
 
+def plot_surrogate_check(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """The measured map against its surrogate ensemble (METHOD §3): μ(u) band and summit statistics.
+
+    Left: every realisation's μ(u) (grey), the ensemble mean ± 3 sd, and the measured map's own
+    μ(u) (red).  Right: the summit count, mean radius β̄ and σ_S of the realisations as
+    histograms in units of their ensemble standard deviation, with the measured map's z marked.
+    """
+    fig = _figure(9.0, 3.6)
+    axes = fig.subplots(1, 2)
+    c = a.surrogate_check
+    u = a.ensemble.approach_m / MICROMETRE
+    mu = a.ensemble.mu
+    axes[0].plot(u, mu.T, color="0.85", lw=0.5)
+    m, s = mu.mean(axis=0), mu.std(axis=0, ddof=1)
+    axes[0].fill_between(u, m - 3 * s, m + 3 * s, color="C0", alpha=0.2, label="ensemble mean ± 3 sd")
+    axes[0].plot(u, m, "C0-")
+    axes[0].plot(u, c.mu_measured, "C3o-", ms=3, label="measured map")
+    axes[0].set_xlabel("u [µm]")
+    axes[0].set_ylabel("μ")
+    axes[0].legend()
+    stats = a.ensemble.summit_stats
+    labels = ("summit count", "mean radius β̄", "σ_S")
+    if stats is not None:
+        z_ens = (stats - stats.mean(axis=0)) / np.where(stats.std(axis=0, ddof=1) > 0, stats.std(axis=0, ddof=1), 1.0)
+        for k, name in enumerate(("summit_count", "summit_radius_mean_m", "summit_height_std_m")):
+            axes[1].hist(z_ens[:, k] + 8 * k, bins=15, color=f"C{k}", alpha=0.5, label=labels[k])
+            axes[1].axvline(c.z[name] + 8 * k, color=f"C{k}", lw=2)
+    axes[1].set_xticks([0, 8, 16], labels)
+    axes[1].set_ylabel("realisations")
+    axes[1].set_title("z of the measured map (lines) vs the ensemble (bars)", fontsize=9)
+    fig.suptitle(
+        f"surrogates ({c.surrogate}, amplitude {c.amplitude}) vs measured map → "
+        + ("credible" if c.credible else "NOT credible: " + ", ".join(c.failures()[:4]))
+    )
+    return _save(fig, path)
+
+
 def write_process_figures(a: StatisticalContactAnalysis, directory: str | Path) -> list[Path]:
     """All figures of the analysis into ``directory`` (Fig. 3.16–3.23 analogues)."""
     d = Path(directory)
     return [
+        plot_surrogate_check(a, d / "surrogate_check.png"),
         plot_mu_pdfs(a, d / "mu_pdfs.png"),
         plot_contact_fraction(a, d / "contact_fraction.png"),
         plot_ergodicity(a, d / "ergodicity.png"),

@@ -38,6 +38,7 @@ import numpy.typing as npt
 from scipy import stats as sps
 
 from stochfric.contact.asperity import ContactError, asperity_sums
+from stochfric.contact.validity import ValidityWarning, contact_validity
 from stochfric.contact.materials import Material
 from stochfric.process.ensemble import (
     ContactSamples,
@@ -52,6 +53,7 @@ from stochfric.process.spectra import autocorrelation, correlation_length, mean_
 from stochfric.process.spectral import one_sided_psd
 from stochfric.random import SeedLike, as_seed_sequence, seed_entropy, spawn_generators, spawn_seed_sequences
 from stochfric.surface.io import Surface
+from stochfric.surface.statistics import plasticity_index
 from stochfric.surface.summits import find_summits
 from stochfric.surface.synthesis import AMPLITUDE_METHODS, DEFAULT_AMPLITUDE
 
@@ -62,7 +64,10 @@ __all__ = [
     "StatisticalContactAnalysis",
     "SurrogateCheck",
     "analyse",
+    "available_memory_bytes",
     "check_generated_process",
+    "check_memory",
+    "estimate_peak_memory_bytes",
     "ergodicity_check",
     "linear_fit",
     "mean_and_std_errors",
@@ -486,6 +491,9 @@ class StatisticalContactAnalysis:
     model: TabulatedProcessModel
     process_check: ProcessCheck
     notes: list[str] = field(default_factory=list)
+    #: Validity of the model on this surface (:mod:`stochfric.contact.validity`): μ > 1,
+    #: A_c/A_nom > 1 or beyond the non-interaction range, too few contacts, plasticity index.
+    warnings: list[ValidityWarning] = field(default_factory=list)
 
     def sigma_zeta_table(self) -> dict[str, list[float]]:
         """σ_ζ at the analysed pressures by both rules (``sigma_mu`` and ``spectral_level``)."""
@@ -542,6 +550,7 @@ class StatisticalContactAnalysis:
             "material": self.material,
             "surface": self.surface_info,
             "notes": list(self.notes),
+            "warnings": [w.to_dict() for w in self.warnings],
         }
 
     def to_dataset(self) -> Any:
@@ -629,6 +638,49 @@ class StatisticalContactAnalysis:
         return write_atomic(path, lambda p: ds.to_netcdf(p, engine="h5netcdf"))
 
 
+#: Peak memory of :func:`analyse` per grid point of one long surface [bytes] and its fixed part
+#: (interpreter, numpy, numba), measured with ``benchmarks/bench_process_files.py``: 1700 × 17000
+#: points (the thesis's 1700² map, length factor 10) peaked at 1118 MiB, i.e. ≈ 33 B per point
+#: above ≈ 220 MiB; the estimate uses 48 B per point and 256 MiB for a margin.
+MEMORY_PER_POINT_BYTES = 48
+MEMORY_FIXED_BYTES = 256 * 2**20
+
+
+def estimate_peak_memory_bytes(grid: tuple[int, int], length_factor: int) -> int:
+    """Estimated peak memory of :func:`analyse` [bytes]: one long surface of M × (F·N) points at a time."""
+    return MEMORY_FIXED_BYTES + MEMORY_PER_POINT_BYTES * int(grid[0]) * int(grid[1]) * int(length_factor)
+
+
+def available_memory_bytes() -> int | None:
+    """Memory available to new allocations [bytes] (Linux ``/proc/meminfo`` MemAvailable), or None."""
+    try:
+        with open("/proc/meminfo", encoding="ascii") as fh:
+            for line in fh:
+                if line.startswith("MemAvailable:"):
+                    return int(line.split()[1]) * 1024
+    except (OSError, ValueError, IndexError):
+        return None
+    return None
+
+
+def check_memory(grid: tuple[int, int], length_factor: int, available: int | None = None) -> int:
+    """Refuse, before any work, an analysis whose long surfaces do not fit in memory.
+
+    Returns the estimate [bytes]; raises :class:`ContactError` with the figures and what to change
+    when it exceeds the available memory (``available``; default :func:`available_memory_bytes`).
+    """
+    need = estimate_peak_memory_bytes(grid, length_factor)
+    have = available_memory_bytes() if available is None else available
+    if have is not None and need > have:
+        gib = 2.0**30
+        raise ContactError(
+            f"the analysis needs about {need / gib:.1f} GiB (long surfaces of {grid[0]} × {length_factor * grid[1]} "
+            f"points) but {have / gib:.1f} GiB are available; use a smaller --length-factor, coarsen the map "
+            "(--step 2 or more), or crop it (--size-um with a cropped file)"
+        )
+    return need
+
+
 def _pdfs(mu: FloatArray, bins: int) -> tuple[FloatArray, FloatArray]:
     n_u = mu.shape[1]
     edges = np.empty((n_u, bins + 1))
@@ -659,6 +711,7 @@ def analyse(
     stream.  ``progress(stage, done, total)`` is called after every realisation / surface.
     """
     cfg = config if config is not None else AnalysisConfig()
+    check_memory(surface.nb_grid_pts, cfg.length_factor)
     root = as_seed_sequence(cfg.seed)
     s_ens, _s_unused, s_path, s_check = spawn_seed_sequences(root, 4)  # stream 1: retired one-surface check
     u = np.asarray(approach_m, dtype=np.float64)
@@ -756,6 +809,19 @@ def analyse(
         psd_level=fits["psd_level"].model_function(),
         window_length_m=path.window_length_m,
     )
+    measured = find_summits(surface.heights_m, surface.grid_spacing_m, rule=cfg.summit_rule)
+    gamma = (
+        plasticity_index(
+            e_star_pa=material.e_star_pa, hardness_pa=material.hardness,
+            sigma_s_m=float(measured.heights_m.std()), beta_mean_m=float(measured.radius_m.mean()),
+        )  # fmt: skip
+        if measured.count > 1
+        else None
+    )
+    validity = contact_validity(
+        mu=mu_mean, area_fraction=frac_path, n_contacts=path.samples.n_contacts.mean(axis=(0, 1)), approach_m=u,
+        plasticity_index=gamma, max_area_fraction=cfg.max_area_fraction, name=name or "",
+    )  # fmt: skip
     used_p = p_path[mask]
     check_p = np.unique(np.array([used_p.min(), float(np.exp(np.mean(np.log(used_p)))), used_p.max()]))
     try:
@@ -799,4 +865,5 @@ def analyse(
         model=model,
         process_check=check,
         notes=notes,
+        warnings=validity,
     )

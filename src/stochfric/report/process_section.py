@@ -61,10 +61,32 @@ def friction_process_section(directory: Path, *, quick: bool = False, seed: int 
         for key, label in (("mu_mean", "E[μ]"), ("mu_std", "σ_μ"), ("psd_level", "E[S] [m]"))
     )
     erg = d["ergodicity"]
+    sc = d["surrogate_check"]
+    names = (("summit_count", "summit count", 1.0, ".0f"), ("summit_radius_mean_m", "mean summit radius β̄ [µm]",
+             1e6, ".3g"), ("summit_height_std_m", "σ<sub>S</sub> [nm]", 1e9, ".3g"))
+    sc_rows = "".join(
+        f"<tr><td>{label}</td><td>{f(sc['measured'][key] * scale, spec)}</td>"
+        f"<td>{f(sc['ensemble_mean'][key] * scale, spec)} ± {f(sc['ensemble_std'][key] * scale, '.2g')}</td>"
+        f"<td>{f(sc['z'][key], '+.2f')}</td></tr>"
+        for key, label, scale, spec in names
+    )
+    mu_z = [v for v in sc["mu_z"] if v is not None]
+    sc_rows += (
+        f"<tr><td>μ(u), {len(mu_z)} approaches</td><td colspan='2'>measured map's own μ(u) vs the "
+        f"ensemble</td><td>max |z| = {f(max((abs(v) for v in mu_z), default=math.nan), '.2f')}</td></tr>"
+    )
+    verdict = "credible" if sc["credible"] else "NOT credible (" + ", ".join(sc["failures"]) + ")"
     parts = [
+        f"<p><b>Do the surrogates resemble the measured map?</b> Amplitude estimate "
+        f"<code>{html.escape(str(sc['amplitude']))}</code> (edge jump of the non-periodic map removed), "
+        f"z = (measured − ensemble mean)/ensemble sd, credible if every |z| &lt; {f(sc['limit'], '.0f')}: "
+        f"<b>{html.escape(verdict)}</b>.</p>"
+        "<table><tr><th></th><th>measured map</th><th>surrogates (mean ± sd)</th><th>z</th></tr>"
+        + sc_rows + "</table>",
         f"<p>Statistical contact analysis (method §3–§4) of the shipped surface, brake-pad material, "
         f"{cfg.realizations} random-phase realisations, {cfg.long_surfaces} long surfaces × "
-        f"{cfg.length_factor} lengths, seed {seed}. Ergodicity: max |z| = {f(erg['max_abs_z'], '.2f')} "
+        f"{cfg.length_factor} lengths, seed {seed}. Ergodicity (non-overlapping windows along each long "
+        f"surface vs across the independent surfaces): max |z| = {f(erg['max_abs_z'], '.2f')} "
         f"(threshold {f(erg['threshold'], '.2f')}) → {html.escape(str(erg['verdict']))}. "
         f"Model file <code>{html.escape(model_path.relative_to(directory).as_posix())}</code>, statistics "
         f"<code>{html.escape(Path(nc_path).relative_to(directory).as_posix())}</code> "

@@ -100,3 +100,15 @@ def test_linear_fit() -> None:
     fit = linear_fit(x, 2.0 * x + 1.0)
     assert fit["slope"] == pytest.approx(2.0) and fit["intercept"] == pytest.approx(1.0)
     assert fit["r_squared"] == pytest.approx(1.0)
+
+
+def test_memory_estimate_refuses_before_work() -> None:
+    from stochfric.contact.asperity import ContactError
+    from stochfric.process.statistics import check_memory, estimate_peak_memory_bytes
+
+    # the thesis's 1700² map with 10 lengths: measured peak 1118 MiB, estimate above it and < 4 GiB
+    est = estimate_peak_memory_bytes((1700, 1700), 10)
+    assert 1118 * 2**20 < est < 4 * 2**30
+    assert check_memory((200, 296), 10, available=2**30) == estimate_peak_memory_bytes((200, 296), 10)
+    with pytest.raises(ContactError, match="GiB.*--length-factor"):
+        check_memory((1700, 1700), 100, available=8 * 2**30)
