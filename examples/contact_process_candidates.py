@@ -26,7 +26,7 @@ import numpy as np
 import numpy.typing as npt
 
 from stochfric.oscillator.integrate import simulate
-from stochfric.process.presets import Preset
+from stochfric.process.presets import Preset, psd_level_process
 from stochfric.studies.common import StudySetup, law_for, make_setup, window_mask
 from stochfric.studies.stats import sample_summary
 
@@ -74,6 +74,9 @@ def readings(setup: StudySetup) -> Iterator[tuple[str, Any, str]]:
     yield "position X_1 (eq. 4.36/4.38 as printed)", base, "position"
     yield "position X_1 and variance σ_μ²/2", ScaledProcess(base, lambda p: 1 / math.sqrt(2.0)), \
         "position"
+    yield "psd_level: E[S](p), thesis check 0.08 (mass path)", psd_level_process(pre), "mass"
+    yield "psd_level and position X_1", psd_level_process(pre), "position"
+    yield "psd_level and relative path", psd_level_process(pre), "relative"
 
 
 def _row(x_gh: npt.NDArray[np.float64], t_gh: npt.NDArray[np.float64]) -> tuple[float, float, float, float]:

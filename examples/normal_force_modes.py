@@ -1,12 +1,16 @@
 """Normal-force study (METHOD §6.1) in every reproduction mode, both presets (issue 10).
 
 Equivalent to ``stochfric study normal-force --preset brake|sheet --runs 300`` with
-``--white-intensity {sigma_mu,thesis}`` and ``--path-coordinate {mass,relative,position}``:
+``--white-intensity {sigma_mu,thesis}``, ``--path-coordinate {mass,relative,position}`` and
+``--process-level {sigma_mu,psd_level}``:
 
 * ``default``      — white: σ_ζ = σ_μ(p), Itô (ΔW = R_k √Δτ); contact: mass path (thesis text);
 * ``thesis``       — white: printed eq. (4.31), σ_ζ,eff = σ_μ(p)·Lω0·Δτ; contact: process read at
   the mass position x1 (eq. 4.36/4.38 as printed);
-* ``thesis-rel``   — white as ``thesis``; contact: relative path (METHOD §7.7).
+* ``thesis-rel``   — white as ``thesis``; contact: relative path (METHOD §7.7);
+* ``thesis-psd``   — as ``thesis`` with ``--process-level psd_level`` (process variance from the
+  thesis's E[S](p) fit, normalised by its check σ = 0.08 at 0.5 MPa);
+* ``thesis-psd-mass`` — as ``thesis-psd`` but the process read along the mass path.
 
 Prints, per preset, force and mode, E[X_gh] and σ(X_gh) with bootstrap standard errors (runs
 resampled) and σ contact/white with its 95 % bootstrap interval; with ``--figure FILE`` draws
@@ -30,6 +34,8 @@ MODES: dict[str, dict[str, str]] = {
     "default": {"white_intensity": "sigma_mu", "path_coordinate": "mass"},
     "thesis": {"white_intensity": "thesis", "path_coordinate": "position"},
     "thesis-rel": {"white_intensity": "thesis", "path_coordinate": "relative"},
+    "thesis-psd": {"white_intensity": "thesis", "path_coordinate": "position", "process_level": "psd_level"},
+    "thesis-psd-mass": {"white_intensity": "thesis", "path_coordinate": "mass", "process_level": "psd_level"},
 }
 
 
@@ -65,13 +71,13 @@ def figure(all_res: dict[str, dict[str, dict[str, Any]]], path: str) -> None:
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    fig, axes = plt.subplots(1, 2, figsize=(10, 3.8))
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.2))
     for ax, (preset, res) in zip(axes, all_res.items(), strict=True):
-        width = 0.13
+        width = 0.08
         k = 0
         for name, s in res.items():
             for m, mk in (("white", "o"), ("contact", "s")):
-                xs = [i + (k - 2.5) * width for i in range(len(s["normal_force"]))]
+                xs = [i + (k - 4.5) * width for i in range(len(s["normal_force"]))]
                 ys = [v * 1e4 for v in s["x_gh_std"][m][0]]
                 es = [(v or 0) * 1e4 for v in s["x_gh_std_se"][m][0]]
                 ax.errorbar(xs, ys, yerr=es, fmt=mk, ms=4, capsize=2, label=f"{m}, {name}")
