@@ -35,6 +35,7 @@ from stochfric.cli_surface import (
 from stochfric.contact.asperity import ContactError, default_approach_m
 from stochfric.contact.materials import MaterialError, load_material, material_names
 from stochfric.io_utils import check_output_path
+from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.surface.io import SurfaceError
 from stochfric.surface.preprocess import Preparation
 from stochfric.units import MICROMETRE
@@ -127,8 +128,10 @@ def friction_process_command(
                      "(edge jump removed, variance restored) or raw (the thesis's DFT of the non-periodic map)."),
     ] = AmplitudeChoice.tukey,
     max_area_fraction: Annotated[
-        float, typer.Option("--max-area-fraction", help="Fits use points with mean A_c/A_nom up to this.")
-    ] = 0.015,
+        float,
+        typer.Option("--max-area-fraction", help="Fits use points with mean A_c/A_nom up to this (default: the end "
+                     "of the GW/boundary-element plateau at equal load, docs/surface_contact.md)."),
+    ] = DEFAULT_MAX_AREA_FRACTION,
     pressure_rule: Annotated[
         PressureRuleChoice, typer.Option("--pressure-rule", help="nearest (thesis) or interpolate (log-log in p).")
     ] = PressureRuleChoice.nearest,

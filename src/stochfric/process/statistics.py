@@ -38,8 +38,8 @@ import numpy.typing as npt
 from scipy import stats as sps
 
 from stochfric.contact.asperity import ContactError, asperity_sums
-from stochfric.contact.validity import ValidityWarning, contact_validity
 from stochfric.contact.materials import Material
+from stochfric.contact.validity import ValidityWarning, contact_validity
 from stochfric.process.ensemble import (
     ContactSamples,
     PathContact,
@@ -67,8 +67,8 @@ __all__ = [
     "available_memory_bytes",
     "check_generated_process",
     "check_memory",
-    "estimate_peak_memory_bytes",
     "ergodicity_check",
+    "estimate_peak_memory_bytes",
     "linear_fit",
     "mean_and_std_errors",
     "surrogate_check",
@@ -810,14 +810,12 @@ def analyse(
         window_length_m=path.window_length_m,
     )
     measured = find_summits(surface.heights_m, surface.grid_spacing_m, rule=cfg.summit_rule)
-    gamma = (
-        plasticity_index(
+    gamma = None
+    if measured.count > 1:
+        gamma = plasticity_index(
             e_star_pa=material.e_star_pa, hardness_pa=material.hardness,
             sigma_s_m=float(measured.heights_m.std()), beta_mean_m=float(measured.radius_m.mean()),
         )  # fmt: skip
-        if measured.count > 1
-        else None
-    )
     validity = contact_validity(
         mu=mu_mean, area_fraction=frac_path, n_contacts=path.samples.n_contacts.mean(axis=(0, 1)), approach_m=u,
         plasticity_index=gamma, max_area_fraction=cfg.max_area_fraction, name=name or "",
