@@ -422,6 +422,7 @@ def contact_command(
     typer.echo(
         f"material  {mat.name}: E* = {mat.e_star_pa / 1e9:.4g} GPa, "
         f"τ_max = {mat.shear_strength_pa / 1e6:.4g} MPa; method {main.method}"
+        + (" (equal load: u is the half-space's approach at the GW force)" if main is not gw else "")
     )
     typer.echo(f"{'u [µm]':>9} {'A_c [m²]':>11} {'A_c/A_nom':>10} {'p [MPa]':>10} {'contacts':>9} {'μ':>7}")
     for k in range(main.approach_m.size):
