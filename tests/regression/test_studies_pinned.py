@@ -59,6 +59,29 @@ def test_forcing_and_lyapunov_brake() -> None:
         np.testing.assert_array_equal(np.isnan(lam), np.array(s["status"][m]).ravel() != "ok")
 
 
+@pytest.mark.parametrize(("preset", "path"), [("brake", "position"), ("sheet", "mass")])
+def test_reproduction_modes(preset: str, path: str) -> None:
+    """Issue 10: the recommended thesis reproductions (thesis white, psd_level, position / mass path)."""
+    s = normal_force_study(NormalForceConfig(preset=preset, runs=8, seed=5, phase_runs=0, white_intensity="thesis",
+                                             process_level="psd_level", path_coordinate=path)).to_json_dict()
+    assert s["white_increment"] == "thesis" and s["process_level"] == "psd_level" and s["path_coordinate"] == path
+    pin = PIN_MODES[preset]
+    np.testing.assert_allclose(s["x_gh_std"]["white"][0], pin["white"], rtol=RTOL)
+    np.testing.assert_allclose(s["x_gh_std"]["contact"][0], pin["contact"], rtol=RTOL)
+    np.testing.assert_allclose(s["sigma_zeta_effective"], pin["sigma_zeta_effective"], rtol=1e-12)
+
+
+#: issue 10, generated once with the call above (seeded)
+PIN_MODES: dict[str, dict[str, list[float]]] = {
+    "brake": {"white": [5.433996152271231e-05, 9.860557413546357e-05, 0.000322562392367107],
+              "contact": [0.000168327330848973, 0.0002689788171742755, 0.0003133544567822177],
+              "sigma_zeta_effective": [0.3000429846205081, 0.27214971166199203, 0.2584938819092959]},
+    "sheet": {"white": [0.00021305953255302892, 0.0003601365692630694, 0.0005389648238191043],
+              "contact": [0.0007514527595817205, 0.001413257575847008, 0.0013984354805976098],
+              "sigma_zeta_effective": [0.12631611612913693, 0.1084441895613858, 0.09272322369419539]},
+}
+
+
 #: generated once with the calls above (seeded), numpy 2.4.6, numba 0.68.1, Python 3.11.7
 PIN: dict[str, Any] = {
     "damping": {"det": 0.14, "white": {"value": 0.16, "interval": [0.16, 0.175]},
