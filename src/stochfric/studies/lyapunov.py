@@ -20,8 +20,8 @@ of the process grid: the two runs then read unrelated parts of the surface) it s
 * **Twin check.**  In the linear regime the signed differences obey d₂(i) = 2 d(i); a pair is
   *linear* when |d₂(i) − 2 d(i)| ≤ ``linearity_tolerance`` · 2 max_{j≤i} |d(j)| (default 0.1)
   for every i ≤ K.  This catches saturation and the non-smooth parts of the switching logic (a
-  breakaway moved across a grid step; the white noise's slip remainder ΔW_k √(h/Δτ), not
-  Lipschitz in h at h = 0; the contact model's breakaway check) alike, without a length scale.
+  breakaway moved across a grid step; probably the white noise's slip remainder ΔW_k √(h/Δτ),
+  not Lipschitz in h at h = 0; the contact model's breakaway check) alike, without a length scale.
 * ``lyapunov`` (with ``lyapunov_se``, ``status``) is the exponent *per slip→stick transition*:
   the least-squares slope of ln w(i) over all i = 1 … K (deterministic: SE from the regression;
   stochastic: mean over the R run pairs, SE = s/√R).  It is reported only when every pair is
