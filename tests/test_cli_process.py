@@ -52,7 +52,7 @@ def test_json_outputs_files_and_figures(app: typer.Typer, tmp_path: Path) -> Non
     assert isinstance(model, TabulatedProcessModel)
     assert model.grid_is_periodic and model.dx == pytest.approx(data["window_shift_m"])
     assert (out / "friction_process_statistics.nc").stat().st_size > 0
-    assert len(data["figures"]) == 8 and all(Path(f).exists() for f in data["figures"])
+    assert len(data["figures"]) == 9 and all(Path(f).exists() for f in data["figures"])
     # the model file plugs into the oscillator (what `simulate --process FILE` does)
     params = PhysicalParameters(
         mass=2.0, stiffness=1e6, belt_speed=1.0, normal_force=5600.0, contact_area=0.016
