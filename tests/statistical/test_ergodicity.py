@@ -14,8 +14,8 @@ from __future__ import annotations
 import numpy as np
 
 from stochfric.contact.materials import get_material
+from stochfric.process.checks import ergodicity_check
 from stochfric.process.ensemble import path_contact
-from stochfric.process.statistics import ergodicity_check
 from stochfric.surface.io import surface_from_array
 
 MAT = get_material("brake-pad")

@@ -14,7 +14,7 @@ from scipy import stats
 from stochfric.contact.asperity import default_approach_m
 from stochfric.contact.materials import get_material
 from stochfric.process.ensemble import ensemble_contact
-from stochfric.process.statistics import mean_and_std_errors
+from stochfric.process.estimators import mean_and_std_errors
 from stochfric.surface.io import read_surface
 from stochfric.surface.preprocess import Preparation, prepare
 from stochfric.surface.summits import summits_of

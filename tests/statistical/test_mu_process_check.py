@@ -7,7 +7,8 @@ import pytest
 
 from stochfric.contact.asperity import default_approach_m
 from stochfric.contact.materials import get_material
-from stochfric.process.statistics import AnalysisConfig, analyse, check_generated_process
+from stochfric.process.checks import check_generated_process
+from stochfric.process.statistics import AnalysisConfig, analyse
 from stochfric.surface.io import default_surface_path, read_surface
 from stochfric.surface.preprocess import prepare
 from stochfric.surface.summits import summits_of

@@ -17,8 +17,8 @@ import pytest
 
 from stochfric.contact.asperity import default_approach_m
 from stochfric.contact.materials import get_material
+from stochfric.process.checks import SurrogateCheck, surrogate_check
 from stochfric.process.ensemble import ensemble_contact
-from stochfric.process.statistics import SurrogateCheck, surrogate_check
 from stochfric.surface.io import Surface, default_surface_path, read_surface
 from stochfric.surface.preprocess import prepare
 from stochfric.surface.summits import summits_of

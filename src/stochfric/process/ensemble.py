@@ -316,7 +316,7 @@ class PathContact:
     ``samples`` holds A_c, N, counts of the windows shifted by ``window_shift_m`` = a_y, shape
     (K, W, U).  ``blocks`` holds the **non-overlapping** windows of the same long surfaces
     (shift = window length), shape (K, J, U): the populations of the ergodicity check
-    (:func:`stochfric.process.statistics.ergodicity_check`).
+    (:func:`stochfric.process.checks.ergodicity_check`).
     """
 
     samples: ContactSamples

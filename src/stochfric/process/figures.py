@@ -16,7 +16,8 @@ from stochfric.units import MEGAPASCAL, MICROMETRE
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
-    from stochfric.process.statistics import ProcessCheck, StatisticalContactAnalysis
+    from stochfric.process.checks import ProcessCheck
+    from stochfric.process.statistics import StatisticalContactAnalysis
 
 __all__ = [
     "plot_contact_fraction",

@@ -5,7 +5,7 @@ METHOD.md §3–§4 (thesis 3.1.4, 3.2.4, 3.2.5, 3.3.3, 3.3.4).  :func:`analyse`
 a) the **ensemble** (:func:`~stochfric.process.ensemble.ensemble_contact`): R surrogates of
    original size → E[μ], σ_μ, PDFs of μ per approach, mean A_c/A_nom over the mean pressure
    E[N]/A_nom with a linear fit (Fig. 3.16–3.18a);
-b) the **ergodicity check** (:func:`ergodicity_check`): non-overlapping windows of original
+b) the **ergodicity check** (:func:`~stochfric.process.checks.ergodicity_check`): non-overlapping windows of original
    size along each of K long surfaces against the same windows across the independent
    surfaces, all from one generator (Fig. 3.18b; the thesis compared with a), whose
    realisations come from another generator — see the class docstring);
@@ -15,8 +15,12 @@ c) **μ along the path** (:func:`~stochfric.process.ensemble.path_contact`): K l
 d) the **model functions** f(p) = a p^b + c for E[μ], σ_μ and the PSD level over the mean
    pressure of c), high-pressure points excluded (:mod:`stochfric.process.fit`; Fig. 3.22);
 e) the **friction-process model** (:class:`~stochfric.process.model.TabulatedProcessModel`)
-   and the check of generated realisations against it (:func:`check_generated_process`,
-   Fig. 3.23).
+   and the check of generated realisations against it
+   (:func:`~stochfric.process.checks.check_generated_process`, Fig. 3.23);
+f) the check that the surrogates resemble the measured map
+   (:func:`~stochfric.process.checks.surrogate_check`) and the validity warnings of the model on
+   this surface (:mod:`stochfric.contact.validity`).  Memory is estimated before any work
+   (:mod:`stochfric.process.memory`).
 
 Standard errors.  Windows on one long surface overlap and are correlated, so the standard
 errors of the path statistics (E[μ], σ_μ, PSD level) are taken from the scatter between the K
@@ -35,23 +39,26 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
-from scipy import stats as sps
 
-from stochfric.contact.asperity import ContactError, asperity_sums
+from stochfric.contact.asperity import ContactError
 from stochfric.contact.materials import Material
 from stochfric.contact.validity import ValidityWarning, contact_validity
-from stochfric.process.ensemble import (
-    ContactSamples,
-    PathContact,
-    ensemble_contact,
-    path_contact,
-    summit_statistics,
+from stochfric.process.checks import (
+    ErgodicityCheck,
+    ProcessCheck,
+    SurrogateCheck,
+    check_generated_process,
+    ergodicity_check,
+    surrogate_check,
 )
+from stochfric.process.ensemble import ContactSamples, PathContact, ensemble_contact, path_contact
+from stochfric.process.estimators import linear_fit, mean_and_std_errors
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION, ModelFit, fit_mask, fit_model_function
-from stochfric.process.model import FrictionProcessModel, TabulatedProcessModel
+from stochfric.process.memory import check_memory
+from stochfric.process.model import TabulatedProcessModel
 from stochfric.process.spectra import autocorrelation, correlation_length, mean_psd, psd_level
 from stochfric.process.spectral import one_sided_psd
-from stochfric.random import SeedLike, as_seed_sequence, seed_entropy, spawn_generators, spawn_seed_sequences
+from stochfric.random import as_seed_sequence, seed_entropy, spawn_seed_sequences
 from stochfric.surface.io import Surface
 from stochfric.surface.statistics import plasticity_index
 from stochfric.surface.summits import find_summits
@@ -59,26 +66,12 @@ from stochfric.surface.synthesis import AMPLITUDE_METHODS, DEFAULT_AMPLITUDE
 
 __all__ = [
     "AnalysisConfig",
-    "ErgodicityCheck",
-    "ProcessCheck",
     "StatisticalContactAnalysis",
-    "SurrogateCheck",
     "analyse",
-    "available_memory_bytes",
-    "check_generated_process",
-    "check_memory",
-    "ergodicity_check",
-    "estimate_peak_memory_bytes",
-    "linear_fit",
-    "mean_and_std_errors",
-    "surrogate_check",
 ]
 
 FloatArray = npt.NDArray[np.float64]
 Progress = Callable[[str, int, int], None]
-
-#: Family-wise false-alarm probability of the ergodicity verdict (two-sided, Bonferroni).
-ERGODICITY_ALPHA = 0.05
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -131,322 +124,6 @@ class AnalysisConfig:
     def to_dict(self) -> dict[str, Any]:
         """Plain dictionary (JSON / netCDF attributes)."""
         return dict(self.__dict__)
-
-
-def mean_and_std_errors(samples: npt.ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """Mean, standard deviation (ddof = 1) and their standard errors over axis 0.
-
-    SE(mean) = s/√n; SE(s) = √((m4 − s⁴)/n) / (2s) (delta method, m4 the fourth central moment).
-    """
-    x = np.asarray(samples, dtype=np.float64)
-    n = x.shape[0]
-    if n < 2:
-        raise ValueError("need at least two samples")
-    mean = x.mean(axis=0)
-    sd = x.std(axis=0, ddof=1)
-    m4 = np.mean((x - mean) ** 4, axis=0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        se_sd = np.sqrt(np.maximum(m4 - sd**4, 0.0) / n) / (2.0 * sd)
-    return mean, sd, sd / math.sqrt(n), np.where(sd > 0.0, se_sd, 0.0)
-
-
-@dataclass(frozen=True, kw_only=True)
-class ErgodicityCheck:
-    """Path statistics of one long surface against the ensemble of independent ones (METHOD §4b).
-
-    Like with like: both populations are the **non-overlapping windows of long surfaces from the
-    same generator** (K surfaces × J windows, :attr:`PathContact.blocks`).  Per approach:
-
-    * **mean** — one-way analysis of variance: F = J·Σ(m_k − m̄)²/(K−1) over
-      ΣΣ(μ_kj − m_k)²/(K(J−1)), m_k the path mean of surface k.  A non-ergodic process gives every
-      realisation its own mean, and the path means scatter more than the windows along a path
-      explain (F large).  ``z_mean`` is the two-sided-equivalent z of the one-sided p-value.
-    * **standard deviation** — D = mean_k sd_j(μ_kj) − mean_j sd_k(μ_kj): the scatter *along*
-      one surface against the scatter *across* independent surfaces at a fixed position;
-      ``z_std`` = D / SE, SE by the jackknife over surfaces (the surfaces are the independent
-      units, so correlation between windows of one surface is accounted for).
-
-    Verdict: consistent if every |z| ≤ ``threshold`` = Φ⁻¹(1 − α/(4U)) (two-sided, Bonferroni
-    over the 2U tests, α = 0.05).  The false-alarm rate measured on a surface that is ergodic by
-    construction is in docs/statistical_contact.md and tests/statistical/test_ergodicity.py.
-    """
-
-    z_mean: tuple[float, ...]
-    z_std: tuple[float, ...]
-    p_mean: tuple[float, ...]
-    path_std: tuple[float, ...]
-    ensemble_std: tuple[float, ...]
-    threshold: float
-    consistent: bool
-    max_abs_z: float
-    surfaces: int
-    windows_per_surface: int
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary."""
-        return {
-            "z_mean": list(self.z_mean),
-            "z_std": list(self.z_std),
-            "p_mean": list(self.p_mean),
-            "path_std": list(self.path_std),
-            "ensemble_std": list(self.ensemble_std),
-            "threshold": self.threshold,
-            "max_abs_z": self.max_abs_z,
-            "consistent": self.consistent,
-            "verdict": "consistent with ergodicity" if self.consistent else "NOT consistent with ergodicity",
-            "rule": "non-overlapping windows of K independent long surfaces of one generator: ANOVA of the path "
-            "means and jackknife z of sd along a path minus sd across surfaces; |z| <= Bonferroni threshold "
-            "(alpha = 0.05, 2U tests)",
-            "surfaces": self.surfaces,
-            "windows_per_surface": self.windows_per_surface,
-        }
-
-
-def _sd_difference(mu: FloatArray) -> float:
-    """mean over surfaces of sd along the path − mean over positions of sd across surfaces."""
-    return float(np.mean(mu.std(axis=1, ddof=1)) - np.mean(mu.std(axis=0, ddof=1)))
-
-
-def ergodicity_check(blocks_mu: npt.ArrayLike, *, alpha: float = ERGODICITY_ALPHA) -> ErgodicityCheck:
-    """Ergodicity of μ along the path from non-overlapping windows, shape (K surfaces, J, U)."""
-    mu = np.asarray(blocks_mu, dtype=np.float64)
-    if mu.ndim != 3 or mu.shape[0] < 3 or mu.shape[1] < 2:
-        raise ValueError("need μ of shape (surfaces >= 3, windows per surface >= 2, approaches)")
-    if not np.all(np.isfinite(mu)):
-        raise ContactError("a window carries no load at some approach (μ undefined); use larger approaches")
-    k_count, j_count, n_u = mu.shape
-    z_mean, z_std, p_mean, path_sd, ens_sd = [], [], [], [], []
-    for u in range(n_u):
-        x = mu[:, :, u]
-        m_k = x.mean(axis=1)
-        msb = j_count * float(np.sum((m_k - m_k.mean()) ** 2)) / (k_count - 1)
-        msw = float(np.sum((x - m_k[:, None]) ** 2)) / (k_count * (j_count - 1))
-        if msw > 0.0:
-            p = float(sps.f.sf(msb / msw, k_count - 1, k_count * (j_count - 1)))
-        else:
-            p = 1.0 if msb == 0.0 else 0.0
-        p_mean.append(p)
-        z_mean.append(float(sps.norm.isf(max(p, 1e-300) / 2.0)))
-        d = _sd_difference(x)
-        loo = np.array([_sd_difference(np.delete(x, k, axis=0)) for k in range(k_count)])
-        se = math.sqrt((k_count - 1) / k_count * float(np.sum((loo - loo.mean()) ** 2)))
-        z_std.append(d / se if se > 0.0 else (0.0 if d == 0.0 else math.copysign(math.inf, d)))
-        path_sd.append(float(np.mean(x.std(axis=1, ddof=1))))
-        ens_sd.append(float(np.mean(x.std(axis=0, ddof=1))))
-    threshold = float(sps.norm.isf(alpha / (4.0 * n_u)))
-    max_abs = float(np.max(np.abs(np.concatenate((z_mean, z_std)))))
-    return ErgodicityCheck(
-        z_mean=tuple(z_mean),
-        z_std=tuple(z_std),
-        p_mean=tuple(p_mean),
-        path_std=tuple(path_sd),
-        ensemble_std=tuple(ens_sd),
-        threshold=threshold,
-        consistent=bool(max_abs <= threshold),
-        max_abs_z=max_abs,
-        surfaces=k_count,
-        windows_per_surface=j_count,
-    )
-
-
-#: |z| of the measured map against the surrogate ensemble above which the surrogates are not
-#: credible for that surface (the measured value lies outside ±3 ensemble standard deviations).
-SURROGATE_Z_LIMIT = 3.0
-
-_SUMMIT_STAT_NAMES = ("summit_count", "summit_radius_mean_m", "summit_height_std_m")
-
-
-@dataclass(frozen=True, kw_only=True)
-class SurrogateCheck:
-    """Does the measured map look like a member of its own surrogate ensemble? (METHOD §3)
-
-    z = (measured − ensemble mean) / ensemble standard deviation (the ensemble's *spread*, not
-    the standard error of its mean: the question is whether the measured map could be one of the
-    realisations).  Checked: summit count, mean summit radius β̄, summit-height standard deviation
-    σ_S, and μ(u) at every approach (the measured map referenced to its own highest summit, like
-    every realisation).  Credible if every |z| < :data:`SURROGATE_Z_LIMIT`.
-    """
-
-    measured: dict[str, float]
-    ensemble_mean: dict[str, float]
-    ensemble_std: dict[str, float]
-    z: dict[str, float]
-    mu_measured: tuple[float, ...]
-    mu_z: tuple[float, ...]
-    limit: float
-    credible: bool
-    surrogate: str
-    amplitude: str
-
-    def failures(self) -> list[str]:
-        """Names of the quantities with |z| ≥ limit (μ as ``mu(u_k)``)."""
-        out = [n for n, v in self.z.items() if not abs(v) < self.limit]
-        out += [f"mu(u_{k})" for k, v in enumerate(self.mu_z) if not abs(v) < self.limit]
-        return out
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary."""
-        return {
-            "measured": dict(self.measured),
-            "ensemble_mean": dict(self.ensemble_mean),
-            "ensemble_std": dict(self.ensemble_std),
-            "z": dict(self.z),
-            "mu_measured": list(self.mu_measured),
-            "mu_z": list(self.mu_z),
-            "max_abs_mu_z": float(np.nanmax(np.abs(self.mu_z))) if self.mu_z else None,
-            "limit": self.limit,
-            "credible": self.credible,
-            "failures": self.failures(),
-            "surrogate": self.surrogate,
-            "amplitude": self.amplitude,
-            "rule": "z = (measured - ensemble mean) / ensemble sd; credible if every |z| < limit",
-        }
-
-
-def surrogate_check(
-    surface: Surface, material: Material, ensemble: ContactSamples, *, rule: str = "thesis"
-) -> SurrogateCheck:
-    """Compare the measured ``surface`` with its surrogate ``ensemble`` (:func:`ensemble_contact`)."""
-    if ensemble.summit_stats is None:
-        raise ValueError("the ensemble carries no summit statistics (use ensemble_contact)")
-    s = find_summits(surface.heights_m, surface.grid_spacing_m, rule=rule)
-    meas = summit_statistics(s.heights_m, s.radius_m)
-    stats = ensemble.summit_stats
-    e_mean = stats.mean(axis=0)
-    e_sd = stats.std(axis=0, ddof=1)
-    u = ensemble.approach_m
-    if s.count:
-        area, force, _count = asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=material.e_star_pa)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            mu_meas = np.where(force > 0.0, area * material.shear_strength_pa / force, np.nan)
-    else:
-        mu_meas = np.full(u.size, np.nan)
-    mu_e = ensemble.mu
-    with np.errstate(divide="ignore", invalid="ignore"):
-        mu_z = (mu_meas - np.nanmean(mu_e, axis=0)) / np.nanstd(mu_e, axis=0, ddof=1)
-        z = (meas - e_mean) / e_sd
-    z = np.where(np.isfinite(z), z, np.where(meas == e_mean, 0.0, np.inf))
-    mu_z = np.where(np.isfinite(mu_z), mu_z, np.inf)
-    names = _SUMMIT_STAT_NAMES
-    credible = bool(np.all(np.abs(z) < SURROGATE_Z_LIMIT) and np.all(np.abs(mu_z) < SURROGATE_Z_LIMIT))
-    return SurrogateCheck(
-        measured={n: float(v) for n, v in zip(names, meas, strict=True)},
-        ensemble_mean={n: float(v) for n, v in zip(names, e_mean, strict=True)},
-        ensemble_std={n: float(v) for n, v in zip(names, e_sd, strict=True)},
-        z={n: float(v) for n, v in zip(names, z, strict=True)},
-        mu_measured=tuple(float(v) for v in mu_meas),
-        mu_z=tuple(float(v) for v in mu_z),
-        limit=SURROGATE_Z_LIMIT,
-        credible=credible,
-        surrogate=str(ensemble.info.get("surrogate", "")),
-        amplitude=str(ensemble.info.get("amplitude", "")),
-    )
-
-
-def linear_fit(x: npt.ArrayLike, y: npt.ArrayLike) -> dict[str, float]:
-    """Least-squares line y = slope·x + intercept with standard errors (Fig. 3.17)."""
-    xa = np.asarray(x, dtype=np.float64)
-    ya = np.asarray(y, dtype=np.float64)
-    coef, cov = np.polyfit(xa, ya, 1, cov=True) if xa.size > 3 else (np.polyfit(xa, ya, 1), np.full((2, 2), np.nan))
-    pred = np.polyval(coef, xa)
-    ss_res = float(np.sum((ya - pred) ** 2))
-    ss_tot = float(np.sum((ya - ya.mean()) ** 2))
-    return {
-        "slope": float(coef[0]),
-        "intercept": float(coef[1]),
-        "slope_se": float(np.sqrt(cov[0, 0])),
-        "intercept_se": float(np.sqrt(cov[1, 1])),
-        "r_squared": 1.0 - ss_res / ss_tot if ss_tot > 0 else math.nan,
-    }
-
-
-@dataclass(frozen=True, kw_only=True)
-class ProcessCheck:
-    """Generated process vs its target at some pressures (Fig. 3.23 analogue).
-
-    Per pressure: target σ = √variance(p) and the generated standard deviation of μ̂ at one grid
-    point over the realisations (``std_pointwise``, with its standard error from the fourth
-    moment) and the mean grid standard deviation of the realisations; the target spectrum and
-    the realisations' mean periodogram (METHOD §0) with its standard error.
-    """
-
-    pressure_pa: tuple[float, ...]
-    target_std: tuple[float, ...]
-    std_pointwise: tuple[float, ...]
-    std_pointwise_se: tuple[float, ...]
-    std_grid_mean: tuple[float, ...]
-    frequencies: tuple[float, ...]
-    target_psd: tuple[tuple[float, ...], ...]
-    generated_psd: tuple[tuple[float, ...], ...]
-    generated_psd_se: tuple[tuple[float, ...], ...]
-    realizations: int
-
-    def max_std_z(self) -> float:
-        """Largest |std_pointwise − target| / SE over the pressures."""
-        z = [abs(g - t) / s for g, t, s in zip(self.std_pointwise, self.target_std, self.std_pointwise_se, strict=True)]
-        return float(max(z))
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary (no spectra)."""
-        return {
-            "pressure_pa": list(self.pressure_pa),
-            "target_std": list(self.target_std),
-            "generated_std_pointwise": list(self.std_pointwise),
-            "generated_std_pointwise_se": list(self.std_pointwise_se),
-            "generated_std_grid_mean": list(self.std_grid_mean),
-            "max_std_z": self.max_std_z(),
-            "realizations": self.realizations,
-        }
-
-
-def check_generated_process(
-    model: FrictionProcessModel,
-    pressures_pa: npt.ArrayLike,
-    *,
-    realizations: int = 200,
-    seed: SeedLike = None,
-) -> ProcessCheck:
-    """Generate ``realizations`` processes per pressure and compare with the target (Fig. 3.23).
-
-    Realisation r uses the r-th child stream of ``seed`` (the same streams at every pressure).
-    """
-    ps = np.atleast_1d(np.asarray(pressures_pa, dtype=np.float64))
-    gens_seed = as_seed_sequence(seed)
-    t_std: list[float] = []
-    g_std: list[float] = []
-    g_se: list[float] = []
-    g_grid: list[float] = []
-    t_psd: list[tuple[float, ...]] = []
-    g_psd: list[tuple[float, ...]] = []
-    g_psd_se: list[tuple[float, ...]] = []
-    freqs: FloatArray = np.empty(0)
-    for p in ps:
-        vals = np.stack([model.generate(float(p), g) for g in spawn_generators(gens_seed, realizations)])
-        target_var = float(np.sum(model.spectrum(model.frequencies(), float(p))) / model.length)
-        t_std.append(math.sqrt(target_var))
-        # pointwise (x = 0) variance over the realisations: E[μ̂] = 0 is known
-        x0 = vals[:, 0]
-        s2 = float(np.mean(x0**2))
-        se_s2 = math.sqrt(max(float(np.mean(x0**4)) - s2**2, 0.0) / realizations)
-        g_std.append(math.sqrt(s2))
-        g_se.append(se_s2 / (2.0 * math.sqrt(s2)) if s2 > 0 else 0.0)
-        g_grid.append(float(np.mean(vals.std(axis=1))))
-        freqs, per = one_sided_psd(vals, model.dx)
-        t_psd.append(tuple(float(v) for v in model.spectrum(freqs, float(p))))
-        g_psd.append(tuple(float(v) for v in per.mean(axis=0)))
-        g_psd_se.append(tuple(float(v) for v in per.std(axis=0, ddof=1) / math.sqrt(realizations)))
-    return ProcessCheck(
-        pressure_pa=tuple(float(v) for v in ps),
-        target_std=tuple(t_std),
-        std_pointwise=tuple(g_std),
-        std_pointwise_se=tuple(g_se),
-        std_grid_mean=tuple(g_grid),
-        frequencies=tuple(float(v) for v in freqs),
-        target_psd=tuple(t_psd),
-        generated_psd=tuple(g_psd),
-        generated_psd_se=tuple(g_psd_se),
-        realizations=realizations,
-    )
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -636,49 +313,6 @@ class StatisticalContactAnalysis:
 
         ds = self.to_dataset()
         return write_atomic(path, lambda p: ds.to_netcdf(p, engine="h5netcdf"))
-
-
-#: Peak memory of :func:`analyse` per grid point of one long surface [bytes] and its fixed part
-#: (interpreter, numpy, numba), measured with ``benchmarks/bench_process_files.py``: 1700 × 17000
-#: points (the thesis's 1700² map, length factor 10) peaked at 1118 MiB, i.e. ≈ 33 B per point
-#: above ≈ 220 MiB; the estimate uses 48 B per point and 256 MiB for a margin.
-MEMORY_PER_POINT_BYTES = 48
-MEMORY_FIXED_BYTES = 256 * 2**20
-
-
-def estimate_peak_memory_bytes(grid: tuple[int, int], length_factor: int) -> int:
-    """Estimated peak memory of :func:`analyse` [bytes]: one long surface of M × (F·N) points at a time."""
-    return MEMORY_FIXED_BYTES + MEMORY_PER_POINT_BYTES * int(grid[0]) * int(grid[1]) * int(length_factor)
-
-
-def available_memory_bytes() -> int | None:
-    """Memory available to new allocations [bytes] (Linux ``/proc/meminfo`` MemAvailable), or None."""
-    try:
-        with open("/proc/meminfo", encoding="ascii") as fh:
-            for line in fh:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        return None
-    return None
-
-
-def check_memory(grid: tuple[int, int], length_factor: int, available: int | None = None) -> int:
-    """Refuse, before any work, an analysis whose long surfaces do not fit in memory.
-
-    Returns the estimate [bytes]; raises :class:`ContactError` with the figures and what to change
-    when it exceeds the available memory (``available``; default :func:`available_memory_bytes`).
-    """
-    need = estimate_peak_memory_bytes(grid, length_factor)
-    have = available_memory_bytes() if available is None else available
-    if have is not None and need > have:
-        gib = 2.0**30
-        raise ContactError(
-            f"the analysis needs about {need / gib:.1f} GiB (long surfaces of {grid[0]} × {length_factor * grid[1]} "
-            f"points) but {have / gib:.1f} GiB are available; use a smaller --length-factor, coarsen the map "
-            "(--step 2 or more), or crop it (--size-um with a cropped file)"
-        )
-    return need
 
 
 def _pdfs(mu: FloatArray, bins: int) -> tuple[FloatArray, FloatArray]:

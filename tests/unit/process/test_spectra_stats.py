@@ -5,8 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from stochfric.process.checks import ergodicity_check
+from stochfric.process.estimators import linear_fit, mean_and_std_errors
 from stochfric.process.spectra import autocorrelation, correlation_length, mean_psd, normalise, psd_level
-from stochfric.process.statistics import ergodicity_check, linear_fit, mean_and_std_errors
 
 
 def test_normalise_and_acf_of_white_noise() -> None:
@@ -104,7 +105,7 @@ def test_linear_fit() -> None:
 
 def test_memory_estimate_refuses_before_work() -> None:
     from stochfric.contact.asperity import ContactError
-    from stochfric.process.statistics import check_memory, estimate_peak_memory_bytes
+    from stochfric.process.memory import check_memory, estimate_peak_memory_bytes
 
     # the thesis's 1700² map with 10 lengths: measured peak 1118 MiB, estimate above it and < 4 GiB
     est = estimate_peak_memory_bytes((1700, 1700), 10)
