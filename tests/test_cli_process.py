@@ -11,9 +11,10 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from stochfric.cli_process import default_window_shift_points, register
+from stochfric.cli_process import register
 from stochfric.oscillator.integrate import simulate
 from stochfric.oscillator.parameters import PhysicalParameters
+from stochfric.process.ensemble import default_window_shift_points
 from stochfric.process.model import TabulatedProcessModel, load_process_model
 
 SMALL = ["--realizations", "8", "--long-surfaces", "3", "--length-factor", "4"]

@@ -35,17 +35,16 @@ from stochfric.cli_surface import (
 from stochfric.contact.asperity import ContactError, default_approach_m
 from stochfric.contact.materials import MaterialError, load_material, material_names
 from stochfric.io_utils import check_output_path
+from stochfric.process.ensemble import default_window_shift_points
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.surface.io import SurfaceError
 from stochfric.surface.preprocess import Preparation
 from stochfric.units import MICROMETRE
 
-__all__ = ["DEFAULT_SHIFT_FRACTION", "default_window_shift_points", "register"]
+__all__ = ["register"]
 
 _INPUT_ERRORS = (SurfaceError, ContactError, MaterialError)
 
-#: The thesis's window shift relative to the window length: a_y = 0.3 mm of ℓ_Fl = 5.3 mm.
-DEFAULT_SHIFT_FRACTION = 0.3 / 5.3
 
 MODEL_FILE = "friction_process.json"
 STATISTICS_FILE = "friction_process_statistics.nc"
@@ -85,11 +84,6 @@ class SigmaZetaChoice(StrEnum):
 
     sigma_mu = "sigma_mu"
     spectral_level = "spectral_level"
-
-
-def default_window_shift_points(window_points: int) -> int:
-    """a_y in grid points: ⌊0.0566 · window length⌋ (the thesis's 0.3 mm of 5.3 mm), at least 1."""
-    return max(1, math.floor(DEFAULT_SHIFT_FRACTION * window_points))
 
 
 def _fail(message: str) -> typer.Exit:

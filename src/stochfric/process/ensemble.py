@@ -34,6 +34,7 @@ work is split.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
@@ -50,9 +51,11 @@ from stochfric.surface.summits import find_summits
 from stochfric.surface.synthesis import DEFAULT_AMPLITUDE, SURROGATE_METHODS, similar_surface
 
 __all__ = [
+    "DEFAULT_SHIFT_FRACTION",
     "SUMMIT_MARGIN",
     "ContactSamples",
     "PathContact",
+    "default_window_shift_points",
     "ensemble_contact",
     "naive_window_contact",
     "path_contact",
@@ -64,6 +67,9 @@ __all__ = [
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
 Progress = Callable[[int, int], None]
+
+#: The thesis's window shift relative to the window length: a_y = 0.3 mm of ℓ_Fl = 5.3 mm (§3.2.4).
+DEFAULT_SHIFT_FRACTION = 0.3 / 5.3
 
 #: Points a summit must lie inside the grid border, per summit rule.
 SUMMIT_MARGIN: dict[str, int] = {"thesis": 2, "8-neighbour": 1}
@@ -187,6 +193,11 @@ def ensemble_contact(
               "summit_rule": rule},
         summit_stats=stats,
     )
+
+
+def default_window_shift_points(window_points: int) -> int:
+    """a_y in grid points: ⌊0.0566 · window length⌋ (the thesis's 0.3 mm of 5.3 mm), at least 1."""
+    return max(1, math.floor(DEFAULT_SHIFT_FRACTION * window_points))
 
 
 def window_starts(total_points: int, window_points: int, shift_points: int) -> IntArray:

@@ -20,9 +20,9 @@ def friction_process_section(directory: Path, *, quick: bool = False, seed: int 
     100 and 10.  Writes the model file, the NetCDF of all statistics and the figures under
     ``directory/friction_process``.
     """
-    from ..cli_process import default_window_shift_points
     from ..contact.asperity import default_approach_m
     from ..contact.materials import load_material
+    from ..process.ensemble import default_window_shift_points
     from ..process.figures import write_process_figures
     from ..process.statistics import AnalysisConfig, analyse
     from ..surface.io import default_surface_path, read_surface
