@@ -23,35 +23,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass, field
+from functools import partial
 from typing import Any
+
+from stochfric.validation import finite, non_negative, positive
 
 
 class ParameterError(ValueError):
     """An oscillator parameter is invalid; the message says which one and why."""
 
 
-def _finite(name: str, value: float) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ParameterError(f"{name} must be a number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ParameterError(f"{name} must be finite, got {value!r}")
-    return v
-
-
-def _positive(name: str, value: float, unit: str = "") -> float:
-    v = _finite(name, value)
-    if v <= 0.0:
-        raise ParameterError(f"{name} must be > 0{(' ' + unit) if unit else ''}, got {value!r}")
-    return v
-
-
-def _non_negative(name: str, value: float, unit: str = "") -> float:
-    v = _finite(name, value)
-    if v < 0.0:
-        raise ParameterError(f"{name} must be >= 0{(' ' + unit) if unit else ''}, got {value!r}")
-    return v
+_finite = partial(finite, error=ParameterError)
+_positive = partial(positive, error=ParameterError)
+_non_negative = partial(non_negative, error=ParameterError)
 
 
 @dataclass(frozen=True, kw_only=True)

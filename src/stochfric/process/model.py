@@ -37,6 +37,7 @@ from stochfric.process.spectral import (
     nyquist_frequency,
 )
 from stochfric.random import SeedLike
+from stochfric.validation import finite, positive
 
 __all__ = [
     "LOW_FREQUENCY_FRACTION",
@@ -83,25 +84,8 @@ def low_frequency_level(psd_over_band: ArrayLike) -> float:
 
 
 
-def _finite(name: str, value: float) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be a number, got {value!r}") from None
-    if not math.isfinite(v):
-        raise ValueError(f"{name} must be finite, got {value!r}")
-    return v
-
-
-def _positive(name: str, value: float, unit: str) -> float:
-    v = _finite(name, value)
-    if v <= 0.0:
-        raise ValueError(f"{name} must be > 0 {unit}, got {value!r}")
-    return v
-
-
 def _pressure_scalar(p_pa: float) -> float:
-    p = _finite("pressure p [Pa]", p_pa)
+    p = finite("pressure p [Pa]", p_pa)
     if p <= 0.0:
         raise ValueError(f"pressure p must be > 0 Pa, got {p_pa!r}")
     return p
@@ -126,7 +110,7 @@ class ModelFunction:
 
     def __post_init__(self) -> None:
         for name in ("a", "b", "c"):
-            object.__setattr__(self, name, _finite(f"ModelFunction.{name}", getattr(self, name)))
+            object.__setattr__(self, name, finite(f"ModelFunction.{name}", getattr(self, name)))
 
     @overload
     def __call__(self, p_pa: float) -> float: ...
@@ -211,8 +195,133 @@ class FrictionProcessModel(Protocol):
         ...
 
 
+class _ProcessModelBase:
+    """What every friction-process model shares: pressure statistics from the fitted model
+    functions, the band f_k = k/ℓ < 1/(2Δx) and its grid, realisations by the spectral
+    representation (2.48/4.32), JSON files.  Subclasses are frozen dataclasses that define the
+    fields below and :meth:`spectrum`, :meth:`sigma_zeta`, :meth:`to_dict`, :meth:`from_dict`.
+    """
+
+    name: str
+    mu_mean: ModelFunction
+    mu_std: ModelFunction
+    dx: float
+    length: float
+    sigma_zeta_rule: SigmaZetaRule
+
+    def _check_common(self) -> None:
+        """Validate and normalise name, model functions, Δx, ℓ and the σ_ζ rule."""
+        if not isinstance(self.name, str) or not self.name:
+            raise ValueError(f"name must be a non-empty string, got {self.name!r}")
+        for attr in ("mu_mean", "mu_std"):
+            if not isinstance(getattr(self, attr), ModelFunction):
+                raise TypeError(f"{attr} must be a ModelFunction, got {getattr(self, attr)!r}")
+        dx = positive("dx", self.dx, "m")
+        length = positive("length", self.length, "m")
+        object.__setattr__(self, "dx", dx)
+        object.__setattr__(self, "length", length)
+        if length <= 2.0 * dx:
+            raise ValueError(
+                f"length {length!r} m must exceed 2·dx = {2 * dx!r} m so that the band "
+                "k/length < 1/(2·dx) holds at least one frequency"
+            )
+        if self.sigma_zeta_rule not in _SIGMA_ZETA_RULES:
+            raise ValueError(
+                f"sigma_zeta_rule must be one of {_SIGMA_ZETA_RULES}, got {self.sigma_zeta_rule!r}"
+            )
+
+    @staticmethod
+    def _check_kind(data: dict[str, Any], kind: str) -> None:
+        """Refuse a dict of another kind or schema version (:meth:`from_dict`)."""
+        found = data.get("kind", kind)
+        if found != kind:
+            raise ValueError(f"not a {kind.replace('_', '-')} process model: kind = {found!r}")
+        version = data.get("schema_version", _SCHEMA_VERSION)
+        if version != _SCHEMA_VERSION:
+            raise ValueError(f"unsupported schema_version {version!r} (this version reads {_SCHEMA_VERSION})")
+
+    # --- statistics over pressure ------------------------------------------------------
+
+    def mean(self, p_pa: float) -> float:
+        """E[μ](p) = a p^b + c (eq. 3.21, Tables 3.3/3.6), p [Pa] > 0."""
+        return self.mu_mean(_pressure_scalar(p_pa))
+
+    def std(self, p_pa: float) -> float:
+        """σ_μ(p) = a p^b + c (eq. 3.21), p [Pa] > 0.
+
+        Raises ValueError where the fit turns negative (outside its range of validity).
+        """
+        s = self.mu_std(_pressure_scalar(p_pa))
+        if s < 0.0:
+            raise ValueError(
+                f"the σ_μ model function of {self.name!r} is negative ({s:.4g}) at "
+                f"p = {p_pa:.6g} Pa: the fit is used outside its range of validity"
+            )
+        return s
+
+    # --- the band ----------------------------------------------------------------------
+
+    @property
+    def frequency_step(self) -> float:
+        """Δf = 1/ℓ [1/m]."""
+        return 1.0 / self.length
+
+    @property
+    def n_points(self) -> int:
+        """Number of grid points n = round(ℓ/Δx) of a realisation."""
+        return round(self.length / self.dx)
+
+    @property
+    def grid_is_periodic(self) -> bool:
+        """Whether ℓ/Δx is an integer (to 1e-9 relative), i.e. the grid spans one period ℓ.
+
+        Only then is a realisation's grid variance exactly the model variance and its periodic
+        continuation with period n Δx seamless.
+        """
+        ratio = self.length / self.dx
+        return abs(ratio - round(ratio)) <= 1e-9 * ratio
+
+    def grid(self) -> NDArray[np.float64]:
+        """Grid positions x_j = j Δx [m], j = 0..n−1, of :meth:`generate`."""
+        return np.arange(self.n_points, dtype=np.float64) * self.dx
+
+    def frequencies(self) -> NDArray[np.float64]:
+        """Band f_k = k/ℓ [1/m], k = 1..K, f_K < 1/(2Δx) (:func:`band_limited_frequencies`)."""
+        return band_limited_frequencies(self.dx, self.length)
+
+    def spectrum(self, f: ArrayLike, p_pa: float) -> NDArray[np.float64]:  # pragma: no cover - abstract
+        """One-sided PSD S(f; p) [m] at path frequencies f [1/m] (METHOD §0), 0 outside the band."""
+        raise NotImplementedError
+
+    def variance(self, p_pa: float) -> float:
+        """Σ_i S(f_i; p) Δf over the band."""
+        return float(np.sum(self.spectrum(self.frequencies(), p_pa)) * self.frequency_step)
+
+    # --- realisations ------------------------------------------------------------------
+
+    def generate(self, p_pa: float, rng: np.random.Generator | SeedLike) -> NDArray[np.float64]:
+        """One realisation of μ̂_SD(x_j; p) on :meth:`grid` (eq. 2.48/4.32, METHOD §4e).
+
+        Zero-mean part only; the friction coefficient is μ = E[μ](p) + μ̂_SD (eq. 3.22).
+        Draws K = len(frequencies()) phases from ``rng`` (see
+        :func:`stochfric.process.spectral.generate_process`).
+        """
+        f = self.frequencies()
+        return generate_process(f, self.spectrum(f, p_pa), self.dx, self.length, rng)
+
+    # --- files -------------------------------------------------------------------------
+
+    def to_dict(self) -> dict[str, Any]:  # pragma: no cover - abstract
+        """JSON-compatible dict with ``kind`` and SI units."""
+        raise NotImplementedError
+
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Write :meth:`to_dict` as JSON to ``path`` atomically (temporary file + rename); returns the path."""
+        return write_json_atomic(path, self.to_dict())
+
+
 @dataclass(frozen=True, kw_only=True)
-class BandLimitedProcessModel:
+class BandLimitedProcessModel(_ProcessModelBase):
     """Band-limited friction process with model-function statistics (METHOD §4d/e).
 
     Parameters
@@ -258,51 +367,15 @@ class BandLimitedProcessModel:
     sigma_zeta_rule: SigmaZetaRule = "sigma_mu"
 
     def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise ValueError(f"name must be a non-empty string, got {self.name!r}")
-        for attr in ("mu_mean", "mu_std"):
-            if not isinstance(getattr(self, attr), ModelFunction):
-                raise TypeError(f"{attr} must be a ModelFunction, got {getattr(self, attr)!r}")
-        dx = _positive("dx", self.dx, "m")
-        length = _positive("length", self.length, "m")
-        object.__setattr__(self, "dx", dx)
-        object.__setattr__(self, "length", length)
-        if length <= 2.0 * dx:
-            raise ValueError(
-                f"length {length!r} m must exceed 2·dx = {2 * dx!r} m so that the band "
-                "k/length < 1/(2·dx) holds at least one frequency"
-            )
+        self._check_common()
         if self.spectrum_shape not in _SPECTRUM_SHAPES:
             raise ValueError(
                 f"spectrum_shape must be one of {_SPECTRUM_SHAPES}, got {self.spectrum_shape!r}"
             )
-        ratio = _finite("falling_ratio", self.falling_ratio)
+        ratio = finite("falling_ratio", self.falling_ratio)
         if not 0.0 <= ratio <= 1.0:
             raise ValueError(f"falling_ratio must lie in [0, 1], got {self.falling_ratio!r}")
         object.__setattr__(self, "falling_ratio", ratio)
-        if self.sigma_zeta_rule not in _SIGMA_ZETA_RULES:
-            raise ValueError(
-                f"sigma_zeta_rule must be one of {_SIGMA_ZETA_RULES}, got {self.sigma_zeta_rule!r}"
-            )
-
-    # --- statistics over pressure ------------------------------------------------------
-
-    def mean(self, p_pa: float) -> float:
-        """E[μ](p) = a p^b + c (eq. 3.21, Tables 3.3/3.6), p [Pa] > 0."""
-        return self.mu_mean(_pressure_scalar(p_pa))
-
-    def std(self, p_pa: float) -> float:
-        """σ_μ(p) = a p^b + c (eq. 3.21), p [Pa] > 0.
-
-        Raises ValueError where the fit turns negative (outside its range of validity).
-        """
-        s = self.mu_std(_pressure_scalar(p_pa))
-        if s < 0.0:
-            raise ValueError(
-                f"the σ_μ model function of {self.name!r} is negative ({s:.4g}) at "
-                f"p = {p_pa:.6g} Pa: the fit is used outside its range of validity"
-            )
-        return s
 
     def sigma_zeta(self, p_pa: float) -> float:
         """White-noise intensity σ_ζ(p) [-] for the white-noise model (METHOD §5.1, eq. 4.17).
@@ -318,35 +391,7 @@ class BandLimitedProcessModel:
             return 0.5 * low_frequency_level(self.spectrum(self.frequencies(), p_pa))
         raise AssertionError(f"unhandled sigma_zeta_rule {self.sigma_zeta_rule!r}")
 
-    # --- the band and the spectrum -----------------------------------------------------
-
-    @property
-    def frequency_step(self) -> float:
-        """Δf = 1/ℓ [1/m]."""
-        return 1.0 / self.length
-
-    @property
-    def n_points(self) -> int:
-        """Number of grid points n = round(ℓ/Δx) of a realisation."""
-        return round(self.length / self.dx)
-
-    @property
-    def grid_is_periodic(self) -> bool:
-        """Whether ℓ/Δx is an integer (to 1e-9 relative), i.e. the grid spans one period ℓ.
-
-        Only then is a realisation's grid variance exactly σ_μ(p)² and its periodic
-        continuation with period n Δx seamless.
-        """
-        ratio = self.length / self.dx
-        return abs(ratio - round(ratio)) <= 1e-9 * ratio
-
-    def grid(self) -> NDArray[np.float64]:
-        """Grid positions x_j = j Δx [m], j = 0..n−1, of :meth:`generate`."""
-        return np.arange(self.n_points, dtype=np.float64) * self.dx
-
-    def frequencies(self) -> NDArray[np.float64]:
-        """Band f_k = k/ℓ [1/m], k = 1..K, f_K < 1/(2Δx) (:func:`band_limited_frequencies`)."""
-        return band_limited_frequencies(self.dx, self.length)
+    # --- the spectrum ------------------------------------------------------------------
 
     def _shape(self, f: NDArray[np.float64]) -> NDArray[np.float64]:
         """Relative spectrum shape g(f) over the band (1 at f_min)."""
@@ -377,22 +422,6 @@ class BandLimitedProcessModel:
         result: NDArray[np.float64] = np.where(inside, scale * self._shape(freq), 0.0)
         return result
 
-    def variance(self, p_pa: float) -> float:
-        """Σ_i S(f_i; p) Δf over the band; equals σ_μ(p)² by construction."""
-        return float(np.sum(self.spectrum(self.frequencies(), p_pa)) * self.frequency_step)
-
-    # --- realisations ------------------------------------------------------------------
-
-    def generate(self, p_pa: float, rng: np.random.Generator | SeedLike) -> NDArray[np.float64]:
-        """One realisation of μ̂_SD(x_j; p) on :meth:`grid` (eq. 2.48/4.32, METHOD §4e).
-
-        Zero-mean part only; the friction coefficient is μ = E[μ](p) + μ̂_SD (eq. 3.22).
-        Draws K = len(frequencies()) phases from ``rng`` (see
-        :func:`stochfric.process.spectral.generate_process`).
-        """
-        f = self.frequencies()
-        return generate_process(f, self.spectrum(f, p_pa), self.dx, self.length, rng)
-
     # --- serialisation -----------------------------------------------------------------
 
     def to_dict(self) -> dict[str, Any]:
@@ -415,14 +444,7 @@ class BandLimitedProcessModel:
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> BandLimitedProcessModel:
         """Inverse of :meth:`to_dict` (derived entries such as ``units`` are ignored)."""
-        kind = data.get("kind", "band_limited")
-        if kind != "band_limited":
-            raise ValueError(f"not a band-limited process model: kind = {kind!r}")
-        version = data.get("schema_version", _SCHEMA_VERSION)
-        if version != _SCHEMA_VERSION:
-            raise ValueError(
-                f"unsupported schema_version {version!r} (this version reads {_SCHEMA_VERSION})"
-            )
+        cls._check_kind(data, "band_limited")
         return cls(
             name=data["name"],
             mu_mean=ModelFunction.from_dict(data["mu_mean"]),
@@ -433,14 +455,6 @@ class BandLimitedProcessModel:
             falling_ratio=data.get("falling_ratio", 0.5),
             sigma_zeta_rule=data.get("sigma_zeta_rule", "sigma_mu"),
         )
-
-    def save(self, path: str | os.PathLike[str]) -> Path:
-        """Write :meth:`to_dict` as JSON to ``path`` atomically; returns the path.
-
-        A temporary file in the same directory is written, flushed and renamed over
-        ``path`` with :func:`os.replace`, so readers never see a half-written file.
-        """
-        return write_json_atomic(path, self.to_dict())
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> BandLimitedProcessModel:
@@ -460,7 +474,7 @@ def _float_tuple(name: str, values: Any) -> tuple[float, ...]:
 
 
 @dataclass(frozen=True, kw_only=True)
-class TabulatedProcessModel:
+class TabulatedProcessModel(_ProcessModelBase):
     """Friction process with spectra tabulated at the analysed pressures (METHOD §4d/e).
 
     Built from the statistical contact analysis (``stochfric friction-process``): the mean and
@@ -527,20 +541,10 @@ class TabulatedProcessModel:
 
     def __post_init__(self) -> None:
         if self.window_length_m is not None:
-            object.__setattr__(self, "window_length_m", _positive("window_length_m", self.window_length_m, "m"))
-        if not isinstance(self.name, str) or not self.name:
-            raise ValueError(f"name must be a non-empty string, got {self.name!r}")
-        for attr in ("mu_mean", "mu_std"):
-            if not isinstance(getattr(self, attr), ModelFunction):
-                raise TypeError(f"{attr} must be a ModelFunction, got {getattr(self, attr)!r}")
+            object.__setattr__(self, "window_length_m", positive("window_length_m", self.window_length_m, "m"))
+        self._check_common()
         if self.psd_level is not None and not isinstance(self.psd_level, ModelFunction):
             raise TypeError(f"psd_level must be a ModelFunction or None, got {self.psd_level!r}")
-        dx = _positive("dx", self.dx, "m")
-        length = _positive("length", self.length, "m")
-        if length <= 2.0 * dx:
-            raise ValueError(f"length {length!r} m must exceed 2·dx = {2 * dx!r} m")
-        object.__setattr__(self, "dx", dx)
-        object.__setattr__(self, "length", length)
         p = _float_tuple("pressures_pa", self.pressures_pa)
         f = _float_tuple("table_frequencies", self.table_frequencies)
         if min(p) <= 0.0 or any(b <= a for a, b in itertools.pairwise(p)):
@@ -560,55 +564,11 @@ class TabulatedProcessModel:
         object.__setattr__(self, "pressures_pa", p)
         object.__setattr__(self, "table_frequencies", f)
         object.__setattr__(self, "table_psd", tuple(tuple(float(v) for v in row) for row in table))
-        for attr, allowed in (
-            ("pressure_rule", _PRESSURE_RULES),
-            ("variance_rule", _VARIANCE_RULES),
-            ("sigma_zeta_rule", _SIGMA_ZETA_RULES),
-        ):
+        for attr, allowed in (("pressure_rule", _PRESSURE_RULES), ("variance_rule", _VARIANCE_RULES)):
             if getattr(self, attr) not in allowed:
                 raise ValueError(f"{attr} must be one of {allowed}, got {getattr(self, attr)!r}")
 
-    # --- statistics over pressure ------------------------------------------------------
-
-    def mean(self, p_pa: float) -> float:
-        """E[μ](p) from the fitted model function (eq. 3.21), p [Pa] > 0."""
-        return self.mu_mean(_pressure_scalar(p_pa))
-
-    def std(self, p_pa: float) -> float:
-        """σ_μ(p) from the fitted model function; ValueError where it is negative."""
-        s = self.mu_std(_pressure_scalar(p_pa))
-        if s < 0.0:
-            raise ValueError(
-                f"the σ_μ model function of {self.name!r} is negative ({s:.4g}) at p = {p_pa:.6g} Pa: "
-                "the fit is used outside its range of validity"
-            )
-        return s
-
-    # --- the band and the spectrum -----------------------------------------------------
-
-    @property
-    def frequency_step(self) -> float:
-        """Δf = 1/ℓ [1/m]."""
-        return 1.0 / self.length
-
-    @property
-    def n_points(self) -> int:
-        """Number of grid points n = round(ℓ/Δx) of a realisation."""
-        return round(self.length / self.dx)
-
-    @property
-    def grid_is_periodic(self) -> bool:
-        """Whether ℓ/Δx is an integer (to 1e-9 relative): the grid spans one period."""
-        ratio = self.length / self.dx
-        return abs(ratio - round(ratio)) <= 1e-9 * ratio
-
-    def grid(self) -> NDArray[np.float64]:
-        """Grid positions x_j = j Δx [m], j = 0..n−1."""
-        return np.arange(self.n_points, dtype=np.float64) * self.dx
-
-    def frequencies(self) -> NDArray[np.float64]:
-        """Band f_k = k/ℓ [1/m], k = 1..K, f_K < 1/(2Δx)."""
-        return band_limited_frequencies(self.dx, self.length)
+    # --- the spectrum ------------------------------------------------------------------
 
     def table_spectrum(self, p_pa: float) -> NDArray[np.float64]:
         """The tabulated spectrum at pressure p by :attr:`pressure_rule` [m], at the table's frequencies."""
@@ -653,10 +613,6 @@ class TabulatedProcessModel:
         inside = (freq >= band[0] * (1.0 - 1e-9)) & (freq <= band[-1] * (1.0 + 1e-9))
         return np.asarray(np.where(inside, g, 0.0))
 
-    def variance(self, p_pa: float) -> float:
-        """Σ_band S(f_i; p) Δf: σ_μ(p)² under ``"sigma_mu"``, the tabulated variance otherwise."""
-        return float(np.sum(self.spectrum(self.frequencies(), p_pa)) * self.frequency_step)
-
     def sigma_zeta(self, p_pa: float) -> float:
         """White-noise intensity σ_ζ(p) for the white-noise model (METHOD §5.1, eq. 4.17).
 
@@ -675,13 +631,6 @@ class TabulatedProcessModel:
         if self.window_length_m is None:
             return 0.5 * low_frequency_level(spec)
         return 0.5 * psd_level(band, spec, self.window_length_m)
-
-    # --- realisations ------------------------------------------------------------------
-
-    def generate(self, p_pa: float, rng: np.random.Generator | SeedLike) -> NDArray[np.float64]:
-        """One realisation of μ̂_SD on :meth:`grid` (eq. 2.48/4.32): n = round(ℓ/Δx) points."""
-        f = self.frequencies()
-        return generate_process(f, self.spectrum(f, p_pa), self.dx, self.length, rng)
 
     # --- serialisation -----------------------------------------------------------------
 
@@ -710,12 +659,7 @@ class TabulatedProcessModel:
     @classmethod
     def from_dict(cls, data: dict[str, Any]) -> TabulatedProcessModel:
         """Inverse of :meth:`to_dict`; ValueError naming the missing fields otherwise."""
-        kind = data.get("kind", "tabulated")
-        if kind != "tabulated":
-            raise ValueError(f"not a tabulated process model: kind = {kind!r}")
-        version = data.get("schema_version", _SCHEMA_VERSION)
-        if version != _SCHEMA_VERSION:
-            raise ValueError(f"unsupported schema_version {version!r} (this version reads {_SCHEMA_VERSION})")
+        cls._check_kind(data, "tabulated")
         required = ("name", "mu_mean", "mu_std", "dx", "length", "pressures_pa", "table_frequencies", "table_psd")
         missing = [k for k in required if k not in data]
         if missing:
@@ -736,10 +680,6 @@ class TabulatedProcessModel:
             psd_level=None if level is None else ModelFunction.from_dict(level),
             window_length_m=data.get("window_length_m"),
         )
-
-    def save(self, path: str | os.PathLike[str]) -> Path:
-        """Write :meth:`to_dict` as JSON to ``path`` atomically; returns the path."""
-        return write_json_atomic(path, self.to_dict())
 
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> TabulatedProcessModel:

@@ -1,0 +1,39 @@
+"""Validators of scalar inputs shared by the parameter classes (SI values; messages say what to change).
+
+Every validator returns the value as a ``float`` or raises ``error`` (default :class:`ValueError`;
+callers pass their own subclass, e.g. :class:`stochfric.oscillator.parameters.ParameterError`)
+with a message that names the quantity, the allowed range with its unit, and the value given.
+"""
+
+from __future__ import annotations
+
+import math
+
+__all__ = ["finite", "non_negative", "positive"]
+
+
+def finite(name: str, value: float, *, error: type[ValueError] = ValueError) -> float:
+    """``value`` as a finite float, or ``error`` ("NAME must be a number / finite")."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise error(f"{name} must be a number, got {value!r}") from None
+    if not math.isfinite(v):
+        raise error(f"{name} must be finite, got {value!r}")
+    return v
+
+
+def positive(name: str, value: float, unit: str = "", *, error: type[ValueError] = ValueError) -> float:
+    """``value`` > 0 as a float, or ``error`` ("NAME must be > 0 UNIT, got …")."""
+    v = finite(name, value, error=error)
+    if v <= 0.0:
+        raise error(f"{name} must be > 0{(' ' + unit) if unit else ''}, got {value!r}")
+    return v
+
+
+def non_negative(name: str, value: float, unit: str = "", *, error: type[ValueError] = ValueError) -> float:
+    """``value`` >= 0 as a float, or ``error`` ("NAME must be >= 0 UNIT, got …")."""
+    v = finite(name, value, error=error)
+    if v < 0.0:
+        raise error(f"{name} must be >= 0{(' ' + unit) if unit else ''}, got {value!r}")
+    return v
