@@ -45,3 +45,13 @@ def shared_file() -> object:
 def shared_files() -> dict[str, bool]:
     """Every shared file name → whether it has undefined points."""
     return dict(SHARED_FILES)
+
+
+def pytest_sessionstart(session: pytest.Session) -> None:
+    """Under CI (env CI set) the real topographies must be there: no test may skip silently."""
+    if os.environ.get("CI") and not (SHARED_TOPOGRAPHIES / "PROVENANCE.md").is_file():
+        pytest.exit(
+            f"CI runs with ../shared beside the checkout, but {SHARED_TOPOGRAPHIES} is missing: "
+            "the real-data tests would skip silently",
+            returncode=1,
+        )
