@@ -58,7 +58,7 @@ __all__ = [
 MIN_CONTACTS = 10
 
 #: Upper end of the non-interaction range of A_c/A_nom: up to 0.1 the half-space/GW area ratio
-#: at equal load stays within 10 % of its low-load plateau on every surface and grid tested
+#: at equal load stays within about 10 % of its plateau on every surface and grid tested
 #: (al3d-1, x3p-2, plu-1; benchmarks/bem_equal_load.py); it leaves it beyond 0.13–0.16 on the
 #: grooved x3p-2 and plu-1 (0.45–0.53 on al3d-1).  Also the default of the fits' rule.
 NON_INTERACTION_AREA_FRACTION = 0.1

@@ -22,7 +22,7 @@
   25–50 % but keeps its pressure dependence) — and that plateau ends where the contacts start
   to merge: the ratio falls more than 10 % below it beyond A_c/A_nom ≈ 0.13–0.16 on the
   grooved surfaces (x3p-2, plu-1) and beyond ≈ 0.45–0.53 on the isotropic al3d-1.  Up to 0.1
-  it stays within 10 % on every surface and grid tested, hence the default.  The former 1.5 %
+  it stays within about 10 % on every surface and grid tested, hence the default.  The former 1.5 %
   (the point where GW's pressure at equal *approach* fell below the half-space's) had no
   support: at equal approach the half-space's own settlement and border points the summit
   rule cannot see dominated the comparison.
