@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from stochfric.process.fit import fit_mask, fit_model_function
+from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION, fit_mask, fit_model_function
 
 TRUE = {"brake E[mu] (Table 3.3)": (5.8574, -0.4478, 0.2603), "brake sigma (Table 3.3)": (1.6063, -0.4163, 0.0663)}
 
@@ -46,12 +46,15 @@ def test_standard_errors_are_calibrated_over_many_data_sets() -> None:
 
 
 def test_outlier_rule_and_minimum_points() -> None:
-    frac = np.array([1e-4, 1e-3, 5e-3, 1e-2, 1.4e-2, 2e-2, 5e-2])
+    # fractions around the default limit (DEFAULT_MAX_AREA_FRACTION = 0.1, the end of the GW/BEM
+    # plateau at equal load): the two points beyond it are excluded
+    frac = np.array([1e-3, 1e-2, 5e-2, 8e-2, 0.1, 0.14, 0.3])
     p = np.arange(1.0, 8.0) * 1e5
+    assert DEFAULT_MAX_AREA_FRACTION == pytest.approx(0.1)
     mask, note = fit_mask(frac, p)
     np.testing.assert_array_equal(mask, [True] * 5 + [False] * 2)
     assert note == ""
-    mask, note = fit_mask(frac, p, max_area_fraction=1e-3)
+    mask, note = fit_mask(frac, p, max_area_fraction=1e-2)
     np.testing.assert_array_equal(mask, [True] * 4 + [False] * 3)
     assert "lowest pressures" in note
     y = 2.0 * p**-0.5 + 0.1
