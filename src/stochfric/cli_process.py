@@ -111,7 +111,8 @@ def friction_process_command(
     ] = None,
     approach_um: Annotated[
         str | None,
-        typer.Option("--approach-um", help="START:STOP:NUM in µm; default σ_S/4 … 3σ_S in 12 steps."),
+        typer.Option("--approach-um", help="START:STOP:NUM in µm; default u_hi/12 … u_hi in 12 steps, "
+                     "u_hi = max(3σ_S, highest summit − mean summit height)."),
     ] = None,
     surrogate: Annotated[
         SurrogateChoice, typer.Option("--surrogate", help="phase (thesis, Gaussian) or iaaft (keeps the heights).")
