@@ -36,6 +36,7 @@ from stochfric.surface.io import Surface
 from stochfric.surface.summits import Summits
 
 __all__ = [
+    "BowdenTabor",
     "ContactError",
     "ContactResult",
     "asperity_contact",
@@ -174,24 +175,19 @@ def asperity_sums(
     return area, force, k
 
 
-@dataclass(frozen=True, kw_only=True, eq=False)
-class ContactResult:
-    """Contact quantities over the approach ``u``; SI units, one value per approach.
+class BowdenTabor:
+    """Quantities derived from GW sums (A_c, N) by eq. (3.14)–(3.16), for any array shape.
 
-    ``preparation`` records how the surface was prepared and analysed (detrend, median
-    radius, step, summit rule, file, sha256, …); ``material`` the pairing used.
+    Mixed into every container of contact sums (:class:`ContactResult` over the approach,
+    :class:`stochfric.process.ensemble.ContactSamples` over samples × approach), which define
+    ``contact_area_m2`` [m²], ``normal_force_n`` [N], ``nominal_area_m2`` [m²] and
+    ``shear_strength_pa`` [Pa].
     """
 
-    method: str
-    approach_m: FloatArray
     contact_area_m2: FloatArray
     normal_force_n: FloatArray
-    n_contacts: IntArray
     nominal_area_m2: float
     shear_strength_pa: float
-    e_star_pa: float
-    material: dict[str, Any] = field(default_factory=dict)
-    preparation: dict[str, Any] = field(default_factory=dict)
 
     @property
     def pressure_pa(self) -> FloatArray:
@@ -214,6 +210,26 @@ class ContactResult:
         with np.errstate(divide="ignore", invalid="ignore"):
             out = self.friction_force_n / self.normal_force_n
         return np.where(self.normal_force_n > 0.0, out, np.nan)
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class ContactResult(BowdenTabor):
+    """Contact quantities over the approach ``u``; SI units, one value per approach.
+
+    ``preparation`` records how the surface was prepared and analysed (detrend, median
+    radius, step, summit rule, file, sha256, …); ``material`` the pairing used.
+    """
+
+    method: str
+    approach_m: FloatArray
+    contact_area_m2: FloatArray
+    normal_force_n: FloatArray
+    n_contacts: IntArray
+    nominal_area_m2: float
+    shear_strength_pa: float
+    e_star_pa: float
+    material: dict[str, Any] = field(default_factory=dict)
+    preparation: dict[str, Any] = field(default_factory=dict)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary: arrays as lists (NaN as ``None``), SI units in the keys."""

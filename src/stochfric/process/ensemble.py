@@ -43,7 +43,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from stochfric.contact.asperity import ContactError, asperity_sums
+from stochfric.contact.asperity import BowdenTabor, ContactError, asperity_sums
 from stochfric.contact.materials import Material
 from stochfric.random import SeedLike, spawn_generators
 from stochfric.surface.io import Surface
@@ -75,11 +75,12 @@ DEFAULT_SHIFT_FRACTION = 0.3 / 5.3
 SUMMIT_MARGIN: dict[str, int] = {"thesis": 2, "8-neighbour": 1}
 
 @dataclass(frozen=True, kw_only=True, eq=False)
-class ContactSamples:
+class ContactSamples(BowdenTabor):
     """GW/Hertz contact of many samples (realisations or windows) over the approach.
 
     Arrays have shape ``(..., U)``: leading axes index the samples, the last the approach.
-    SI units; every sample has the nominal area ``nominal_area_m2``.
+    SI units; every sample has the nominal area ``nominal_area_m2``.  p, A_c/A_nom and μ
+    (3.14–3.16) come from :class:`~stochfric.contact.asperity.BowdenTabor`.
     """
 
     approach_m: FloatArray
@@ -93,22 +94,6 @@ class ContactSamples:
     #: standard deviation σ_S [m] — shape (..., 3); recorded by :func:`ensemble_contact`.
     summit_stats: FloatArray | None = None
 
-    @property
-    def pressure_pa(self) -> FloatArray:
-        """Nominal pressure p = N / A_nom [Pa] (3.14)."""
-        return self.normal_force_n / self.nominal_area_m2
-
-    @property
-    def area_fraction(self) -> FloatArray:
-        """A_c / A_nom [-]."""
-        return self.contact_area_m2 / self.nominal_area_m2
-
-    @property
-    def mu(self) -> FloatArray:
-        """Bowden–Tabor μ = A_c τ_max / N (3.16); NaN where N = 0."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out = self.contact_area_m2 * self.shear_strength_pa / self.normal_force_n
-        return np.where(self.normal_force_n > 0.0, out, np.nan)
 
 
 def _check_count(name: str, value: int, low: int = 1) -> int:
