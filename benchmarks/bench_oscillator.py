@@ -308,11 +308,12 @@ def _kernel_only(case: Case, dw: npt.NDArray[np.float64], noise: int) -> Callabl
     counts = np.zeros(runs, dtype=np.int64)
     traj = np.zeros((runs, 0, 3))
     diag = np.zeros((runs, _k.N_DIAG))
+    keys = np.zeros(runs, dtype=np.uint64)
 
     def call() -> None:
         _k.run_fixed_step_batch(prm, shapes, lawp, x0, nsteps, DT, _k.SCHEME_EULER,
                                 noise, _k.PATH_MASS, dw, proc, nproc, xgh, tgh,
-                                counts, traj, 10, diag)
+                                counts, traj, 10, diag, _k.WHITE_GIVEN, keys)
 
     return call
 

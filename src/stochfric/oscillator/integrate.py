@@ -32,6 +32,7 @@ from ..io_utils import package_versions
 from ..random import SeedLike, as_seed_sequence
 from . import accurate as _acc
 from . import kernels as _k
+from . import philox as _ph
 from .friction_laws import FrictionLaw, law_III
 from .parameters import OscillatorParameters, ParameterError
 from .result import SimulationResult, SimulationWarning
@@ -44,6 +45,12 @@ MODELS = ("deterministic", "white", "contact")
 #: √Δτ increment — a reproduction mode whose intensity depends on the time step.
 WHITE_INCREMENTS = ("ito", "thesis")
 INTEGRATORS = ("euler", "milstein", "accurate")
+#: Random streams of the white-noise model (docs/performance.md): ``philox`` (default) draws
+#: R_k inside the compiled kernel from the counter-based Philox4x32-10 stream keyed by the
+#: trajectory's spawned seed (:mod:`stochfric.oscillator.philox`); ``pcg64`` is the stream of
+#: versions before issue 13: numpy's ``Generator(PCG64(seed)).standard_normal`` per trajectory,
+#: drawn into a buffer (the same numbers as then, about 4× slower end to end).
+WHITE_STREAMS = ("philox", "pcg64")
 PATH_COORDINATES = {"mass": _k.PATH_MASS, "relative": _k.PATH_RELATIVE, "position": _k.PATH_POSITION}
 
 #: Above this Δτ the Euler methods are refused: fewer than ~25 steps per natural period
@@ -255,6 +262,7 @@ def simulate(
     common_random_numbers: bool = False,
     progress: Callable[[int, int], None] | None = None,
     white_increment: str = "ito",
+    white_stream: str = "philox",
 ) -> SimulationResult:
     """Simulate the friction oscillator for every parameter set and run.
 
@@ -303,6 +311,12 @@ def simulate(
         ``ito`` (default: ΔW = R_k √Δτ, METHOD erratum 4) or ``thesis`` (printed eq. 4.31
         with the dimensional relative velocity: σ_ζ,eff = σ_ζ · L ω0 · Δτ, see
         :func:`thesis_sigma_zeta`; a Δτ-dependent reproduction mode, white model only).
+    white_stream:
+        Where the normals R_k of the white-noise model come from: ``philox`` (default, drawn
+        in the kernel from the Philox4x32-10 stream keyed by the trajectory's spawned seed,
+        :mod:`stochfric.oscillator.philox`) or ``pcg64`` (numpy's PCG64 stream of the same
+        seed, the numbers of versions before issue 13).  Both are exact N(0, 1) streams, one
+        per trajectory; they give different realisations.
     """
     plist = [params] if isinstance(params, OscillatorParameters) else list(params)
     if not plist:
@@ -328,6 +342,10 @@ def simulate(
     if white_increment != "ito" and model != "white":
         raise ParameterError(
             f"white_increment={white_increment!r} applies to the white-noise model only, not {model!r}"
+        )
+    if white_stream not in WHITE_STREAMS:
+        raise ParameterError(
+            f"unknown white-noise stream {white_stream!r}; choose one of {WHITE_STREAMS}"
         )
     if path_coordinate not in PATH_COORDINATES:
         raise ParameterError(
@@ -390,18 +408,27 @@ def simulate(
         assert process is not None
         n_proc_len = round(process.length / process.dx)
 
+    philox_white = noise == _k.NOISE_WHITE and white_stream == "philox"
+    buffer_white = noise == _k.NOISE_WHITE and not philox_white
+
     def run_batch(lo: int, hi: int) -> None:
         idx = np.arange(lo, hi)
         sets = idx // runs
         rr = idx % runs
         b = hi - lo
-        if noise == _k.NOISE_WHITE:
+        if buffer_white:
             dw = np.empty((b, nsteps))  # every row is filled below
         else:
             dw = np.zeros((b, 1))
         proc = np.zeros((b, n_proc_len))
         nproc = np.full(b, n_proc_len, dtype=np.int64)
-        if noise != _k.NOISE_NONE:
+        if philox_white:
+            # the key of trajectory (i, r): its spawned seed's first 64 bits (same as
+            # _ph.trajectory_key(trajectory_seed(root, i, r)), computed in compiled code)
+            keys = _ph.trajectory_keys(root, np.zeros_like(sets) if common_random_numbers else sets, rr)
+        else:
+            keys = np.zeros(1, dtype=np.uint64)
+        if noise != _k.NOISE_NONE and not philox_white:
             sq = math.sqrt(dt)
             for j in range(b):
                 key_set = 0 if common_random_numbers else int(sets[j])
@@ -432,6 +459,7 @@ def simulate(
                 prm_set[sets], shape_set[sets], lawp_set[sets], x0b, nsteps, dt, scheme, noise,
                 path_mode, dw, proc, nproc, x_gh[lo:hi], t_gh[lo:hi], counts[lo:hi],
                 traj[lo:hi], save_every, diag[lo:hi],
+                _k.WHITE_PHILOX if philox_white else _k.WHITE_GIVEN, keys,
             )
 
     nworkers = workers if workers is not None else (os.cpu_count() or 1)
@@ -504,6 +532,7 @@ def simulate(
             "rtol": rtol, "atol": atol, "max_step": max_step,
             "spawn_key_layout": "(param_set, run)",
             "white_increment": white_increment,
+            "white_stream": white_stream,
             "sigma_zeta_effective": plan.sigma_eff,
         },
     )

@@ -44,6 +44,7 @@ import numpy as np
 import numpy.typing as npt
 
 from .friction_laws import SHAPE_CONSTANT, SHAPE_RATIONAL, mu_kinetic_row
+from .philox import pair_normals
 
 # --- codes -------------------------------------------------------------------
 SCHEME_EULER = 0
@@ -58,6 +59,12 @@ PATH_RELATIVE = 1  # relative sliding distance: grows by |γ0 − x2| Δτ
 #: reproduction mode: μ̂ read at the mass position x1 itself, μ̂_SD(X_1, ξ) as printed in eq.
 #: (4.36)/(4.38); the path diagnostics still accumulate |Δx1| (the mass path)
 PATH_POSITION = 2
+
+#: Where the white-noise increments come from: given by the caller (``dw``) or drawn inside the
+#: kernel from the counter-based Philox4x32-10 stream of each trajectory's key (``keys``,
+#: :mod:`stochfric.oscillator.philox`), ``ΔW_k = R_k √Δτ``.
+WHITE_GIVEN = 0
+WHITE_PHILOX = 1
 
 # --- layout of the per-trajectory parameter row --------------------------------
 P_GAMMA0 = 0
@@ -158,6 +165,20 @@ def _breakaway_limit(
     return lim
 
 
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _fill_pair(
+    keys: npt.NDArray[np.uint64], pair: np.uint64, sqdt: float, wk: npt.NDArray[np.float64],
+    zodd: npt.NDArray[np.float64],
+) -> None:  # pragma: no cover
+    """``wk = R_{2p} √Δτ`` and ``zodd = R_{2p+1}`` for every lane (``pair = p``): one Philox
+    block and one Box–Muller pair per lane, branch-free.  A function of its own (not inlined)
+    so that the compiler vectorises this loop across the lanes."""
+    for jj in range(keys.shape[0]):
+        z0, z1 = pair_normals(keys[jj], pair)
+        wk[jj] = z0 * sqdt
+        zodd[jj] = z1
+
+
 # --- per-trajectory state of the lock-step batch kernel ------------------------------
 # Group arrays are stored field-major, ``fs[field, lane]``, so that every field of a group is
 # one contiguous row that the compiler can process with SIMD instructions.
@@ -211,10 +232,11 @@ def _advance(
     jj: int, j: int, k: int, dt: float, fs: npt.NDArray[np.float64], ist: npt.NDArray[np.int64],
     cs: npt.NDArray[np.float64], shapes: npt.NDArray[np.int64], lawp: npt.NDArray[np.float64],
     white: bool, contact: bool, milstein: bool, mass_path: bool, position: bool, noise: int,
-    dw: npt.NDArray[np.float64], proc: npt.NDArray[np.float64], n_proc: npt.NDArray[np.int64],
+    dwk: float, proc: npt.NDArray[np.float64], n_proc: npt.NDArray[np.int64],
     xgh: npt.NDArray[np.float64], tgh: npt.NDArray[np.float64],
 ) -> None:  # pragma: no cover
-    """Advance trajectory ``j`` (group lane ``jj``) over grid step ``k`` (see module doc).
+    """Advance trajectory ``j`` (group lane ``jj``) over grid step ``k`` (see module doc);
+    ``dwk`` is its Wiener increment ``ΔW_k`` (white noise only).
 
     The full step with the thesis's switching logic; called when the fast pass of
     :func:`run_fixed_step_batch` found an event (or cannot handle the lane).
@@ -241,9 +263,6 @@ def _advance(
     lim_b = fs[_F_LIMB, jj]
     stick = fs[_F_STK, jj] != 0.0
     h = dt
-    dwk = 0.0
-    if white:
-        dwk = dw[j, k]
     tiny = 1e-12 * dt
     it = 0
     while h > tiny and it < 8:
@@ -376,6 +395,8 @@ def run_fixed_step_batch(
     traj: npt.NDArray[np.float64],
     decimate: int,
     diag: npt.NDArray[np.float64],
+    white_source: int,
+    keys: npt.NDArray[np.uint64],
 ) -> None:  # pragma: no cover
     """Integrate every row (one trajectory each) from ``τ = 0`` over ``nsteps`` steps of ``dt``.
 
@@ -383,8 +404,12 @@ def run_fixed_step_batch(
     ``counts[i]`` = number of slip→stick transitions ``M``, their positions ``X_gh`` and
     times in ``xgh[i]``/``tgh[i]`` (as many as fit), every ``decimate``-th grid state
     (``τ, x1, x2``) in ``traj[i]`` when it has rows, diagnostics in ``diag[i]``.  ``dw[i]``
-    holds the Wiener increments ``ΔW_k`` (``N(0, dt)``) for white noise, ``proc[i]`` the
-    process realisation (``n_proc[i]`` points) for the contact model.
+    holds the Wiener increments ``ΔW_k`` (``N(0, dt)``) for white noise when
+    ``white_source == WHITE_GIVEN``; with ``WHITE_PHILOX`` they are drawn inside the kernel,
+    ``ΔW_k = R_k √dt`` with ``R_k`` the step-``k`` normal of the Philox4x32-10 stream of
+    ``keys[i]`` (:mod:`stochfric.oscillator.philox`), so no increment buffer is written or read
+    and the numbers are the same as giving ``dw[i] = step_normals(keys[i], nsteps) · √dt``.
+    ``proc[i]`` is the process realisation (``n_proc[i]`` points) for the contact model.
 
     Trajectories are advanced in groups of :data:`LOCKSTEP`, step by step.  Every step first
     runs a branch-free fast pass over the group — a stick step without breakaway, or a slip
@@ -396,6 +421,8 @@ def run_fixed_step_batch(
     parallel threads.
     """
     white = noise == NOISE_WHITE
+    philox = white and white_source == WHITE_PHILOX
+    sqdt = math.sqrt(dt)
     contact = noise == NOISE_PROCESS
     milstein = scheme == SCHEME_MILSTEIN
     position = path_mode == PATH_POSITION
@@ -480,11 +507,21 @@ def run_fixed_step_batch(
         cp2 = cs[_C_P2]
         cp3 = cs[_C_P3]
         wk = np.zeros(ng)
+        if philox:
+            gkeys = keys[g0:g1]
+            zodd = np.zeros(ng)  # R_{k+1}, computed with R_k from the same Philox block
         for k in range(nsteps):
-            if vector:
-                if white:
+            if white:
+                if not philox:
                     for jj in range(ng):
                         wk[jj] = dw[g0 + jj, k]
+                elif k & 1:
+                    for jj in range(ng):
+                        wk[jj] = zodd[jj] * sqdt
+                else:
+                    # one Philox block per lane gives R_k and R_{k+1}: branch-free, vectorised
+                    _fill_pair(gkeys, np.uint64(k >> 1), sqdt, wk, zodd)
+            if vector:
                 # fast pass, branch-free: both candidates, then a select per lane
                 for jj in range(ng):
                     a1 = vx1[jj]
@@ -556,9 +593,9 @@ def run_fixed_step_batch(
                                 ito = cito[jj]
                                 b = nn * s * math.sqrt(csig[jj] * avr)
                                 if milstein:
-                                    x2n = milstein_step(a2, drift + s * ito, b, 2.0 * s * ito, dw[j, k], dt)
+                                    x2n = milstein_step(a2, drift + s * ito, b, 2.0 * s * ito, wk[jj], dt)
                                 else:
-                                    x2n = em_step(a2, drift + s * ito, b, dw[j, k], dt)
+                                    x2n = em_step(a2, drift + s * ito, b, wk[jj], dt)
                             else:
                                 x2n = a2 + drift * dt
                             if (gam - x2n) * s > 0.0:
@@ -573,7 +610,7 @@ def run_fixed_step_batch(
                 j = g0 + jj
                 if vdone[jj] == 0.0:
                     _advance(jj, j, k, dt, fs, ist, cs, shapes, lawp, white, contact, milstein,
-                             mass_path, position, noise, dw, proc, n_proc, xgh, tgh)
+                             mass_path, position, noise, wk[jj], proc, n_proc, xgh, tgh)
                 if save:
                     isave = ist[_I_ISAVE, jj]
                     if isave < nsave:
@@ -635,7 +672,8 @@ def run_fixed_step(
     traj2 = np.zeros((1, traj.shape[0], 3))
     diag2 = np.zeros((1, diag.shape[0]))
     run_fixed_step_batch(prm2, shapes, lawp2, x0, nsteps, dt, scheme, noise, path_mode, dw2,
-                         proc2, nproc, xgh2, tgh2, counts, traj2, decimate, diag2)
+                         proc2, nproc, xgh2, tgh2, counts, traj2, decimate, diag2, WHITE_GIVEN,
+                         np.zeros(1, dtype=np.uint64))
     m = min(int(counts[0]), xgh.shape[0])
     xgh[:m] = xgh2[0, :m]
     tgh[:m] = tgh2[0, :m]
