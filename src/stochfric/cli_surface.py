@@ -408,7 +408,7 @@ def contact_command(
         if output is not None:
             payload["output"] = str(main.to_netcdf(output))
         if plot is not None:
-            from stochfric.surface.figures import write_contact_figures
+            from stochfric.contact.figures import write_contact_figures
 
             payload["figures"] = [str(p) for p in write_contact_figures(plot, results)]
     except _INPUT_ERRORS as exc:

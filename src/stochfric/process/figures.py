@@ -11,10 +11,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from stochfric.plotting import new_figure, save_figure
 from stochfric.units import MEGAPASCAL, MICROMETRE
 
 if TYPE_CHECKING:
-    from matplotlib.figure import Figure
 
     from stochfric.process.checks import ProcessCheck
     from stochfric.process.statistics import StatisticalContactAnalysis
@@ -32,22 +32,6 @@ __all__ = [
 ]
 
 
-def _figure(width: float, height: float) -> Figure:
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(width, height), layout="constrained")
-    FigureCanvasAgg(fig)
-    return fig
-
-
-def _save(fig: Figure, path: str | Path) -> Path:
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(p, dpi=110)
-    return p
-
-
 def _selected(n: int) -> list[int]:
     """Three approaches as in the thesis (2, 6, 12 of 1…12 µm): indices 1, n/2−1, n−1."""
     return sorted({min(1, n - 1), max(0, n // 2 - 1), n - 1})
@@ -55,7 +39,7 @@ def _selected(n: int) -> list[int]:
 
 def plot_mu_pdfs(a: StatisticalContactAnalysis, path: str | Path) -> Path:
     """PDFs of μ over the ensemble at three approaches (Fig. 3.16)."""
-    fig = _figure(9.0, 3.2)
+    fig = new_figure(9.0, 3.2)
     idx = _selected(a.ensemble.approach_m.size)
     axes = fig.subplots(1, len(idx))
     for ax, k in zip(np.atleast_1d(axes), idx, strict=True):
@@ -67,12 +51,12 @@ def plot_mu_pdfs(a: StatisticalContactAnalysis, path: str | Path) -> Path:
         ax.set_xlabel("μ")
     np.atleast_1d(axes)[0].set_ylabel("PDF")
     fig.suptitle(f"μ over {a.config.realizations} realisations ({a.config.surrogate} surrogates)")
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_contact_fraction(a: StatisticalContactAnalysis, path: str | Path) -> Path:
     """Mean A_c/A_nom over the mean pressure E[N]/A_nom with the linear fit (Fig. 3.17)."""
-    fig = _figure(5.0, 4.0)
+    fig = new_figure(5.0, 4.0)
     ax = fig.subplots()
     p = a.ensemble_pressure_pa
     ax.plot(p / MEGAPASCAL, a.ensemble_area_fraction, "o", label="ensemble mean")
@@ -81,7 +65,7 @@ def plot_contact_fraction(a: StatisticalContactAnalysis, path: str | Path) -> Pa
     ax.set_xlabel("E[N]/A_nom [MPa]")
     ax.set_ylabel("E[A_c]/A_nom")
     ax.legend()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_ergodicity(a: StatisticalContactAnalysis, path: str | Path) -> Path:
@@ -91,7 +75,7 @@ def plot_ergodicity(a: StatisticalContactAnalysis, path: str | Path) -> Path:
     the ensemble mean; right: σ along a path (mean over surfaces) and σ across surfaces at a fixed
     position (mean over positions), the two populations of :func:`ergodicity_check`.
     """
-    fig = _figure(9.0, 3.6)
+    fig = new_figure(9.0, 3.6)
     axes = fig.subplots(1, 2)
     u = a.ensemble.approach_m / MICROMETRE
     blocks = a.path.blocks.mu  # (K, J, U)
@@ -112,12 +96,12 @@ def plot_ergodicity(a: StatisticalContactAnalysis, path: str | Path) -> Path:
         f"ergodicity: max |z| = {erg.max_abs_z:.2f} vs threshold {erg.threshold:.2f} → "
         + ("consistent" if erg.consistent else "NOT consistent")
     )
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_mu_path(a: StatisticalContactAnalysis, path: str | Path) -> Path:
     """μ(y) along the first long surface for three approaches."""
-    fig = _figure(7.0, 3.6)
+    fig = new_figure(7.0, 3.6)
     ax = fig.subplots()
     y = a.path.positions_m / MICROMETRE
     for k in _selected(a.ensemble.approach_m.size):
@@ -125,12 +109,12 @@ def plot_mu_path(a: StatisticalContactAnalysis, path: str | Path) -> Path:
     ax.set_xlabel(f"y [µm] (windows shifted by a_y = {a.path.window_shift_m / MICROMETRE:.3g} µm)")
     ax.set_ylabel("μ(y)")
     ax.legend()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_spectra(a: StatisticalContactAnalysis, path: str | Path) -> Path:
     """Averaged autocorrelation and one-sided PSD (METHOD §0) for three approaches (Fig. 3.19–3.21)."""
-    fig = _figure(10.0, 3.8)
+    fig = new_figure(10.0, 3.8)
     ax1, ax2 = fig.subplots(1, 2)
     for k in _selected(a.ensemble.approach_m.size):
         lab = f"p = {a.pressure_pa[k] / MEGAPASCAL:.3g} MPa"
@@ -145,12 +129,12 @@ def plot_spectra(a: StatisticalContactAnalysis, path: str | Path) -> Path:
     ax2.set_ylabel("S [m] (one-sided)")
     ax2.set_title(f"PSD averaged over {a.config.long_surfaces} surfaces")
     ax1.legend()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_fits(a: StatisticalContactAnalysis, path: str | Path) -> Path:
     """E[μ], σ_μ and E[S] over the mean pressure with the model functions a p^b + c (Fig. 3.22)."""
-    fig = _figure(11.0, 3.6)
+    fig = new_figure(11.0, 3.6)
     axes = fig.subplots(1, 3)
     p = a.pressure_pa
     data = (
@@ -169,12 +153,12 @@ def plot_fits(a: StatisticalContactAnalysis, path: str | Path) -> Path:
         ax.set_xlabel("p [MPa]")
         ax.set_ylabel(label)
         ax.legend(fontsize=7)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_process_check(check: ProcessCheck, path: str | Path) -> Path:
     """Generated process vs target: standard deviation and spectrum (Fig. 3.23)."""
-    fig = _figure(10.0, 3.8)
+    fig = new_figure(10.0, 3.8)
     ax1, ax2 = fig.subplots(1, 2)
     p = np.asarray(check.pressure_pa) / MEGAPASCAL
     ax1.plot(p, check.target_std, "k-o", label="target σ")
@@ -192,7 +176,7 @@ def plot_process_check(check: ProcessCheck, path: str | Path) -> Path:
     ax2.set_xlabel("f [1/m]")
     ax2.set_ylabel("S [m] (one-sided)")
     ax2.legend(fontsize=6)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_surrogates(
@@ -200,7 +184,7 @@ def plot_surrogates(
 ) -> Path:
     """Original and surrogate height maps with their height PDFs (phase vs IAAFT)."""
     n = 1 + len(surrogates)
-    fig = _figure(3.2 * n + 3.2, 3.2)
+    fig = new_figure(3.2 * n + 3.2, 3.2)
     axes = fig.subplots(1, n + 1)
     maps = {"original": original, **surrogates}
     lo, hi = float(original.min()) / unit, float(original.max()) / unit
@@ -212,7 +196,7 @@ def plot_surrogates(
     axes[n].set_yscale("log")
     axes[n].set_xlabel("z [µm]")
     axes[n].legend(fontsize=7)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_surrogate_check(a: StatisticalContactAnalysis, path: str | Path) -> Path:
@@ -222,7 +206,7 @@ def plot_surrogate_check(a: StatisticalContactAnalysis, path: str | Path) -> Pat
     μ(u) (red).  Right: the summit count, mean radius β̄ and σ_S of the realisations as
     histograms in units of their ensemble standard deviation, with the measured map's z marked.
     """
-    fig = _figure(9.0, 3.6)
+    fig = new_figure(9.0, 3.6)
     axes = fig.subplots(1, 2)
     c = a.surrogate_check
     u = a.ensemble.approach_m / MICROMETRE
@@ -249,7 +233,7 @@ def plot_surrogate_check(a: StatisticalContactAnalysis, path: str | Path) -> Pat
         f"surrogates ({c.surrogate}, amplitude {c.amplitude}) vs measured map → "
         + ("credible" if c.credible else "NOT credible: " + ", ".join(c.failures()[:4]))
     )
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def write_process_figures(a: StatisticalContactAnalysis, directory: str | Path) -> list[Path]:

@@ -402,7 +402,8 @@ def contact_section(directory: Path) -> str:
     try:
         from ..contact.asperity import asperity_contact
         from ..contact.materials import load_material
-        from ..surface.figures import write_contact_figures, write_surface_figures
+        from ..contact.figures import write_contact_figures
+        from ..surface.figures import write_surface_figures
         from ..surface.io import default_surface_path, read_surface
         from ..surface.preprocess import Preparation, prepare
         from ..surface.statistics import surface_statistics

@@ -1,4 +1,4 @@
-"""Figures of the surface and contact analysis, after thesis Fig. 3.7–3.11 (and 3.14).
+"""Figures of the surface analysis, after thesis Fig. 3.7–3.10 (contact figures: :mod:`stochfric.contact.figures`).
 
 Matplotlib's object API with the Agg canvas (no pyplot, no global state, no display): every
 function builds a :class:`matplotlib.figure.Figure`, writes it to ``path`` and returns the
@@ -13,41 +13,21 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from stochfric.plotting import new_figure, save_figure
 from stochfric.surface.io import Surface
 from stochfric.surface.statistics import pdf
 from stochfric.surface.summits import Summits
-from stochfric.units import MEGAPASCAL, MICROMETRE
+from stochfric.units import MICROMETRE
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
-    from matplotlib.figure import Figure
-
-    from stochfric.contact.asperity import ContactResult
 
 __all__ = [
-    "plot_contact",
     "plot_fine_vs_coarse",
     "plot_pdfs",
     "plot_surface",
-    "write_contact_figures",
     "write_surface_figures",
 ]
-
-
-def _figure(width: float, height: float) -> Figure:
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(width, height), layout="constrained")
-    FigureCanvasAgg(fig)
-    return fig
-
-
-def _save(fig: Figure, path: str | Path) -> Path:
-    p = Path(path)
-    p.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(p, dpi=110)
-    return p
 
 
 def _image(ax: Axes, surface: Surface, title: str) -> None:
@@ -67,15 +47,15 @@ def _image(ax: Axes, surface: Surface, title: str) -> None:
 
 def plot_surface(surface: Surface, path: str | Path, *, title: str = "filtered surface") -> Path:
     """The (filtered) height map, as thesis Fig. 3.7 / 3.24."""
-    fig = _figure(6.0, 5.0)
+    fig = new_figure(6.0, 5.0)
     _image(fig.add_subplot(1, 1, 1), surface, title)
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_fine_vs_coarse(fine: Surface, coarse: Surface, path: str | Path, *, step: int, row: int = 1) -> Path:
     """Fine vs coarse: both maps and one profile along x at ``y = row·Δy_coarse``
     (thesis Fig. 3.8 / 3.9 / 3.25 / 3.26)."""
-    fig = _figure(13.0, 4.2)
+    fig = new_figure(13.0, 4.2)
     _image(fig.add_subplot(1, 3, 1), fine, f"fine {fine.nb_grid_pts[0]}×{fine.nb_grid_pts[1]}")
     _image(
         fig.add_subplot(1, 3, 2),
@@ -105,13 +85,13 @@ def plot_fine_vs_coarse(fine: Surface, coarse: Surface, path: str | Path, *, ste
     ax.set_ylabel("z [µm]")
     ax.set_title(f"profile at y = {j_c}·Δy (coarse)")
     ax.legend()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def plot_pdfs(surfaces: Sequence[tuple[str, Surface, Summits]], path: str | Path, *, bins: int = 40) -> Path:
     """PDFs of all heights z, summit heights z_s and radii β for each labelled surface
     (thesis Fig. 3.10 / 3.27).  Summit PDFs use ``clip(√n, 5, bins)`` bins for n summits."""
-    fig = _figure(13.0, 4.0)
+    fig = new_figure(13.0, 4.0)
     axes = [fig.add_subplot(1, 3, k + 1) for k in range(3)]
     for label, surface, summits in surfaces:
         x, d = pdf(surface.heights_m / MICROMETRE, bins)
@@ -132,32 +112,7 @@ def plot_pdfs(surfaces: Sequence[tuple[str, Surface, Summits]], path: str | Path
         ax.set_ylabel("probability density [1/µm]")
         ax.set_title(title)
         ax.legend()
-    return _save(fig, path)
-
-
-def plot_contact(results: Sequence[ContactResult], path: str | Path) -> Path:
-    """A_c, p, number of contacts and μ over u (thesis Fig. 3.11 / 3.28); several results
-    (e.g. GW and half-space, Fig. 3.14) are drawn side by side."""
-    fig = _figure(11.0, 8.0)
-    axes = [fig.add_subplot(2, 2, k + 1) for k in range(4)]
-    for res in results:
-        u = res.approach_m / MICROMETRE
-        label = res.method
-        axes[0].plot(u, res.contact_area_m2, "o-", ms=3, label=label)
-        axes[1].plot(u, res.pressure_pa / MEGAPASCAL, "o-", ms=3, label=label)
-        axes[2].plot(u, res.n_contacts, "o-", ms=3, label=label)
-        axes[3].plot(u, res.mu, "o-", ms=3, label=label)
-    for ax, ylabel, title in zip(
-        axes,
-        ("A_c [m²]", "p [MPa]", "number of contacts", "μ [-]"),
-        ("contact area", "nominal pressure", "contacts", "friction coefficient (Bowden–Tabor)"),
-        strict=True,
-    ):
-        ax.set_xlabel("approach u [µm]")
-        ax.set_ylabel(ylabel)
-        ax.set_title(title)
-        ax.legend()
-    return _save(fig, path)
+    return save_figure(fig, path)
 
 
 def write_surface_figures(
@@ -177,8 +132,3 @@ def write_surface_figures(
         plot_fine_vs_coarse(fine, coarse, d / "fine_vs_coarse.png", step=step),
         plot_pdfs([("fine", fine, fine_summits), ("coarse", coarse, coarse_summits)], d / "pdfs.png"),
     ]
-
-
-def write_contact_figures(directory: str | Path, results: Sequence[ContactResult]) -> list[Path]:
-    """``contact.png`` (A_c, p, contacts, μ over u) into ``directory``."""
-    return [plot_contact(results, Path(directory) / "contact.png")]

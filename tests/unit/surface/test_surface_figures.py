@@ -7,8 +7,9 @@ from pathlib import Path
 import numpy as np
 
 from stochfric.contact.asperity import asperity_contact
+from stochfric.contact.figures import write_contact_figures
 from stochfric.contact.materials import get_material
-from stochfric.surface.figures import write_contact_figures, write_surface_figures
+from stochfric.surface.figures import write_surface_figures
 from stochfric.surface.io import Surface
 from stochfric.surface.preprocess import Preparation, prepare
 from stochfric.surface.summits import summits_of
