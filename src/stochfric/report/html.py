@@ -401,8 +401,8 @@ def contact_section(directory: Path) -> str:
     """Chapter-3 analysis of the shipped real surface: statistics, summits, GW contact (method §1–2)."""
     try:
         from ..contact.asperity import asperity_contact
-        from ..contact.materials import load_material
         from ..contact.figures import write_contact_figures
+        from ..contact.materials import load_material
         from ..surface.figures import write_surface_figures
         from ..surface.io import default_surface_path, read_surface
         from ..surface.preprocess import Preparation, prepare
