@@ -51,6 +51,30 @@ def as_generator(rng: np.random.Generator | SeedLike) -> np.random.Generator:
     return np.random.Generator(np.random.PCG64(as_seed_sequence(rng)))
 
 
+#: Reserved first spawn-key entries for streams that are not tasks or trajectories (their keys
+#: start with small indices): the bootstrap of a study's statistics and its ratio intervals.
+BOOTSTRAP_KEY = 2**31 - 1
+INTERVAL_KEY = 2**31 - 2
+
+
+def child_seed(seed: SeedLike, *key: int) -> np.random.SeedSequence:
+    """The child of ``seed`` with spawn key ``(*seed.spawn_key, *key)``, derived without mutating ``seed``.
+
+    The single place where the package derives streams: task k of a study is ``child_seed(seed, k)``,
+    trajectory (i, r) of that task ``child_seed(task, i, r)``, realisation k of an ensemble
+    ``child_seed(seed, k)``; the same key always gives the same numbers, whoever computes it.
+    """
+    root = as_seed_sequence(seed)
+    return np.random.SeedSequence(
+        entropy=root.entropy, spawn_key=(*root.spawn_key, *(int(k) for k in key)), pool_size=root.pool_size
+    )
+
+
+def child_generator(seed: SeedLike, *key: int) -> np.random.Generator:
+    """A PCG64 generator on :func:`child_seed` ``(seed, *key)``."""
+    return np.random.Generator(np.random.PCG64(child_seed(seed, *key)))
+
+
 def spawn_seed_sequences(seed: SeedLike, n: int) -> list[np.random.SeedSequence]:
     """``n`` independent child seed sequences of ``seed`` (child *k* is fixed by ``seed`` and *k*).
 
@@ -61,14 +85,7 @@ def spawn_seed_sequences(seed: SeedLike, n: int) -> list[np.random.SeedSequence]
     if n < 0:
         raise ValueError(f"number of streams must be non-negative, got {n}")
     root = as_seed_sequence(seed)
-    return [
-        np.random.SeedSequence(
-            entropy=root.entropy,
-            spawn_key=(*root.spawn_key, k),
-            pool_size=root.pool_size,
-        )
-        for k in range(n)
-    ]
+    return [child_seed(root, k) for k in range(n)]
 
 
 def spawn_generators(seed: SeedLike, n: int) -> list[np.random.Generator]:

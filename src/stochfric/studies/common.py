@@ -33,6 +33,7 @@ from ..oscillator.friction_laws import FrictionLaw, pressure_law
 from ..oscillator.parameters import OscillatorParameters, PhysicalParameters
 from ..process.model import FrictionProcessModel, load_process_model
 from ..process.presets import PROCESS_LEVELS, Preset, get_preset, process_with_level
+from ..random import child_seed
 
 MODELS: tuple[str, ...] = ("deterministic", "white", "contact")
 PATH_COORDINATES: tuple[str, ...] = ("mass", "relative", "position")
@@ -266,7 +267,7 @@ def task_seed(root_entropy: int, task_index: int) -> np.random.SeedSequence:
     Depends only on the root seed and the task's position in the study grid, never on the
     executor, the number of workers or the order in which tasks finish.
     """
-    return np.random.SeedSequence(entropy=int(root_entropy), spawn_key=(int(task_index),))
+    return child_seed(int(root_entropy), int(task_index))
 
 
 @dataclass(frozen=True)

@@ -46,6 +46,7 @@ import numpy.typing as npt
 import xarray as xr
 
 from ..oscillator.reference import hopf_damping
+from ..random import BOOTSTRAP_KEY, child_generator
 from .base import StudyResult, provenance_attrs, sweep
 from .common import (
     StudySetup,
@@ -243,7 +244,7 @@ def damping_study(
         warnings.simplefilter("ignore", RuntimeWarning)
         m_se = np.nanstd(sc, axis=-1, ddof=1) / np.sqrt(n_runs)
     x_se_mean, x_se_std = pooled_bootstrap_se(
-        xw, n_boot=200, rng=np.random.default_rng(np.random.SeedSequence(config.seed, spawn_key=(2**31 - 1,))))
+        xw, n_boot=200, rng=child_generator(config.seed, BOOTSTRAP_KEY))
     xmean = np.where(np.isfinite(xmean_nan), xmean_nan, 0.0)
     xstd = np.where(np.isfinite(xstd_nan), xstd_nan, 0.0)
     # D_max per model and force

@@ -18,6 +18,7 @@ import numpy as np
 import xarray as xr
 
 from ..io_utils import package_versions
+from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
 from .base import StudyResult, provenance_attrs, sweep
 from .common import (
     TaskSpec,
@@ -120,7 +121,7 @@ def forcing_study(
     se = np.full((nm, nq, ne, 2), np.nan)
     for mi, qi, ei in np.ndindex(nm, nq, ne):
         runs = 1 if models[mi] == "deterministic" else nr
-        g = np.random.default_rng(np.random.SeedSequence(config.seed, spawn_key=(2**31 - 1, mi, qi, ei)))
+        g = child_generator(config.seed, BOOTSTRAP_KEY, mi, qi, ei)
         sm = sample_summary([xw[mi, qi, ei, r] for r in range(runs)], n_boot=200, rng=g)
         se[mi, qi, ei] = [sm.se_mean_boot, sm.se_std_boot]
     data["x_gh_mean_se"] = (dims5[:3], se[..., 0], {"units": "1", "long_name": "bootstrap SE of E[X_gh]"})
@@ -139,7 +140,7 @@ def forcing_study(
         lo_hi = np.full((nq, ne, 2), np.nan)
         med_ci: dict[str, dict[str, Any]] = {}
         for qi, q in enumerate(qs):
-            g = np.random.default_rng(np.random.SeedSequence(config.seed, spawn_key=(2**31 - 2, qi)))
+            g = child_generator(config.seed, INTERVAL_KEY, qi)
             per, med = std_ratio_over_cells([[xw[ci, qi, e, r] for r in range(nr)] for e in range(ne)],
                                             [[xw[cw, qi, e, r] for r in range(nr)] for e in range(ne)], rng=g)
             lo_hi[qi] = [[p.low, p.high] for p in per]

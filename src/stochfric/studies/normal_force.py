@@ -18,6 +18,7 @@ import numpy as np
 import xarray as xr
 
 from ..io_utils import package_versions
+from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
 from .base import StudyResult, provenance_attrs, sweep
 from .common import (
     TaskSpec,
@@ -102,7 +103,7 @@ def normal_force_study(
     table = np.full((nm, nd, nn, len(_SE_FIELDS)), np.nan)
     for mi, di, ni in np.ndindex(nm, nd, nn):
         runs = 1 if models[mi] == "deterministic" else nr
-        rng = np.random.default_rng(np.random.SeedSequence(config.seed, spawn_key=(2**31 - 1, mi, di, ni)))
+        rng = child_generator(config.seed, BOOTSTRAP_KEY, mi, di, ni)
         s = sample_summary([xw[mi, di, ni, r] for r in range(runs)], rng=rng)
         table[mi, di, ni] = [float(getattr(s, f)) for f in _SE_FIELDS]
     coords: dict[str, Any] = {
@@ -167,7 +168,7 @@ def _sigma_ratio(models: Sequence[str], xw: Any, nd: int, nn: int, nr: int, seed
     for di in range(nd):
         row = []
         for ni in range(nn):
-            g = np.random.default_rng(np.random.SeedSequence(seed, spawn_key=(2**31 - 2, di, ni)))
+            g = child_generator(seed, INTERVAL_KEY, di, ni)
             row.append(std_ratio([xw[ci, di, ni, r] for r in range(nr)], [xw[cw, di, ni, r] for r in range(nr)],
                                  rng=g).to_dict())
         out.append(row)
