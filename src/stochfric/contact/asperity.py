@@ -31,7 +31,7 @@ import numpy as np
 import numpy.typing as npt
 
 from stochfric.contact.materials import Material
-from stochfric.io_utils import write_atomic
+from stochfric.io_utils import write_netcdf_atomic
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import Summits
 
@@ -323,7 +323,7 @@ class ContactResult(BowdenTabor):
         """Write :meth:`to_dataset` to ``path`` atomically (temp file in the same folder,
         then :func:`os.replace`); returns the path."""
         ds = self.to_dataset()
-        return write_atomic(path, lambda p: ds.to_netcdf(p, engine="h5netcdf"))
+        return write_netcdf_atomic(path, ds)
 
 
 def read_contact_result(path: str | Path) -> ContactResult:

@@ -20,7 +20,7 @@ import numpy as np
 import numpy.typing as npt
 import xarray as xr
 
-from ..io_utils import package_versions, write_atomic
+from ..io_utils import package_versions, write_netcdf_atomic
 from .parameters import OscillatorParameters
 
 SCHEMA = "stochfric.simulation/1"
@@ -153,7 +153,7 @@ class SimulationResult:
     def to_netcdf(self, path: str | Path) -> Path:
         """Write :meth:`to_dataset` to ``path`` (NetCDF-4 via h5netcdf), atomically."""
         ds = self.to_dataset()
-        return write_atomic(path, lambda p: ds.to_netcdf(p, engine="h5netcdf"))
+        return write_netcdf_atomic(path, ds)
 
     def to_json_dict(self, param_set: int = 0) -> dict[str, Any]:
         """The CLI's ``--json`` object for one parameter set."""

@@ -31,6 +31,7 @@ sample fourth central moment m4; no Gaussian assumption).
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -39,10 +40,12 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
+import xarray as xr
 
 from stochfric.contact.asperity import ContactError
 from stochfric.contact.materials import Material
 from stochfric.contact.validity import ValidityWarning, contact_validity
+from stochfric.io_utils import package_versions, write_netcdf_atomic
 from stochfric.process.checks import (
     ErgodicityCheck,
     ProcessCheck,
@@ -232,12 +235,6 @@ class StatisticalContactAnalysis:
 
     def to_dataset(self) -> Any:
         """All statistics as an :class:`xarray.Dataset` (units and provenance in ``attrs``)."""
-        import json
-
-        import xarray as xr
-
-        from stochfric.io_utils import package_versions
-
         ens, blocks, path = self.ensemble, self.path.blocks, self.path.samples
         u = ("approach",)
 
@@ -308,11 +305,8 @@ class StatisticalContactAnalysis:
         )
 
     def to_netcdf(self, path: str | Path) -> Path:
-        """Write :meth:`to_dataset` atomically (temporary file + :func:`os.replace`)."""
-        from stochfric.io_utils import write_atomic
-
-        ds = self.to_dataset()
-        return write_atomic(path, lambda p: ds.to_netcdf(p, engine="h5netcdf"))
+        """Write :meth:`to_dataset` atomically; a full disk is a clean ``OSError`` (``write_netcdf_atomic``)."""
+        return write_netcdf_atomic(path, self.to_dataset())
 
 
 def _pdfs(mu: FloatArray, bins: int) -> tuple[FloatArray, FloatArray]:
