@@ -29,6 +29,8 @@ import numpy as np
 import numpy.typing as npt
 
 from ..io_utils import package_versions
+from ..process.model import BandLimitedProcessModel, TabulatedProcessModel
+from ..process.spectral import generate_process_batch
 from ..random import SeedLike, as_seed_sequence
 from . import accurate as _acc
 from . import kernels as _k
@@ -95,6 +97,45 @@ class _Plan:
     pressures: list[float | None]
     x0: list[tuple[float, float]]
     nsteps: int
+
+
+#: ``generate`` methods known to be ``generate_process(f, model.spectrum(f, p), dx, length, rng)``
+#: with ``f = model.frequencies()`` (eq. 2.48), which :func:`simulate` evaluates for a whole
+#: batch at once with the same numbers (:func:`_SpectralBatch`).
+_SPECTRAL_GENERATE = (BandLimitedProcessModel.generate, TabulatedProcessModel.generate)
+
+
+class _SpectralBatch:
+    """Realisations of a spectral-representation process model for a batch of trajectories.
+
+    Each trajectory's phases are ``Generator(PCG64(trajectory_seed)).uniform(0, 2π, K)``, as
+    ``model.generate(p, rng)`` draws them, computed in compiled code
+    (:func:`stochfric.oscillator.philox.pcg64_uniform_for_children`); the realisations of all
+    trajectories of one pressure are evaluated by one call of
+    :func:`stochfric.process.spectral.generate_process_batch`.  Bit for bit the numbers of
+    ``model.generate`` per trajectory (tested), at ~1 µs instead of ~160 µs per trajectory.
+    """
+
+    def __init__(self, model: Any) -> None:
+        self.model = model
+        self.f = np.asarray(model.frequencies(), dtype=np.float64)
+        self._psd: dict[float, npt.NDArray[np.float64]] = {}
+
+    def psd(self, p: float) -> npt.NDArray[np.float64]:
+        if p not in self._psd:
+            self._psd[p] = np.asarray(self.model.spectrum(self.f, p), dtype=np.float64)
+        return self._psd[p]
+
+    def fill(self, out: npt.NDArray[np.float64], root: np.random.SeedSequence,
+             key_sets: npt.NDArray[np.int64], runs: npt.NDArray[np.int64],
+             pressures: list[float]) -> None:
+        """``out[j]`` = realisation of trajectory ``(key_sets[j], runs[j])`` at ``pressures[j]``."""
+        phases = _ph.pcg64_uniform_for_children(root, key_sets, runs, self.f.size, 2.0 * np.pi)
+        pr = np.asarray(pressures, dtype=np.float64)
+        for p in np.unique(pr):
+            rows = np.flatnonzero(pr == p)
+            out[rows] = generate_process_batch(self.f, self.psd(float(p)), self.model.dx,
+                                               self.model.length, phases[rows])
 
 
 def trajectory_seed(root: np.random.SeedSequence, param_set: int, run: int) -> np.random.SeedSequence:
@@ -410,6 +451,8 @@ def simulate(
 
     philox_white = noise == _k.NOISE_WHITE and white_stream == "philox"
     buffer_white = noise == _k.NOISE_WHITE and not philox_white
+    spectral = (_SpectralBatch(process) if noise == _k.NOISE_PROCESS
+                and getattr(type(process), "generate", None) in _SPECTRAL_GENERATE else None)
 
     def run_batch(lo: int, hi: int) -> None:
         idx = np.arange(lo, hi)
@@ -428,7 +471,11 @@ def simulate(
             keys = _ph.trajectory_keys(root, np.zeros_like(sets) if common_random_numbers else sets, rr)
         else:
             keys = np.zeros(1, dtype=np.uint64)
-        if noise != _k.NOISE_NONE and not philox_white:
+        if spectral is not None:
+            key_sets = np.zeros_like(sets) if common_random_numbers else sets
+            prs = [plan.pressures[int(i)] for i in sets]
+            spectral.fill(proc, root, key_sets, rr, [float(p_) for p_ in prs if p_ is not None])
+        elif noise != _k.NOISE_NONE and not philox_white:
             sq = math.sqrt(dt)
             for j in range(b):
                 key_set = 0 if common_random_numbers else int(sets[j])

@@ -179,6 +179,28 @@ def _fill_pair(
         zodd[jj] = z1
 
 
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _load_segment(
+    jj: int, r: int, coord: float, dx: float, proc: npt.NDArray[np.float64],
+    n_proc: npt.NDArray[np.int64], pseg: npt.NDArray[np.float64], pv0: npt.NDArray[np.float64],
+    pv1: npt.NDArray[np.float64],
+) -> None:  # pragma: no cover
+    """Lane ``jj``: the process segment ``floor(coord/dx)`` of realisation ``proc[r]`` and its
+    end values, as :func:`process_value_row` indexes them (periodic continuation)."""
+    u = coord / dx
+    i = math.floor(u)
+    n = n_proc[r]
+    i0 = int(i)
+    if i0 < 0 or i0 >= n:
+        i0 %= n
+    i1 = i0 + 1
+    if i1 == n:
+        i1 = 0
+    pseg[jj] = i
+    pv0[jj] = proc[r, i0]
+    pv1[jj] = proc[r, i1]
+
+
 # --- per-trajectory state of the lock-step batch kernel ------------------------------
 # Group arrays are stored field-major, ``fs[field, lane]``, so that every field of a group is
 # one contiguous row that the compiler can process with SIMD instructions.
@@ -414,11 +436,13 @@ def run_fixed_step_batch(
     Trajectories are advanced in groups of :data:`LOCKSTEP`, step by step.  Every step first
     runs a branch-free fast pass over the group — a stick step without breakaway, or a slip
     step that crosses no switching condition, with exactly the arithmetic of the full step —
-    and then the full step :func:`_advance` for the lanes where an event happened.  Groups
-    with forcing, the contact process or a tabulated law take a scalar fast pass instead
-    (cosine, gathers and table look-ups do not vectorise).  The numbers of a trajectory do
-    not depend on the grouping or the batching.  Releases the GIL, so batches run in
-    parallel threads.
+    and then the full step :func:`_advance` for the lanes where an event happened.  With the
+    contact process, each lane keeps the process values at the ends of its current grid
+    segment, so the fast pass interpolates without gathers; a lane that enters another
+    segment takes the full step, after which the segment is reloaded.  Groups with forcing or
+    a tabulated law take a scalar fast pass instead (the cosine and table look-ups do not
+    vectorise).  The numbers of a trajectory do not depend on the grouping or the batching.
+    Releases the GIL, so batches run in parallel threads.
     """
     white = noise == NOISE_WHITE
     philox = white and white_source == WHITE_PHILOX
@@ -435,7 +459,7 @@ def run_fixed_step_batch(
         fs = np.empty((_NF, ng))
         ist = np.zeros((_NI, ng), dtype=np.int64)
         cs = np.zeros((_NC, ng))
-        vector = not contact
+        vector = True
         for jj in range(ng):
             j = g0 + jj
             row = prm[j]
@@ -507,6 +531,19 @@ def run_fixed_step_batch(
         cp2 = cs[_C_P2]
         cp3 = cs[_C_P3]
         wk = np.zeros(ng)
+        # contact process read without per-step gathers: each lane keeps the grid segment
+        # floor(u) of its reading coordinate u = path/dx (or x1/dx) and the two process values
+        # at its ends; the fast pass interpolates from them (the same arithmetic as
+        # process_value_row) and leaves lanes that entered another segment to the full step,
+        # after which the segment is reloaded.
+        pseg = np.full(ng, np.nan)
+        pv0 = np.zeros(ng)
+        pv1 = np.zeros(ng)
+        cpdx = cs[_C_PDX]
+        if contact:
+            for jj in range(ng):
+                _load_segment(jj, g0 + jj, vx1[jj] if position else vpath[jj], cpdx[jj], proc,
+                              n_proc, pseg, pv0, pv1)
         if philox:
             gkeys = keys[g0:g1]
             zodd = np.zeros(ng)  # R_{k+1}, computed with R_k from the same Philox block
@@ -534,6 +571,13 @@ def run_fixed_step_batch(
                     avr = abs(vr)
                     v = cvs[jj] * avr
                     mu = cp0[jj] / (1.0 + cp1[jj] * v) + cp2[jj] + cp3[jj] * v * v
+                    hit = True
+                    if contact:
+                        u = (a1 if position else vpath[jj]) / cpdx[jj]
+                        fl = math.floor(u)
+                        w = u - fl
+                        hit = fl == pseg[jj]
+                        mu += (1.0 - w) * pv0[jj] + w * pv1[jj]
                     drift = -a1 - cd2[jj] * a2 + cn[jj] * mu * s
                     x1n = a1 + a2 * dt
                     if white:
@@ -549,7 +593,7 @@ def run_fixed_step_batch(
                     ok_slip = (vr != 0.0) & ((gam - x2n) * s > 0.0)
                     dp = abs(x1n - a1) if mass_path else avr * dt
                     is_st = vstk[jj] != 0.0
-                    good = ok_stick if is_st else ok_slip
+                    good = ok_stick if is_st else (ok_slip & hit)
                     slip_ok = good & (not is_st)
                     vx1[jj] = (x1s if is_st else x1n) if good else a1
                     vx2[jj] = (gam if is_st else x2n) if good else a2
@@ -557,7 +601,7 @@ def run_fixed_step_batch(
                     vs[jj] = s if slip_ok else vs[jj]
                     vdone[jj] = 1.0 if good else 0.0
             else:
-                # scalar fast pass (forcing, contact process or tabulated law in the group)
+                # scalar fast pass (forcing or a tabulated law in the group)
                 for jj in range(ng):
                     j = g0 + jj
                     done = False
@@ -611,6 +655,9 @@ def run_fixed_step_batch(
                 if vdone[jj] == 0.0:
                     _advance(jj, j, k, dt, fs, ist, cs, shapes, lawp, white, contact, milstein,
                              mass_path, position, noise, wk[jj], proc, n_proc, xgh, tgh)
+                    if contact and vector:
+                        _load_segment(jj, j, vx1[jj] if position else vpath[jj], cpdx[jj], proc,
+                                      n_proc, pseg, pv0, pv1)
                 if save:
                     isave = ist[_I_ISAVE, jj]
                     if isave < nsave:

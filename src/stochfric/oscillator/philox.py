@@ -49,7 +49,9 @@ __all__ = [
     "PHILOX_W0",
     "PHILOX_W1",
     "box_muller",
+    "child_states",
     "pair_normals",
+    "pcg64_uniform_for_children",
     "philox4x32_10",
     "step_normals",
     "trajectory_key",
@@ -290,21 +292,22 @@ _XSHIFT = np.uint64(16)
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _child_keys(
+def _child_states(
     prefix: npt.NDArray[np.uint64], sets: npt.NDArray[np.uint64], runs: npt.NDArray[np.uint64],
-    pool_size: int,
+    pool_size: int, n_words: int,
 ) -> npt.NDArray[np.uint64]:  # pragma: no cover
-    """``SeedSequence(entropy, spawn_key=(*root_key, sets[i], runs[i])).generate_state(1,
-    uint64)`` for every ``i``; ``prefix`` holds the 32-bit words of the assembled entropy before
-    the last two spawn-key entries (run entropy padded to the pool size, then the root's spawn
-    key), ``sets`` and ``runs`` are < 2³²."""
+    """``SeedSequence(entropy, spawn_key=(*root_key, sets[i], runs[i])).generate_state(n_words,
+    uint32)`` for every ``i`` (32-bit words held in uint64, shape ``(len(sets), n_words)``);
+    ``prefix`` holds the 32-bit words of the assembled entropy before the last two spawn-key
+    entries (run entropy padded to the pool size, then the root's spawn key), ``sets`` and
+    ``runs`` are < 2³²."""
     n = sets.shape[0]
     npre = prefix.shape[0]
     ne = npre + 2
     ent = np.empty(ne, dtype=np.uint64)
     ent[:npre] = prefix
     mixer = np.empty(pool_size, dtype=np.uint64)
-    out = np.empty(n, dtype=np.uint64)
+    out = np.empty((n, n_words), dtype=np.uint64)
     for t in range(n):
         ent[npre] = sets[t]
         ent[npre + 1] = runs[t]
@@ -333,13 +336,11 @@ def _child_keys(
                 r = (_MIX_MULT_L * mixer[i_dst] - _MIX_MULT_R * v) & _MASK32
                 mixer[i_dst] = r ^ (r >> _XSHIFT)
         hb = _INIT_B
-        words = np.zeros(2, dtype=np.uint64)
-        for i_dst in range(2):
+        for i_dst in range(n_words):
             v = (mixer[i_dst % pool_size] ^ hb) & _MASK32
             hb = (hb * _MULT_B) & _MASK32
             v = (v * hb) & _MASK32
-            words[i_dst] = v ^ (v >> _XSHIFT)
-        out[t] = words[0] | (words[1] << _S32)
+            out[t, i_dst] = v ^ (v >> _XSHIFT)
     return out
 
 
@@ -355,29 +356,114 @@ def _uint32_words(value: int) -> list[int]:
     return words
 
 
-def trajectory_keys(
-    root: np.random.SeedSequence, sets: npt.ArrayLike, runs: npt.ArrayLike
-) -> npt.NDArray[np.uint64]:
-    """:func:`trajectory_key` of the children with spawn keys ``(*root.spawn_key, s, r)`` of
-    ``root``, for the pairs ``(sets[i], runs[i])``, computed in compiled code.
+def child_states(
+    root: np.random.SeedSequence, sets: npt.ArrayLike, runs: npt.ArrayLike, n_words: int
+) -> npt.NDArray[np.uint32]:
+    """``generate_state(n_words, uint32)`` of the children of ``root`` with spawn keys
+    ``(*root.spawn_key, sets[i], runs[i])`` (the seeds :func:`stochfric.oscillator.integrate.
+    trajectory_seed` spawns), computed in compiled code; shape ``(len(sets), n_words)``.
 
-    Equal, bit for bit, to ``trajectory_key(SeedSequence(root.entropy, spawn_key=(*root.spawn_key,
-    s, r), pool_size=root.pool_size))`` (falls back to that where an index is ≥ 2³²).
+    Equal, bit for bit, to numpy's :class:`~numpy.random.SeedSequence` (falls back to it where
+    an index is ≥ 2³² or the root's entropy is not an integer).
     """
     s_arr = np.asarray(sets, dtype=np.int64).ravel()
     r_arr = np.asarray(runs, dtype=np.int64).ravel()
     if s_arr.shape != r_arr.shape:
         raise ValueError("sets and runs must have the same length")
-    entropy = root.entropy
     if s_arr.size and (s_arr.min() < 0 or r_arr.min() < 0):
         raise ValueError("parameter-set and run indices must be non-negative")
+    entropy = root.entropy
     if s_arr.size and (int(max(s_arr.max(), r_arr.max())) >= 2**32 or entropy is None
                        or not isinstance(entropy, int | np.integer)):
-        return np.array([trajectory_key(np.random.SeedSequence(
-            entropy, spawn_key=(*root.spawn_key, int(a), int(b)), pool_size=root.pool_size))
-            for a, b in zip(s_arr, r_arr, strict=True)], dtype=np.uint64)
+        return np.array([np.random.SeedSequence(
+            entropy, spawn_key=(*root.spawn_key, int(a), int(b)), pool_size=root.pool_size
+        ).generate_state(n_words, np.uint32) for a, b in zip(s_arr, r_arr, strict=True)],
+            dtype=np.uint32).reshape(s_arr.size, n_words)
     run_entropy = _uint32_words(int(entropy))  # type: ignore[arg-type]
     run_entropy += [0] * max(0, root.pool_size - len(run_entropy))  # spawn key always present
     prefix = run_entropy + [w for k in root.spawn_key for w in _uint32_words(int(k))]
-    return _child_keys(np.array(prefix, dtype=np.uint64), s_arr.astype(np.uint64),
-                       r_arr.astype(np.uint64), int(root.pool_size))
+    return _child_states(np.array(prefix, dtype=np.uint64), s_arr.astype(np.uint64),
+                         r_arr.astype(np.uint64), int(root.pool_size), int(n_words)
+                         ).astype(np.uint32)
+
+
+def trajectory_keys(
+    root: np.random.SeedSequence, sets: npt.ArrayLike, runs: npt.ArrayLike
+) -> npt.NDArray[np.uint64]:
+    """:func:`trajectory_key` of the children with spawn keys ``(*root.spawn_key, s, r)`` of
+    ``root``, for the pairs ``(sets[i], runs[i])``, computed in compiled code
+    (:func:`child_states`; bit for bit numpy's)."""
+    w = child_states(root, sets, runs, 2).astype(np.uint64)
+    return np.ascontiguousarray(w[:, 0] | (w[:, 1] << np.uint64(32)))
+
+
+# --- numpy's PCG64 in compiled code ---------------------------------------------------------------
+# The contact model draws each trajectory's K phases with numpy's Generator(PCG64(seed)).uniform
+# (METHOD §0); creating that generator costs ~10 µs per trajectory in Python.  The same 128-bit
+# LCG with the XSL-RR output (O'Neill 2014; numpy's pcg64.h), seeded the way numpy seeds it from
+# SeedSequence.generate_state(4, uint64), gives the same numbers (tested bit for bit).
+_PCG_MULT_HI = np.uint64(0x2360ED051FC65DA4)
+_PCG_MULT_LO = np.uint64(0x4385DF649FCCF645)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _mulhi64(a: np.uint64, b: np.uint64) -> np.uint64:  # pragma: no cover
+    """High 64 bits of the 128-bit product ``a·b``."""
+    a0 = a & _MASK32
+    a1 = a >> _S32
+    b0 = b & _MASK32
+    b1 = b >> _S32
+    p00 = a0 * b0
+    p01 = a0 * b1
+    p10 = a1 * b0
+    mid = (p00 >> _S32) + (p01 & _MASK32) + (p10 & _MASK32)
+    return a1 * b1 + (p01 >> _S32) + (p10 >> _S32) + (mid >> _S32)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _pcg_step(
+    sh: np.uint64, sl: np.uint64, ih: np.uint64, il: np.uint64
+) -> tuple[np.uint64, np.uint64]:  # pragma: no cover
+    """state ← state · M + inc (mod 2¹²⁸), as (high, low) 64-bit halves."""
+    lo = sl * _PCG_MULT_LO
+    hi = _mulhi64(sl, _PCG_MULT_LO) + sh * _PCG_MULT_LO + sl * _PCG_MULT_HI
+    lo2 = lo + il
+    carry = np.uint64(1) if lo2 < lo else np.uint64(0)
+    return hi + ih + carry, lo2
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def pcg64_uniform(
+    seeds: npt.NDArray[np.uint64], count: int, scale: float
+) -> npt.NDArray[np.float64]:  # pragma: no cover
+    """``Generator(PCG64(s)).uniform(0, scale, count)`` for every row ``s`` of ``seeds``, where
+    row ``i`` holds ``SeedSequence.generate_state(4, uint64)`` of generator ``i``."""
+    n = seeds.shape[0]
+    out = np.empty((n, count))
+    one = np.uint64(1)
+    zero = np.uint64(0)
+    for t in range(n):
+        # pcg64_set_seed: initstate = (s0, s1), initseq = (s2, s3) (high, low)
+        ih = (seeds[t, 2] << one) | (seeds[t, 3] >> np.uint64(63))
+        il = (seeds[t, 3] << one) | one
+        sh, sl = _pcg_step(zero, zero, ih, il)
+        lo = sl + seeds[t, 1]
+        carry = one if lo < sl else zero
+        sh, sl = _pcg_step(sh + seeds[t, 0] + carry, lo, ih, il)
+        for i in range(count):
+            sh, sl = _pcg_step(sh, sl, ih, il)
+            x = sh ^ sl
+            rot = sh >> np.uint64(58)
+            w = (x >> rot) | (x << ((np.uint64(64) - rot) & np.uint64(63)))
+            out[t, i] = 0.0 + scale * (float(w >> np.uint64(11)) * (1.0 / 9007199254740992.0))
+    return out
+
+
+def pcg64_uniform_for_children(
+    root: np.random.SeedSequence, sets: npt.ArrayLike, runs: npt.ArrayLike, count: int, high: float
+) -> npt.NDArray[np.float64]:
+    """Row ``i``: ``Generator(PCG64(child)).uniform(0, high, count)`` for the child of ``root``
+    with spawn key ``(*root.spawn_key, sets[i], runs[i])``, computed in compiled code."""
+    w = child_states(root, sets, runs, 8).astype(np.uint64)
+    seeds = np.ascontiguousarray(w[:, 0::2] | (w[:, 1::2] << np.uint64(32)))
+    return pcg64_uniform(seeds, int(count), float(high) - 0.0)

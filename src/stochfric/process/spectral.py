@@ -34,6 +34,7 @@ from stochfric.random import SeedLike, as_generator
 __all__ = [
     "band_limited_frequencies",
     "generate_process",
+    "generate_process_batch",
     "nyquist_frequency",
     "one_sided_psd",
     "spectral_representation",
@@ -177,7 +178,8 @@ def spectral_representation(
     Notes
     -----
     Evaluated as cos(2π x fᵀ) @ (a cos ψ) − sin(2π x fᵀ) @ (a sin ψ) with a = √(2 S Δf),
-    in blocks of positions so that at most ~2²¹ matrix elements exist at a time.
+    in blocks of positions so that at most ~2²¹ matrix elements exist at a time
+    (:func:`_evaluate`).
     """
     f, s = _check_spectrum(frequencies, psd)
     psi = np.asarray(phases, dtype=np.float64)
@@ -189,17 +191,32 @@ def spectral_representation(
     xs = np.asarray(x, dtype=np.float64)
     if not np.all(np.isfinite(xs)):
         raise ValueError("x must be finite")
+    return _evaluate(f, s, step, xs.ravel(), psi[np.newaxis, :])[0].reshape(xs.shape)
+
+
+def _evaluate(
+    f: NDArray[np.float64], s: NDArray[np.float64], step: float, flat: NDArray[np.float64],
+    phases: NDArray[np.float64],
+) -> NDArray[np.float64]:
+    """μ̂ at the positions ``flat`` for every row of ``phases`` (shape (b, K)); shape (b, n).
+
+    cos(2π x fᵀ) @ (a cos ψ) − sin(2π x fᵀ) @ (a sin ψ), a = √(2 S Δf), in blocks of positions
+    of at most ~2²¹ matrix elements.  The matrices are formed once per block for all rows, and
+    each row is one matrix–vector product (``np.matmul`` over a stack of vectors calls the same
+    BLAS ``gemv`` as a single ``@``), so row ``r`` is bit for bit the result for its phases
+    alone.
+    """
     amplitude = np.sqrt(2.0 * s * step)
-    a_cos = amplitude * np.cos(psi)
-    a_sin = amplitude * np.sin(psi)
+    a_cos = amplitude * np.cos(phases)
+    a_sin = amplitude * np.sin(phases)
     omega = 2.0 * np.pi * f
-    flat = xs.ravel()
-    out = np.empty(flat.shape, dtype=np.float64)
+    out = np.empty((phases.shape[0], flat.size), dtype=np.float64)
     block = max(1, _BLOCK_ELEMENTS // f.size)
     for start in range(0, flat.size, block):
         arg = np.multiply.outer(flat[start : start + block], omega)
-        out[start : start + block] = np.cos(arg) @ a_cos - np.sin(arg) @ a_sin
-    return out.reshape(xs.shape)
+        out[:, start : start + block] = (np.matmul(np.cos(arg), a_cos[:, :, np.newaxis])[:, :, 0]
+                                         - np.matmul(np.sin(arg), a_sin[:, :, np.newaxis])[:, :, 0])
+    return out
 
 
 def generate_process(
@@ -244,6 +261,52 @@ def generate_process(
     is not an integer the values are still the exact spectral representation at x_j,
     but the n grid points do not cover exactly one period.
     """
+    f, s, x = _process_grid(frequencies, psd, dx, length)
+    generator = as_generator(rng)
+    phases = generator.uniform(0.0, 2.0 * np.pi, size=f.size)
+    return spectral_representation(f, s, x, phases)
+
+
+def generate_process_batch(
+    frequencies: ArrayLike,
+    psd: ArrayLike,
+    dx: float,
+    length: float,
+    phases: ArrayLike,
+) -> NDArray[np.float64]:
+    """Realisations of μ̂ on the grid x_j = j Δx for given phases, one per row (eq. 2.48).
+
+    Row ``r`` equals, bit for bit, ``generate_process(frequencies, psd, dx, length, rng)`` for
+    a generator ``rng`` whose ``uniform(0, 2π, K)`` returns ``phases[r]``: the same spectral
+    representation, evaluated for the whole batch with one set of cos/sin matrices (an
+    ensemble's trajectories share the grid and the frequencies), so it costs one matrix–vector
+    product per realisation instead of a Python call chain per realisation.
+
+    Parameters
+    ----------
+    frequencies, psd, dx, length:
+        As for :func:`generate_process` (f_i [1/m] below the Nyquist frequency, S [m], Δx [m],
+        ℓ [m]).
+    phases:
+        ψ [rad], shape (b, K) with K = len(frequencies).
+
+    Returns
+    -------
+    μ̂, shape (b, n), n = round(ℓ/Δx).
+    """
+    f, s, x = _process_grid(frequencies, psd, dx, length)
+    psi = np.asarray(phases, dtype=np.float64)
+    if psi.ndim != 2 or psi.shape[1] != f.size:
+        raise ValueError(f"phases must have shape (b, {f.size}), got {psi.shape}")
+    if not np.all(np.isfinite(psi)):
+        raise ValueError("phases must be finite")
+    return _evaluate(f, s, _frequency_step(f), x, psi)
+
+
+def _process_grid(
+    frequencies: ArrayLike, psd: ArrayLike, dx: float, length: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64], NDArray[np.float64]]:
+    """Checked (f, S) and the grid x_j = j Δx of :func:`generate_process`."""
     dx = _positive_finite("dx", dx)
     length = _positive_finite("length", length)
     f, s = _check_spectrum(frequencies, psd)
@@ -258,10 +321,7 @@ def generate_process(
     n = round(length / dx)
     if n < 1:
         raise ValueError(f"length {length!r} m is shorter than half a grid step dx {dx!r} m")
-    generator = as_generator(rng)
-    phases = generator.uniform(0.0, 2.0 * np.pi, size=f.size)
-    x = np.arange(n, dtype=np.float64) * dx
-    return spectral_representation(f, s, x, phases)
+    return f, s, np.arange(n, dtype=np.float64) * dx
 
 
 def band_limited_frequencies(dx: float, length: float) -> NDArray[np.float64]:

@@ -177,10 +177,11 @@ def test_event_buffer_overflow_is_reported() -> None:
 
 
 @pytest.mark.parametrize(("model", "integrator"), [("deterministic", "euler"), ("white", "euler"),
-                                                   ("white", "milstein")])
+                                                   ("white", "milstein"), ("contact", "euler")])
 def test_vector_and_scalar_fast_passes_give_identical_numbers(model: str, integrator: str) -> None:
     """The batch kernel's SIMD fast pass (unforced groups) and its scalar fast pass (a forced
-    lane in the group) share the arithmetic of the full step: same trajectory, same bits."""
+    lane in the group) share the arithmetic of the full step: same trajectory, same bits.
+    (Contact: the SIMD pass reads μ̂ from per-lane segment caches, the scalar pass gathers.)"""
     from stochfric.oscillator.kernels import LOCKSTEP
 
     p, pre = _brake(2720.0)
