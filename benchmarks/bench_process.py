@@ -1,4 +1,4 @@
-"""Benchmark: μ along the path — 10 long surfaces × ~170 windows × 12 approaches (METHOD §4c).
+"""Benchmark: μ along the path — 10 long surfaces × ~170 windows × 12 approaches (method §4c).
 
 Shipped surface (200 × 296 points), long surfaces 10 × its length, windows of original size
 shifted by a_y = 16 grid points (7 µm, the thesis's 0.3/5.3 of the window) → 167 windows per

@@ -1,6 +1,6 @@
 """Which contact-analysis process did the thesis use?  Candidate readings side by side (issue 10).
 
-Runs the six normal-force cases of METHOD §6.1 (brake 720/2720/8000 N, sheet 400/880/1750 N,
+Runs the six normal-force cases of method §6.1 (brake 720/2720/8000 N, sheet 400/880/1750 N,
 D = 5·10⁻⁶, τ_end = 50, Δτ = 0.005, stick window τ > 25) with the contact-analysis model under
 several readings of chapter 3.3 / 4.1.3 and prints E[X_gh] and σ(X_gh) with bootstrap standard
 errors (over runs), and the ratio σ/σ(default) with its delta-method standard error.
@@ -61,7 +61,7 @@ def readings(setup: StudySetup) -> Iterator[tuple[str, Any, str]]:
     k_harm = len(base.frequencies())
     df = 1.0 / base.length
     yield "default: var σ_μ(p)², mass path", base, "mass"
-    yield "relative path (METHOD §7.7)", base, "relative"
+    yield "relative path (method §7.7)", base, "relative"
     yield "printed Δx, non-periodic grid", dataclasses.replace(
         base, dx=6.3e-4 if pre.name == "brake" else 3e-4), "mass"
     yield "E[S](p) as one-sided PSD, f in 1/m", ScaledProcess(

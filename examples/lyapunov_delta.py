@@ -1,4 +1,4 @@
-"""Lyapunov study against the perturbation δ, and its η dependence (issue 10, METHOD §6.4).
+"""Lyapunov study against the perturbation δ, and its η dependence (issue 10, method §6.4).
 
 Brake, N = 4000 N, q = 5·10⁻⁵ and 5·10⁻⁴, η = 0.1 … 3 (30 values), R = 10, τ_end = 200.  For each δ:
 the count of defined exponents (status ok) and of undefined ones by reason, the median of the

@@ -1,4 +1,4 @@
-"""Normal-force study (METHOD §6.1) in every reproduction mode, both presets (issue 10).
+"""Normal-force study (method §6.1) in every reproduction mode, both presets (issue 10).
 
 Equivalent to ``stochfric study normal-force --preset brake|sheet --runs 300`` with
 ``--white-intensity {sigma_mu,thesis}``, ``--path-coordinate {mass,relative,position}`` and
@@ -7,7 +7,7 @@ Equivalent to ``stochfric study normal-force --preset brake|sheet --runs 300`` w
 * ``default``      — white: σ_ζ = σ_μ(p), Itô (ΔW = R_k √Δτ); contact: mass path (thesis text);
 * ``thesis``       — white: printed eq. (4.31), σ_ζ,eff = σ_μ(p)·Lω0·Δτ; contact: process read at
   the mass position x1 (eq. 4.36/4.38 as printed);
-* ``thesis-rel``   — white as ``thesis``; contact: relative path (METHOD §7.7);
+* ``thesis-rel``   — white as ``thesis``; contact: relative path (method §7.7);
 * ``thesis-psd``   — as ``thesis`` with ``--process-level psd_level`` (process variance from the
   thesis's E[S](p) fit, normalised by its check σ = 0.08 at 0.5 MPa);
 * ``thesis-psd-mass`` — as ``thesis-psd`` but the process read along the mass path.

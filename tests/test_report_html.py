@@ -115,7 +115,7 @@ def test_every_image_file_exists_and_decodes(report: Path) -> None:
 
 
 def test_friction_process_section(tmp_path: Path) -> None:
-    """METHOD §3–§4 on the shipped surface: tables, figures, and a model file simulate can use."""
+    """method §3–§4 on the shipped surface: tables, figures, and a model file simulate can use."""
     from stochfric.oscillator.integrate import simulate
     from stochfric.oscillator.parameters import PhysicalParameters
     from stochfric.process.model import load_process_model

@@ -1,6 +1,6 @@
 """Command line: parse, call, print.  No physics here.
 
-``stochfric simulate`` runs the friction oscillator (METHOD.md §5).  Errors in the
+``stochfric simulate`` runs the friction oscillator (method §5).  Errors in the
 input end with a one-line message and exit code 2, never with a traceback.
 """
 
@@ -216,7 +216,7 @@ def simulate(
         PresetChoice | None,
         typer.Option(help="Thesis case: oscillator, contact area, friction-process model."),
     ] = None,
-    model: Annotated[ModelChoice, typer.Option(help="Friction model (METHOD §5).")] = (
+    model: Annotated[ModelChoice, typer.Option(help="Friction model (method §5).")] = (
         ModelChoice.deterministic
     ),
     friction_law: Annotated[
@@ -271,7 +271,7 @@ def simulate(
                      "mode: printed eq. 4.31, σ_ζ,eff = σ_μ(p)·Lω0·Δτ, depends on Δτ)."),
     ] = None,
     path_coordinate: Annotated[
-        PathChoice, typer.Option(help="Where the contact process is read (METHOD §7.7).")
+        PathChoice, typer.Option(help="Where the contact process is read (method §7.7).")
     ] = PathChoice.mass,
     process_level: Annotated[
         ProcessLevelChoice | None,

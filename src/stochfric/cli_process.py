@@ -153,7 +153,7 @@ def friction_process_command(
     height_unit: UnitOpt = None,
     as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
 ) -> None:
-    """Statistical contact analysis of similar surfaces → friction-process model (METHOD.md §3–§4)."""
+    """Statistical contact analysis of similar surfaces → friction-process model (method §3–§4)."""
     from stochfric.process.statistics import AnalysisConfig
 
     try:

@@ -283,7 +283,7 @@ def damping_command(
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
-    """Damping study: D_max^d, D_max^s (with interval), D_H, M_diff, M_quot, phase diagrams over D (METHOD §6.2)."""
+    """Damping study: D_max^d, D_max^s (with interval), D_H, M_diff, M_quot, phase diagrams over D (method §6.2)."""
     try:
         cfg = _validate("damping", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
                                               models, path_coordinate, white_intensity, process_level),
@@ -307,7 +307,7 @@ def forcing_command(
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
-    """Forcing study: bifurcation data, E[X_gh] ± σ over η, σ_contact/σ_white (METHOD §6.3)."""
+    """Forcing study: bifurcation data, E[X_gh] ± σ over η, σ_contact/σ_white (method §6.3)."""
     try:
         cfg = _validate("forcing", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
                                               models, path_coordinate, white_intensity, process_level),
@@ -331,7 +331,7 @@ def lyapunov_command(
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
-    """Largest Lyapunov exponent λ (4.43) / E[Λ] (4.44) over η and N (METHOD §6.4)."""
+    """Largest Lyapunov exponent λ (4.43) / E[Λ] (4.44) over η and N (method §6.4)."""
     try:
         cfg = _validate("lyapunov", {**_common(preset, process, runs, seed, tau_end, dt, integrator, 0.5, models,
                                                path_coordinate, white_intensity, process_level),
@@ -353,7 +353,7 @@ def normal_force_command(
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
-    """Normal-force study: phase diagrams, PDFs, E[X_gh] ± σ, VarK with SEs (METHOD §6.1)."""
+    """Normal-force study: phase diagrams, PDFs, E[X_gh] ± σ, VarK with SEs (method §6.1)."""
     try:
         cfg = _validate("normal-force", {**_common(preset, process, runs, seed, tau_end, dt, integrator,
                                                    stick_window, models, path_coordinate, white_intensity,
@@ -458,7 +458,7 @@ def reproduce_command(
 
 def register(app: typer.Typer) -> None:
     """Add ``study {normal-force,damping,forcing,lyapunov}``, ``run`` and ``reproduce`` to ``app``."""
-    study = typer.Typer(help="Studies of thesis chapter 4 (METHOD §6): three friction models side by side.",
+    study = typer.Typer(help="Studies of thesis chapter 4 (method §6): three friction models side by side.",
                         no_args_is_help=True)
     study.command("damping")(damping_command)
     study.command("forcing")(forcing_command)

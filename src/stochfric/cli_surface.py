@@ -216,7 +216,7 @@ def surface_command(
     as_json: JsonOpt = False,
 ) -> None:
     """Surface analysis: statistics of the fine and the coarse surface, summits, radii,
-    plasticity index (METHOD.md §1)."""
+    plasticity index (method §1)."""
     try:  # output paths first: an unwritable place ends the command before any work
         if plot is not None:
             check_output_path(plot, option="--plot")
@@ -354,7 +354,7 @@ def contact_command(
     plot: PlotOpt = None,
     as_json: JsonOpt = False,
 ) -> None:
-    """Contact analysis over the approach u: A_c, p, contacts, μ (METHOD.md §2)."""
+    """Contact analysis over the approach u: A_c, p, contacts, μ (method §2)."""
     try:  # output paths first: an unwritable place ends the command before any work
         if output is not None:
             check_output_path(output, option="--output", kind="file", suffixes=(".nc",))

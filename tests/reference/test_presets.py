@@ -1,4 +1,4 @@
-"""The thesis's brake and sheet presets against published values (METHOD §4d, §6).
+"""The thesis's brake and sheet presets against published values (method §4d, §6).
 
 Tolerance for thesis Table 4.4 (sheet σ_ζ = σ_μ̂SD at p = 0.1 / 0.5 / 1 MPa printed as
 0.1001 / 0.0805 / 0.0594): 15 % relative.  Why: the table is not exactly its own fit —
@@ -59,7 +59,7 @@ def test_fit_parameters_as_printed() -> None:
     assert bp.mu_std.to_dict() == {"a": 1.6063, "b": -0.4163, "c": 0.0663}
     assert sp.mu_mean.to_dict() == {"a": 28.3661, "b": -0.4786, "c": 0.2194}
     assert sp.mu_std.to_dict() == {"a": -1.0185, "b": 0.0120, "c": 1.2689}
-    # E[S] rows: recorded, unstated normalisation (METHOD §7.8), not used by the process
+    # E[S] rows: recorded, unstated normalisation (method §7.8), not used by the process
     assert brake().recorded_psd_level_fit.to_dict() == {  # type: ignore[union-attr]
         "a": 0.0068,
         "b": -0.3174,
@@ -110,7 +110,7 @@ def test_sheet_table_4_4_noise_intensities(pressure: float) -> None:
     sigma_zeta = sp.sigma_zeta(pressure)
     assert sigma_zeta == pytest.approx(TABLE_4_4_FIT[pressure], abs=5e-5)
     assert sigma_zeta == pytest.approx(TABLE_4_4[pressure], rel=TABLE_4_4_RTOL)
-    # Table 4.4 lists forces 1/5/10 (misprint, METHOD §7.5): with A = 1e-3 m² they are
+    # Table 4.4 lists forces 1/5/10 (misprint, method §7.5): with A = 1e-3 m² they are
     assert sheet().pressure(pressure * 1e-3) == pytest.approx(pressure)
 
 

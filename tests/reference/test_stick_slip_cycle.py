@@ -1,7 +1,7 @@
 """Reference tier: the analytic stick-slip cycle and an independent solver (solve_ivp).
 
 Constant kinetic friction μ_k = 0.25 below the static μ_s = 0.4 (law II), the thesis's
-demonstration oscillator (ω0 = 1, γ0 = 1, n = 10, METHOD §5), undamped and damped.
+demonstration oscillator (ω0 = 1, γ0 = 1, n = 10, method §5), undamped and damped.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
 """Reference tier: the thesis's integrator demonstrations (Fig. 4.6, 4.7, 4.8, 4.15).
 
-Demo oscillator of METHOD §5: ω0 = 1, γ0 = 1, n = 10, D = 0.
+Demo oscillator of method §5: ω0 = 1, γ0 = 1, n = 10, D = 0.
 """
 
 from __future__ import annotations

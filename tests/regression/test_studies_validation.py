@@ -1,4 +1,4 @@
-"""Validation of the damping study against closed forms and the integrators (METHOD §6.2).
+"""Validation of the damping study against closed forms and the integrators (method §6.2).
 
 * D_max^d(N) ≥ D_H(N) on the map: the Hopf bifurcation of steady sliding is subcritical,
   so a stick-slip cycle started from a large perturbation (sticking at the origin)

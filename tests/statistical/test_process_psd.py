@@ -1,4 +1,4 @@
-"""Seeded Monte Carlo checks of generated friction processes (METHOD §0, §4e, Fig. 3.23/3.33).
+"""Seeded Monte Carlo checks of generated friction processes (method §0, §4e, Fig. 3.23/3.33).
 
 Tolerances are 4 standard errors of the ensemble mean, the SE estimated from the
 ensemble itself.  Two properties are exact rather than statistical, and are tested as

@@ -1,4 +1,4 @@
-"""The `thesis` white-noise mode (printed eq. 4.31, METHOD erratum 10) against the default Itô model.
+"""The `thesis` white-noise mode (printed eq. 4.31, method erratum 10) against the default Itô model.
 
 Reading (docs/oscillator.md): ΔW = Δτ R_k with the dimensional relative velocity under the root
 is Euler–Maruyama with σ_ζ,eff = σ_ζ · Lω0 · Δτ, so for small noise every X_gh deviation scales

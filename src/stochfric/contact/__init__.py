@@ -1,4 +1,4 @@
-"""Contact analysis of one surface (METHOD.md §2, thesis 3.1.3, 3.2.2, 3.3.2).
+"""Contact analysis of one surface (method §2, thesis 3.1.3, 3.2.2, 3.3.2).
 
 GW/Hertz sums with Bowden–Tabor friction (:mod:`.asperity`), materials (:mod:`.materials`),
 closed-form references (:mod:`.reference`), the elastic half-space boundary-element check at

@@ -1,4 +1,4 @@
-"""Greenwood–Williamson / Hertz contact with Bowden–Tabor friction (METHOD.md §2,
+"""Greenwood–Williamson / Hertz contact with Bowden–Tabor friction (method §2,
 thesis 3.1.3, eq. 3.8–3.16).
 
 An elastic rough surface (its summits, each a Hertzian sphere of radius β_i) is pressed by a

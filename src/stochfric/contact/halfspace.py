@@ -1,4 +1,4 @@
-"""Elastic half-space boundary-element reference (METHOD.md §2 "Validation", thesis Fig. 3.12–3.14).
+"""Elastic half-space boundary-element reference (method §2 "Validation", thesis Fig. 3.12–3.14).
 
 The thesis validated its GW/Hertz sums with an ABAQUS FEM model of the coarse surface; here
 the same prepared surface is solved as a full elastic half-space contact with the

@@ -1,4 +1,4 @@
-"""Material pairings for the contact analysis (METHOD.md §1 table, thesis Tables 3.1/3.2/3.4/3.5).
+"""Material pairings for the contact analysis (method §1 table, thesis Tables 3.1/3.2/3.4/3.5).
 
 ``E*`` from (3.10): ``1/E* = (1−ν1²)/E1 + (1−ν2²)/E2``; a rigid counter-body has
 ``E2 = ∞`` (its term vanishes).  Hardness ``H = 5.6 R_p`` (thesis 3.1.3) unless a tabulated
@@ -14,7 +14,7 @@ name           E1         ν1    E2          ν2    E*           R_p       H    
 =============  =========  ====  ==========  ====  ===========  ========  =========  ==========
 
 The thesis's Tables 3.4/3.5 print E* = 1.15 GPa for DC04, a misprint for 115 GPa
-(METHOD.md erratum 2). For DC04 the tabulated H = 4850 MPa is kept (5.6 · 860 MPa would be
+(method erratum 2). For DC04 the tabulated H = 4850 MPa is kept (5.6 · 860 MPa would be
 4816 MPa).  The brake pad's τ_max = R_p/√3 of graphite (thesis 3.2.2: 35 MPa in the table;
 35/√3 = 20 MPa would be the formula applied to graphite's R_p = 35 MPa — the thesis's
 table value 35 MPa is used).

@@ -1,6 +1,6 @@
 """Is a contact result inside the validity of the GW/Hertz + Bowden–Tabor model? (issue 9 §6)
 
-The model (METHOD.md §2, thesis eq. 3.8–3.16) is elastic, lets the asperities carry load
+The model (method §2, thesis eq. 3.8–3.16) is elastic, lets the asperities carry load
 independently and turns one surface into one μ(u) curve.  It gives numbers far outside its
 assumptions without complaint — μ = 10–20 on a nm-smooth surface with a 1 GPa pad, μ from a
 single contact, A_c/A_nom = 80 — so every result is checked here and each violated

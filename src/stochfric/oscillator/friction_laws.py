@@ -1,4 +1,4 @@
-"""Velocity-dependent friction laws (METHOD.md §5, thesis Table 4.1 and eq. 4.13/4.33).
+"""Velocity-dependent friction laws (method §5, thesis Table 4.1 and eq. 4.13/4.33).
 
 A law is a :class:`FrictionLaw`: a *shape* (an integer code understood by the compiled
 function :func:`mu_kinetic`), its parameter vector and the static coefficient ``μ(0)``.

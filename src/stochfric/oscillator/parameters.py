@@ -1,4 +1,4 @@
-"""Parameters of the 1-DOF friction oscillator (METHOD.md §5, thesis eq. 4.5-4.7).
+"""Parameters of the 1-DOF friction oscillator (method §5, thesis eq. 4.5-4.7).
 
 Two equivalent descriptions are offered:
 

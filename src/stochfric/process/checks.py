@@ -46,7 +46,7 @@ ERGODICITY_ALPHA = 0.05
 
 @dataclass(frozen=True, kw_only=True)
 class ErgodicityCheck:
-    """Path statistics of one long surface against the ensemble of independent ones (METHOD §4b).
+    """Path statistics of one long surface against the ensemble of independent ones (method §4b).
 
     Like with like: both populations are the **non-overlapping windows of long surfaces from the
     same generator** (K surfaces × J windows, :attr:`PathContact.blocks`).  Per approach:
@@ -152,7 +152,7 @@ _SUMMIT_STAT_NAMES = ("summit_count", "summit_radius_mean_m", "summit_height_std
 
 @dataclass(frozen=True, kw_only=True)
 class SurrogateCheck:
-    """Does the measured map look like a member of its own surrogate ensemble? (METHOD §3)
+    """Does the measured map look like a member of its own surrogate ensemble? (method §3)
 
     z = (measured − ensemble mean) / ensemble standard deviation (the ensemble's *spread*, not
     the standard error of its mean: the question is whether the measured map could be one of the
@@ -244,7 +244,7 @@ class ProcessCheck:
     Per pressure: target σ = √variance(p) and the generated standard deviation of μ̂ at one grid
     point over the realisations (``std_pointwise``, with its standard error from the fourth
     moment) and the mean grid standard deviation of the realisations; the target spectrum and
-    the realisations' mean periodogram (METHOD §0) with its standard error.
+    the realisations' mean periodogram (method §0) with its standard error.
     """
 
     pressure_pa: tuple[float, ...]

@@ -1,4 +1,4 @@
-"""Contact analysis of many similar surfaces and of sliding windows (METHOD.md §4a–c).
+"""Contact analysis of many similar surfaces and of sliding windows (method §4a–c).
 
 Thesis 3.1.4, 3.2.4, 3.2.5.  Three kinds of samples, each an array over (sample, approach):
 
@@ -7,7 +7,7 @@ Thesis 3.1.4, 3.2.4, 3.2.5.  Three kinds of samples, each an array over (sample,
   (GW/Hertz + Bowden–Tabor, :func:`stochfric.contact.asperity.asperity_sums`), §4a.
 * :func:`window_contact` — windows of original size shifted by ``shift`` grid points over one
   long surface, §4b (shift = window length) and §4c (shift = a_y).  **Each window's contact is
-  referenced to its own highest summit** (METHOD §4c): the flat starts at the window's highest
+  referenced to its own highest summit** (method §4c): the flat starts at the window's highest
   summit and the approach u is measured from there, exactly as if the window were analysed on
   its own.
 * :func:`path_contact` — §4c over K long surfaces: μ(y) per approach, shape (K, W, U), and
@@ -117,7 +117,7 @@ def _one_surface(
 
 
 def summit_statistics(heights: FloatArray, radius: FloatArray) -> FloatArray:
-    """(count, mean summit radius β̄ [m], summit-height standard deviation σ_S [m]) (METHOD §1.5)."""
+    """(count, mean summit radius β̄ [m], summit-height standard deviation σ_S [m]) (method §1.5)."""
     n = heights.size
     return np.array([float(n), float(radius.mean()) if n else np.nan, float(heights.std()) if n > 1 else np.nan])
 
@@ -145,7 +145,7 @@ def ensemble_contact(
     amplitude: str = DEFAULT_AMPLITUDE,
     progress: Progress | None = None,
 ) -> ContactSamples:
-    """Contact of R similar surfaces of original size over ``approach_m`` (METHOD §4a).
+    """Contact of R similar surfaces of original size over ``approach_m`` (method §4a).
 
     Realisation r is :func:`~stochfric.surface.synthesis.similar_surface` with the r-th child
     stream of ``seed`` and the amplitude estimate ``amplitude``; each is referenced to its own
@@ -307,7 +307,7 @@ def naive_window_contact(
 
 @dataclass(frozen=True, kw_only=True, eq=False)
 class PathContact:
-    """μ along the path (METHOD §4c): K long surfaces × W windows × U approaches.
+    """μ along the path (method §4c): K long surfaces × W windows × U approaches.
 
     ``samples`` holds A_c, N, counts of the windows shifted by ``window_shift_m`` = a_y, shape
     (K, W, U).  ``blocks`` holds the **non-overlapping** windows of the same long surfaces
@@ -378,7 +378,7 @@ def path_contact(
     amplitude: str = DEFAULT_AMPLITUDE,
     progress: Progress | None = None,
 ) -> PathContact:
-    """μ(y) over K long surfaces of ``length_factor`` × the original length (METHOD §4c).
+    """μ(y) over K long surfaces of ``length_factor`` × the original length (method §4c).
 
     Windows of the original size are shifted by ``shift_points`` grid points (a_y) along y;
     long surface k uses the k-th child stream of ``seed``.  The same long surfaces are also cut

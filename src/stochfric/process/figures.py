@@ -113,7 +113,7 @@ def plot_mu_path(a: StatisticalContactAnalysis, path: str | Path) -> Path:
 
 
 def plot_spectra(a: StatisticalContactAnalysis, path: str | Path) -> Path:
-    """Averaged autocorrelation and one-sided PSD (METHOD §0) for three approaches (Fig. 3.19–3.21)."""
+    """Averaged autocorrelation and one-sided PSD (method §0) for three approaches (Fig. 3.19–3.21)."""
     fig = new_figure(10.0, 3.8)
     ax1, ax2 = fig.subplots(1, 2)
     for k in _selected(a.ensemble.approach_m.size):
@@ -200,7 +200,7 @@ def plot_surrogates(
 
 
 def plot_surrogate_check(a: StatisticalContactAnalysis, path: str | Path) -> Path:
-    """The measured map against its surrogate ensemble (METHOD §3): μ(u) band and summit statistics.
+    """The measured map against its surrogate ensemble (method §3): μ(u) band and summit statistics.
 
     Left: every realisation's μ(u) (grey), the ensemble mean ± 3 sd, and the measured map's own
     μ(u) (red).  Right: the summit count, mean radius β̄ and σ_S of the realisations as

@@ -1,4 +1,4 @@
-"""Model functions f(p) = a p^b + c fitted by nonlinear least squares (eq. 3.21, METHOD §4d).
+"""Model functions f(p) = a p^b + c fitted by nonlinear least squares (eq. 3.21, method §4d).
 
 * **Fit.** :func:`fit_model_function` uses :func:`scipy.optimize.curve_fit` (trust-region
   reflective) on the scaled form f = A (p/p_ref)^b + c, p_ref the geometric mean of the used

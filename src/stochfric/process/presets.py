@@ -1,11 +1,11 @@
 """The thesis's two application cases: brake pad (§4.2) and DC04 steel sheet (§4.3).
 
-Values from METHOD.md §6 (oscillator and study parameters) and §4d (model-function fits,
+Values from method §6 (oscillator and study parameters) and §4d (model-function fits,
 thesis Tables 3.3 and 3.6, p in Pa).  Each :class:`Preset` carries a
 :class:`~stochfric.process.model.BandLimitedProcessModel` whose spectrum has variance
-σ_μ(p)² exactly (METHOD §4d).  Recorded but **not used**: the thesis's fits of the mean
+σ_μ(p)² exactly (method §4d).  Recorded but **not used**: the thesis's fits of the mean
 PSD level E[S](p) (third rows of Tables 3.3/3.6), whose normalisation the thesis does not
-state (METHOD §7.8); they cannot be mixed with the PSD convention of METHOD §0.
+state (method §7.8); they cannot be mixed with the PSD convention of method §0.
 
 Known discrepancies of the thesis, recorded here and in ``docs/friction_process.md``,
 deliberately not "fixed" (the fits are used exactly as printed):
@@ -15,7 +15,7 @@ deliberately not "fixed" (the fits are used exactly as printed):
 * Sheet, Table 4.4: σ_ζ = σ_μ̂SD at p = 0.1 / 0.5 / 1 MPa is printed as
   0.1001 / 0.0805 / 0.0594; the Table 3.6 fit gives 0.0995 / 0.0767 / 0.0667
   (fit relative to table: −0.6 %, −4.7 %, +12.4 %).  Table 4.4's first row also reads
-  N = 1 / 5 / 10 instead of 100 / 500 / 1000 N (METHOD §7.5).
+  N = 1 / 5 / 10 instead of 100 / 500 / 1000 N (method §7.5).
 """
 
 from __future__ import annotations
@@ -51,7 +51,7 @@ _LENGTH_SCALE_M = 1.0
 
 @dataclass(frozen=True, kw_only=True)
 class Preset:
-    """One application case of the thesis (METHOD §6), SI units.
+    """One application case of the thesis (method §6), SI units.
 
     Attributes
     ----------
@@ -72,7 +72,7 @@ class Preset:
     process:
         The friction-process model (E[μ](p), σ_μ(p), band-limited spectrum, σ_ζ rule).
     tau_end, dt:
-        Default dimensionless simulation end time τ_end and step Δτ (METHOD §6).
+        Default dimensionless simulation end time τ_end and step Δτ (method §6).
     description:
         One-line provenance.
     study_parameters:
@@ -81,8 +81,8 @@ class Preset:
         ``damping_study_force``, ``forcing_study_force``, ``normal_force_study_forces``.
     recorded_psd_level_fit:
         The thesis's E[S](p) fit (third row of Table 3.3/3.6), **metadata only, not
-        used**: its PSD normalisation is unstated (METHOD §7.8) and incompatible with
-        METHOD §0; the process spectrum is instead scaled to σ_μ(p)².
+        used**: its PSD normalisation is unstated (method §7.8) and incompatible with
+        method §0; the process spectrum is instead scaled to σ_μ(p)².
     """
 
     name: str
@@ -154,7 +154,7 @@ class Preset:
 
 
 def brake() -> Preset:
-    """Brake pad on a disc (thesis §3.2, §4.2; METHOD §4d table "brake", §6).
+    """Brake pad on a disc (thesis §3.2, §4.2; method §4d table "brake", §6).
 
     m = 2 kg, c = 10⁶ N/m, v0 = 1 m/s → ω0 ≈ 707 rad/s, γ0 ≈ 1.414·10⁻³;
     A_pad = 0.016 m², stick-slip range N = 500 … 20000 N (p ≈ 0.031 … 1.25 MPa);
@@ -195,7 +195,7 @@ def brake() -> Preset:
 
 
 def sheet() -> Preset:
-    """DC04 steel sheet on DC04 (thesis §3.3, §4.3; METHOD §4d table "sheet", §6).
+    """DC04 steel sheet on DC04 (thesis §3.3, §4.3; method §4d table "sheet", §6).
 
     m = 1 kg, c = 10⁵ N/m, v0 = 1 m/s → ω0 ≈ 316 rad/s, γ0 ≈ 3.16·10⁻³;
     A = 10⁻³ m², stick-slip range N = 100 … 2000 N (p = 0.1 … 2 MPa);
@@ -257,7 +257,7 @@ def get_preset(name: str) -> Preset:
 THESIS_CHECK_STD = 0.08
 THESIS_CHECK_PRESSURE_PA = 5e5
 
-#: Process-level rules: ``sigma_mu`` (default: variance σ_μ(p)², METHOD §4d) and ``psd_level``
+#: Process-level rules: ``sigma_mu`` (default: variance σ_μ(p)², method §4d) and ``psd_level``
 #: (reproduction mode, :class:`PsdLevelProcessModel`).
 PROCESS_LEVELS: tuple[str, ...] = ("sigma_mu", "psd_level")
 
@@ -268,7 +268,7 @@ class PsdLevelProcessModel:
 
     The thesis generates μ̂_SD from "the constant spectrum level of the model function" (brake,
     §4.2.1) or "the spectrum of this pressure" (sheet, §3.3.4) — in its own, unstated PSD
-    normalisation (METHOD §7.8) — not from σ_μ(p).  This model keeps the base model's band and
+    normalisation (method §7.8) — not from σ_μ(p).  This model keeps the base model's band and
     spectrum shape and sets the variance to
 
         σ_SD(p)² = C · E[S](p) · K Δf,    C = 0.08² / (E[S]_brake(0.5 MPa) · K_brake Δf_brake),
@@ -324,7 +324,7 @@ class PsdLevelProcessModel:
         return self.base.frequencies()
 
     def spectrum(self, f: ArrayLike, p_pa: float) -> NDArray[np.float64]:
-        """One-sided PSD [m] (METHOD §0): the base shape with variance σ_SD(p)²."""
+        """One-sided PSD [m] (method §0): the base shape with variance σ_SD(p)²."""
         out: NDArray[np.float64] = self.base.spectrum(f, p_pa) * self._gain(p_pa) ** 2
         return out
 

@@ -1,4 +1,4 @@
-"""Autocorrelation, correlation length and PSD of μ along the path (METHOD §0, §4c).
+"""Autocorrelation, correlation length and PSD of μ along the path (method §0, §4c).
 
 Thesis eq. (3.17)–(3.20).  Input: μ(y) on windows shifted by a_y, shape (..., W) with the
 window index last (K long surfaces × W windows per approach).
@@ -10,7 +10,7 @@ window index last (K long surfaces × W windows per approach).
 * correlation length ℓ_corr = first zero crossing of the averaged R, by linear interpolation
   between the last positive and the first non-positive lag (thesis §3.2.4, Fig. 3.19), in m;
   NaN if R stays positive;
-* (3.19)/(3.20) μ̂ = μ − mean → one-sided PSD in the convention of METHOD §0
+* (3.19)/(3.20) μ̂ = μ − mean → one-sided PSD in the convention of method §0
   (:func:`stochfric.process.spectral.one_sided_psd`: S_k = 2 a_y |X_k|²/W, Σ_k S_k Δf = sample
   variance), averaged over the records; frequencies f_k = k/(W a_y) [1/m], S in m.
   Each record's own mean is removed (this only affects the DC bin, which is not returned).
@@ -84,7 +84,7 @@ def correlation_length(acf: npt.ArrayLike, spacing_m: float) -> float:
 
 
 def mean_psd(mu: npt.ArrayLike, spacing_m: float) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """One-sided PSD of μ̂ along the path averaged over the records (eq. 3.20, METHOD §0).
+    """One-sided PSD of μ̂ along the path averaged over the records (eq. 3.20, method §0).
 
     Returns ``(f [1/m], mean S [m], standard error of the mean S [m])``; the standard error is
     the scatter between records / √(records) (NaN for a single record).  Convention:

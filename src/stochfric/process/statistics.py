@@ -1,6 +1,6 @@
 """The statistical contact analysis: from one measured surface to a friction-process model.
 
-METHOD.md §3–§4 (thesis 3.1.4, 3.2.4, 3.2.5, 3.3.3, 3.3.4).  :func:`analyse` runs
+method §3–§4 (thesis 3.1.4, 3.2.4, 3.2.5, 3.3.3, 3.3.4).  :func:`analyse` runs
 
 a) the **ensemble** (:func:`~stochfric.process.ensemble.ensemble_contact`): R surrogates of
    original size → E[μ], σ_μ, PDFs of μ per approach, mean A_c/A_nom over the mean pressure
@@ -10,7 +10,7 @@ b) the **ergodicity check** (:func:`~stochfric.process.checks.ergodicity_check`)
    surfaces, all from one generator (Fig. 3.18b; the thesis compared with a), whose
    realisations come from another generator — see the class docstring);
 c) **μ along the path** (:func:`~stochfric.process.ensemble.path_contact`): K long surfaces,
-   windows shifted by a_y → μ(y), autocorrelation, correlation length, PSD (METHOD §0),
+   windows shifted by a_y → μ(y), autocorrelation, correlation length, PSD (method §0),
    averaged over the surfaces (Fig. 3.19–3.21);
 d) the **model functions** f(p) = a p^b + c for E[μ], σ_μ and the PSD level over the mean
    pressure of c), high-pressure points excluded (:mod:`stochfric.process.fit`; Fig. 3.22);
@@ -271,14 +271,14 @@ class StatisticalContactAnalysis:
             "mu_std_se": var(u, self.mu_std_se, "1", "SE of sigma_mu from the K surfaces"),
             "acf": var((*u, "lag"), self.acf, "1", "autocorrelation of normalised mu (3.17/3.18)"),
             "correlation_length_m": var(u, self.correlation_length_m, "m", "first zero crossing of the ACF"),
-            "psd": var((*u, "frequency"), self.psd, "m", "one-sided PSD of mu-hat, METHOD 0, mean over surfaces"),
+            "psd": var((*u, "frequency"), self.psd, "m", "one-sided PSD of mu-hat, docs/method.md section 0, mean over surfaces"),
             "psd_se": var((*u, "frequency"), self.psd_se, "m", "SE of psd over surfaces"),
             "psd_level": var(u, self.psd_level, "m", "low-frequency PSD level E[S] = S(f->0)"),
             "psd_level_se": var(u, self.psd_level_se, "m", "SE of E[S] over surfaces"),
             "fit_used": var(u, np.asarray(self.fits["mu_mean"].used, dtype=np.int8), "1", "point used in the fits"),
         }
         attrs: dict[str, Any] = {
-            "title": "stochfric statistical contact analysis (METHOD 3-4)",
+            "title": "stochfric statistical contact analysis (docs/method.md sections 3-4)",
             "config": json.dumps(self.config.to_dict(), sort_keys=True),
             "seed_entropy": str(self.seed_entropy),
             "material": json.dumps(self.material, sort_keys=True),
@@ -290,7 +290,7 @@ class StatisticalContactAnalysis:
             "window_shift_m": self.path.window_shift_m,
             "window_length_m": self.path.window_length_m,
             "long_surface_length_m": self.path.surface_length_m,
-            "psd_convention": "one-sided, S_k = 2 dy |X_k|^2 / N, sum S df = variance (METHOD 0)",
+            "psd_convention": "one-sided, S_k = 2 dy |X_k|^2 / N, sum S df = variance (docs/method.md section 0)",
             "versions": json.dumps(package_versions(), sort_keys=True),
         }
         return xr.Dataset(

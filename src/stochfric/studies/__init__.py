@@ -1,4 +1,4 @@
-"""Studies of the friction oscillator (METHOD.md §6; thesis 4.2, 4.3).
+"""Studies of the friction oscillator (method §6; thesis 4.2, 4.3).
 
 Each study is a function taking a validated config and returning a
 :class:`~stochfric.studies.base.StudyResult` (``to_dataset()``, ``to_json_dict()``):

@@ -1,4 +1,4 @@
-"""Shared pieces of the studies (METHOD.md §6): setup, grids, the stick window, task specs.
+"""Shared pieces of the studies (method §6): setup, grids, the stick window, task specs.
 
 A study is a list of independent *tasks*; one task is one :func:`simulate` call that
 batches many parameter sets (e.g. every damping ratio D of one normal force N and one
@@ -8,7 +8,7 @@ a Dask worker and give the same numbers: its random numbers come from the seed s
 with spawn key ``(task_index,)`` of the study's root seed (:func:`task_seed`), never from
 the order of execution.
 
-The three friction models of METHOD §6 are run side by side: ``deterministic`` (the
+The three friction models of method §6 are run side by side: ``deterministic`` (the
 pressure law 4.13 alone), ``white`` (plus white noise of intensity σ_ζ, §5.1: by default the
 thesis's σ_ζ = σ_μ(p), or the process's low-frequency spectral level, or the printed-(4.31)
 reproduction mode ``thesis`` with σ_ζ,eff = σ_μ(p)·Lω0·Δτ, ``white_intensity``)
@@ -51,7 +51,7 @@ def process_rule_of(rule: str) -> str:
     return "sigma_mu" if rule == "thesis" else rule
 
 #: Default stick window: a run "has a stick-slip cycle" when it has at least one slip→stick
-#: transition with τ in (STICK_WINDOW · τ_end, τ_end] (after the transient, METHOD §7.9).
+#: transition with τ in (STICK_WINDOW · τ_end, τ_end] (after the transient, method §7.9).
 STICK_WINDOW = 0.5
 
 

@@ -1,10 +1,10 @@
 """Validated study configurations (pydantic; the boundary for the CLI and ``study.toml``).
 
 Every study takes one of these frozen models.  Fields left ``None`` take the thesis's
-values from the preset (METHOD §6 table): the study forces, D = 5·10⁻⁶ undamped, τ_end = 50,
+values from the preset (method §6 table): the study forces, D = 5·10⁻⁶ undamped, τ_end = 50,
 Δτ = 0.005.  Grids accept ``"START:STOP:NUM"`` (inclusive), ``"a,b,c"`` or a list.
 
-Two modelling choices of METHOD §5 are fields of every study: ``path_coordinate`` (where the
+Two modelling choices of method §5 are fields of every study: ``path_coordinate`` (where the
 contact-analysis process is read: ``"mass"`` = the thesis's global coordinate of the mass,
 ``"relative"`` = the relative path) and ``white_intensity`` (the σ_ζ rule of the white-noise
 model: ``"sigma_mu"`` = the thesis's σ_ζ = σ_μ(p), ``"spectral_level"`` = white noise with the
@@ -62,7 +62,7 @@ class StudyConfig(BaseModel):
     )
     process_level: Literal["sigma_mu", "psd_level"] = Field(
         default="sigma_mu",
-        description="variance of the contact process: sigma_mu (σ_μ(p)², METHOD §4d) | psd_level (reproduction "
+        description="variance of the contact process: sigma_mu (σ_μ(p)², method §4d) | psd_level (reproduction "
                     "mode: from the thesis's E[S](p) fit, normalised by its 0.08-at-0.5-MPa check)")
     stick_window: float = Field(default=STICK_WINDOW, ge=0.0, lt=1.0)
     x0: tuple[float, float] | None = None
@@ -88,7 +88,7 @@ class StudyConfig(BaseModel):
 
 
 class DampingConfig(StudyConfig):
-    """Damping study (METHOD §6.2, thesis 4.2.2/4.3.2): grid D × N."""
+    """Damping study (method §6.2, thesis 4.2.2/4.3.2): grid D × N."""
 
     kind: Literal["damping"] = "damping"
     normal_forces: Grid | None = None
@@ -129,7 +129,7 @@ class DampingConfig(StudyConfig):
 
 
 class ForcingConfig(StudyConfig):
-    """Forcing study (METHOD §6.3, thesis 4.2.3/4.3.3): bifurcation data over η."""
+    """Forcing study (method §6.3, thesis 4.2.3/4.3.3): bifurcation data over η."""
 
     kind: Literal["forcing"] = "forcing"
     normal_force: float | None = Field(default=None, gt=0)
@@ -146,7 +146,7 @@ class ForcingConfig(StudyConfig):
 
 
 class LyapunovConfig(StudyConfig):
-    """Largest Lyapunov exponent (METHOD §6.4, eq. 4.43/4.44) over η and N."""
+    """Largest Lyapunov exponent (method §6.4, eq. 4.43/4.44) over η and N."""
 
     kind: Literal["lyapunov"] = "lyapunov"
     normal_forces: Grid | None = None
@@ -167,7 +167,7 @@ class LyapunovConfig(StudyConfig):
 
 
 class NormalForceConfig(StudyConfig):
-    """Normal-force study (METHOD §6.1, thesis 4.2.1/4.3.1)."""
+    """Normal-force study (method §6.1, thesis 4.2.1/4.3.1)."""
 
     kind: Literal["normal-force"] = "normal-force"
     normal_forces: Grid | None = None

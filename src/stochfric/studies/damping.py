@@ -1,9 +1,9 @@
-"""Damping study (METHOD §6.2; thesis 4.2.2 brake, 4.3.2 sheet; Fig. 4.23–4.29, 4.54–4.60).
+"""Damping study (method §6.2; thesis 4.2.2 brake, 4.3.2 sheet; Fig. 4.23–4.29, 4.54–4.60).
 
 Grid D × N, three models.  Per cell: deterministic X_gh and M_d; stochastic (R runs)
 E[X_gh], σ(X_gh), E[M_s]; M_diff = M_d − E[M_s] (4.41), M_quot = E[M_s]/M_d (4.42).
 
-**How D_max is read off** (METHOD §7.9, our choice, ``docs/studies.md``):
+**How D_max is read off** (method §7.9, our choice, ``docs/studies.md``):
 
 * a run *has a stick-slip cycle* when it has at least one slip→stick transition with
   τ ∈ (w τ_end, τ_end] (the *stick window*, default w = 0.5: after the transient);

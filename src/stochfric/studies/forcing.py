@@ -1,4 +1,4 @@
-"""Forcing study (METHOD §6.3; thesis 4.2.3 brake, 4.3.3 sheet; Fig. 4.30–4.37, 4.61–4.68).
+"""Forcing study (method §6.3; thesis 4.2.3 brake, 4.3.3 sheet; Fig. 4.30–4.37, 4.61–4.68).
 
 D = 5·10⁻⁶, one normal force (brake 4000 N, sheet 1100 N), forcing q cos(ητ) with
 q = Q/(cL) ∈ {5·10⁻⁵, 5·10⁻⁴}, η on a grid (thesis 0 … 3).  Bifurcation data: the X_gh of

@@ -1,10 +1,10 @@
-"""Largest Lyapunov exponent on the stick line (METHOD §6.4; thesis eq. 4.43/4.44, Fig. 4.41–4.43).
+"""Largest Lyapunov exponent on the stick line (method §6.4; thesis eq. 4.43/4.44, Fig. 4.41–4.43).
 
 Poincaré section: the stick line x2 = γ0, crossed at the slip→stick transitions.  For each
 (model, q, N, η) a reference run starts at ``x0`` (default: sticking at the origin,
 (0, γ0)), a comparison run at ``x0 + (δ, 0)`` and a *twin* at ``x0 + (2δ, 0)``, δ =
 ``perturbation`` (default 10⁻⁶, dimensionless, i.e. 1 µm for L = 1 m; the thesis gives no
-value — METHOD §7.9).  All three use the same noise realisation (``common_random_numbers``).
+value — method §7.9).  All three use the same noise realisation (``common_random_numbers``).
 
     w(i) = |X_gh,ref(i) − X_gh,pert(i)|,  λ = (1/K) Σ_{i=1}^{K} ln(w(i)/w(1))        (4.43)
     E[Λ] = (1/K) Σ_{i=1}^{K} ln(E[W(i)]/E[W(1)])   (mean over R run pairs)           (4.44)

@@ -1,4 +1,4 @@
-"""Normal-force study (METHOD §6.1; thesis 4.2.1 brake, 4.3.1 sheet; Fig. 4.12–4.21, 4.44–4.52).
+"""Normal-force study (method §6.1; thesis 4.2.1 brake, 4.3.1 sheet; Fig. 4.12–4.21, 4.44–4.52).
 
 Per model, damping ratio (undamped D = 5·10⁻⁶ and damped, brake 0.15 / sheet 0.17) and
 normal force (brake 720 / 2720 / 8000 N, sheet 400 / 880 / 1750 N): R runs (thesis 30)

@@ -1,4 +1,4 @@
-"""Sensitivity of the open choices of METHOD §7.9 (tables for ``docs/studies.md``).
+"""Sensitivity of the open choices of method §7.9 (tables for ``docs/studies.md``).
 
 * damping study: the stick window w, τ_end, the initial state (sticking at the origin vs a
   small perturbation of steady sliding), Δτ / integrator, common random numbers over D;

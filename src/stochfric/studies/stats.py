@@ -1,4 +1,4 @@
-"""Estimators with uncertainty for the studies (METHOD §6: "give their uncertainty").
+"""Estimators with uncertainty for the studies (method §6: "give their uncertainty").
 
 * :func:`clopper_pearson` — exact binomial interval for a probability (stick-slip
   probability at a damping ratio, §6.2), from the beta distribution.

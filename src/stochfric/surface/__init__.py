@@ -1,4 +1,4 @@
-"""Surface analysis of measured topographies (METHOD.md §1, thesis 3.1.1, 3.2.1, 3.3.1).
+"""Surface analysis of measured topographies (method §1, thesis 3.1.1, 3.2.1, 3.3.1).
 
 Reading (:mod:`.io`), preparation (:mod:`.preprocess`), summits and radii (:mod:`.summits`),
 statistics and the plasticity index (:mod:`.statistics`); figures in :mod:`.figures`

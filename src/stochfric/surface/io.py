@@ -1,4 +1,4 @@
-"""Reading measured height maps (METHOD.md §1, thesis 3.2 / 3.3).
+"""Reading measured height maps (method §1, thesis 3.2 / 3.3).
 
 Instrument files (``.x3p``, ``.sur``, ``.opd``, ``.datx``, ``.plu``, ``.mnt``, ``.al3d``,
 ``.frt``, … — every format SurfaceTopography knows) are read through

@@ -1,4 +1,4 @@
-"""Preparing a measured surface for the contact analysis (METHOD.md §1.1–1.2, thesis 3.2.1).
+"""Preparing a measured surface for the contact analysis (method §1.1–1.2, thesis 3.2.1).
 
 Steps, each optional and recorded in :class:`Preparation` (and from there in every result):
 
@@ -119,7 +119,7 @@ def detrend(heights: npt.ArrayLike, mode: str = "plane") -> FloatArray:
 
 
 def median_filter(heights: npt.ArrayLike, radius: int) -> FloatArray:
-    """2-D median filter over a (2r+1)×(2r+1) window, edges mirrored (METHOD.md §1.1)."""
+    """2-D median filter over a (2r+1)×(2r+1) window, edges mirrored (method §1.1)."""
     h = np.asarray(heights, dtype=np.float64)
     if radius < 0:
         raise SurfaceError(f"median radius must be >= 0, got {radius}")
@@ -129,7 +129,7 @@ def median_filter(heights: npt.ArrayLike, radius: int) -> FloatArray:
 
 
 def coarsen(surface: Surface, step: int) -> Surface:
-    """Keep every ``step``-th point in x and y (METHOD.md §1.2); spacing becomes ``step·Δ``.
+    """Keep every ``step``-th point in x and y (method §1.2); spacing becomes ``step·Δ``.
 
     Raises :class:`SurfaceError` if fewer than ``MIN_GRID_POINTS`` points would remain in a
     direction (the summit rule needs two neighbours on each side).

@@ -1,4 +1,4 @@
-"""Surface statistics, PDFs and the plasticity index (METHOD.md §1.5–1.6, thesis 3.1.3).
+"""Surface statistics, PDFs and the plasticity index (method §1.5–1.6, thesis 3.1.3).
 
 * Sq: root-mean-square height about the mean ``√(mean((z − z̄)²))`` [m];
   skewness ``E[(z−z̄)³]/Sq³``; kurtosis ``E[(z−z̄)⁴]/Sq⁴`` (not the excess: 3 for a Gaussian).
@@ -84,7 +84,7 @@ def height_moments(heights: npt.ArrayLike) -> tuple[float, float, float]:
 
 
 def surface_statistics(surface: Surface, summits: Summits) -> SurfaceStatistics:
-    """Sq, skewness, kurtosis, σ_S, β̄, summit density of ``surface`` (METHOD.md §1.5)."""
+    """Sq, skewness, kurtosis, σ_S, β̄, summit density of ``surface`` (method §1.5)."""
     sq, skew, kurt = height_moments(surface.heights_m)
     n = summits.count
     if n:

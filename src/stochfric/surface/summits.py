@@ -1,4 +1,4 @@
-"""Summits (asperity tips) and their radii (METHOD.md §1.3–1.4, thesis 3.1.1, eq. 3.1).
+"""Summits (asperity tips) and their radii (method §1.3–1.4, thesis 3.1.1, eq. 3.1).
 
 Summit rules (strict inequalities, interior points only):
 
@@ -147,7 +147,7 @@ def find_summits(
     kappa = 0.5 * (d2x + d2y)  # (3.1)
     ok = kappa < 0.0
     n_excluded = int(np.count_nonzero(~ok))
-    beta = -1.0 / kappa[ok]  # β = −1/κ (METHOD.md erratum 1)
+    beta = -1.0 / kappa[ok]  # β = −1/κ (method erratum 1)
     return Summits(
         heights_m=zc[ok],
         radius_m=beta,

@@ -1,4 +1,4 @@
-"""Stochastically similar surfaces (METHOD.md §3, thesis 3.1.2, eq. 3.2–3.6).
+"""Stochastically similar surfaces (method §3, thesis 3.1.2, eq. 3.2–3.6).
 
 Three generators, all pure functions of a height map and a random ``rng`` (a
 :class:`numpy.random.Generator` or a seed, normalised by :func:`stochfric.random.as_generator`):
@@ -164,7 +164,7 @@ def _phase_from_half_amplitudes(
 def random_phase_heights(
     heights: npt.ArrayLike, rng: np.random.Generator | SeedLike = None, *, amplitude: str = DEFAULT_AMPLITUDE
 ) -> FloatArray:
-    """Random-phase surrogate of a height map (eq. 3.4–3.5, METHOD §3).
+    """Random-phase surrogate of a height map (eq. 3.4–3.5, method §3).
 
     Returns a real map of the same shape whose amplitude spectrum ``|DFT2|`` equals the
     estimate ``amplitude`` of the original (:func:`amplitude_spectrum`) coefficient by

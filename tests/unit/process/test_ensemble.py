@@ -1,4 +1,4 @@
-"""Ensembles and sliding windows (METHOD §4a–c): fast windows equal the naive analysis."""
+"""Ensembles and sliding windows (method §4a–c): fast windows equal the naive analysis."""
 
 from __future__ import annotations
 

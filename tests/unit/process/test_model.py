@@ -1,4 +1,4 @@
-"""Unit tests of the friction-process model (METHOD §4d/e, eq. 3.21/3.22)."""
+"""Unit tests of the friction-process model (method §4d/e, eq. 3.21/3.22)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,4 @@
-"""Unit tests of the PSD estimate and the spectral representation (METHOD §0, eq. 2.48)."""
+"""Unit tests of the PSD estimate and the spectral representation (method §0, eq. 2.48)."""
 
 from __future__ import annotations
 

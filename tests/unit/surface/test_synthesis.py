@@ -1,4 +1,4 @@
-"""Similar surfaces (METHOD §3): random phases, longer surfaces (3.6), IAAFT."""
+"""Similar surfaces (method §3): random phases, longer surfaces (3.6), IAAFT."""
 
 from __future__ import annotations
 
