@@ -271,7 +271,7 @@ class StatisticalContactAnalysis:
             "mu_std_se": var(u, self.mu_std_se, "1", "SE of sigma_mu from the K surfaces"),
             "acf": var((*u, "lag"), self.acf, "1", "autocorrelation of normalised mu (3.17/3.18)"),
             "correlation_length_m": var(u, self.correlation_length_m, "m", "first zero crossing of the ACF"),
-            "psd": var((*u, "frequency"), self.psd, "m", "one-sided PSD of mu-hat (method section 0), mean over surfaces"),
+            "psd": var((*u, "frequency"), self.psd, "m", "one-sided PSD of mu-hat (method 0), surface mean"),
             "psd_se": var((*u, "frequency"), self.psd_se, "m", "SE of psd over surfaces"),
             "psd_level": var(u, self.psd_level, "m", "low-frequency PSD level E[S] = S(f->0)"),
             "psd_level_se": var(u, self.psd_level_se, "m", "SE of E[S] over surfaces"),
