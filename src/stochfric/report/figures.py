@@ -1,17 +1,14 @@
-"""Figures (matplotlib, Agg backend; files only, no windows)."""
+"""Figures of a simulation (matplotlib object API on an Agg canvas; files only, no windows, no pyplot)."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 import numpy as np
 
 from ..io_utils import write_atomic
 from ..oscillator.result import SimulationResult
+from ..plotting import new_figure
 
 
 def plot_phase_portrait(result: SimulationResult, path: str | Path, param_set: int = 0) -> Path:
@@ -26,7 +23,7 @@ def plot_phase_portrait(result: SimulationResult, path: str | Path, param_set: i
     p = result.params[param_set]
     traj = result.trajectory[param_set]
     forced = p.q > 0 and p.eta > 0
-    fig = plt.figure(figsize=(7.0, 5.2))
+    fig = new_figure(7.0, 5.2, layout=None)
     title = (
         f"{result.model}, {result.integrator}, n = {p.n:.4g}, D = {p.damping_ratio:.3g}"
         + (f", q = {p.q:.3g}, η = {p.eta:.3g}" if forced else "")
@@ -72,5 +69,4 @@ def plot_phase_portrait(result: SimulationResult, path: str | Path, param_set: i
     target = Path(path)
     suffix = target.suffix.lstrip(".") or "png"
     write_atomic(target, lambda tmp: fig.savefig(tmp, dpi=130, format=suffix))
-    plt.close(fig)
     return target

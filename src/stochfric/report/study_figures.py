@@ -11,14 +11,12 @@ from pathlib import Path
 from typing import Any
 
 import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 from matplotlib.ticker import MaxNLocator
 
 from ..io_utils import write_atomic
+from ..plotting import new_subplots
 
 Figure = tuple[Path, str]
 _COLORS = {"deterministic": "k", "white": "tab:blue", "contact": "tab:red"}
@@ -36,7 +34,7 @@ def colour_name(rgba: tuple[float, ...]) -> str:
 
 def mdiff_colours() -> tuple[str, str]:
     """(colour of negative, colour of positive) M_diff in :data:`MDIFF_CMAP`."""
-    cmap = plt.get_cmap(MDIFF_CMAP)
+    cmap = matplotlib.colormaps.get_cmap(MDIFF_CMAP)
     return colour_name(cmap(0.0)), colour_name(cmap(1.0))
 
 
@@ -71,7 +69,6 @@ def _save(fig: Any, path: Path) -> Path:
     if fig.get_layout_engine() is None:
         fig.tight_layout()
     write_atomic(path, lambda tmp: fig.savefig(tmp, dpi=110, format="png"))
-    plt.close(fig)
     return path
 
 
@@ -92,9 +89,9 @@ def damping_phase_figure(ds: xr.Dataset, directory: str | Path, prefix: str = "d
     pd = ds["phase_damping"].values
     nf = float(ds["phase_normal_force"].values)
     g0 = _gamma0(ds)
-    cmap = plt.get_cmap("viridis")
+    cmap = matplotlib.colormaps.get_cmap("viridis")
     cols = [cmap(0.9 * k / max(1, pd.size - 1)) for k in range(pd.size)]
-    fig, axes = plt.subplots(1, len(models), figsize=(4.4 * len(models), 3.8), squeeze=False, sharex=True,
+    fig, axes = new_subplots(1, len(models), figsize=(4.4 * len(models), 3.8), squeeze=False, sharex=True,
                              sharey=True)
     for j, m in enumerate(models):
         ax = axes[0, j]
@@ -130,7 +127,7 @@ def damping_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "dampin
     models = [str(m) for m in ds["model"].values]
     dd = ds["damping_ratio"].values
     nn = ds["normal_force"].values
-    fig, axes = plt.subplots(2, len(models), figsize=(4.2 * len(models), 6.4), squeeze=False)
+    fig, axes = new_subplots(2, len(models), figsize=(4.2 * len(models), 6.4), squeeze=False)
     for j, m in enumerate(models):
         for i, (var, lab) in enumerate((("x_gh_mean", "E[X_gh] (0: no stick)"), ("m_mean", "E[M]"))):
             ax = axes[i, j]
@@ -151,7 +148,7 @@ def damping_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "dampin
                 "for each model (thesis Fig. 4.23, 4.25, 4.28; sheet 4.54–4.59); dashed: Hopf boundary D_H."))
     if "m_diff" in ds:
         sm = [str(m) for m in ds["stochastic_model"].values]
-        fig, axes = plt.subplots(1, len(sm), figsize=(4.4 * len(sm), 3.4), squeeze=False)
+        fig, axes = new_subplots(1, len(sm), figsize=(4.4 * len(sm), 3.4), squeeze=False)
         for j, m in enumerate(sm):
             ax = axes[0, j]
             z = ds["m_diff"].sel(stochastic_model=m).values
@@ -179,7 +176,7 @@ def damping_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "dampin
 def _probability_map(ds: xr.Dataset, d: Path, prefix: str, models: list[str], dd: Any, nn: Any) -> Figure:
     """P(stick-slip cycle) as a heat map over D × N, one panel per model, with the D_max lines
     (small multiples instead of one panel of 3 × len(N) overlapping curves and bands)."""
-    fig, axes = plt.subplots(1, len(models), figsize=(4.2 * len(models), 3.6), squeeze=False, sharey=True,
+    fig, axes = new_subplots(1, len(models), figsize=(4.2 * len(models), 3.6), squeeze=False, sharey=True,
                              layout="constrained")
     dd_det = ds["d_max"].sel(model="deterministic").values if "deterministic" in models else None
     for j, m in enumerate(models):
@@ -218,7 +215,7 @@ def _probability_map(ds: xr.Dataset, d: Path, prefix: str, models: list[str], dd
 def _dmax_figure(ds: xr.Dataset, d: Path, prefix: str, models: list[str], dd: Any, nn: Any) -> Figure:
     """D_max over N with the interval bars; limits at the grid's end drawn as ▲ "> grid", missing ones
     (no cycle even at the first grid D) as ▼ "< grid start"."""
-    fig, ax = plt.subplots(figsize=(6.4, 3.8))
+    fig, ax = new_subplots(figsize=(6.4, 3.8))
     span = float(nn.max() - nn.min()) if nn.size > 1 else 1.0
     labelled: set[tuple[int, str]] = set()
     for k, m in enumerate(models):
@@ -268,7 +265,7 @@ def forcing_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "forcin
     eta = ds["eta"].values
     qs = ds["forcing_q"].values
     stoch = [m for m in models if m != "deterministic"]
-    fig, axes = plt.subplots(len(qs), max(1, len(stoch)), figsize=(5 * max(1, len(stoch)), 3.4 * len(qs)),
+    fig, axes = new_subplots(len(qs), max(1, len(stoch)), figsize=(5 * max(1, len(stoch)), 3.4 * len(qs)),
                              squeeze=False)
     for i, q in enumerate(qs):
         for j, m in enumerate(stoch or models):
@@ -291,7 +288,7 @@ def forcing_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "forcin
     out.append((_save(fig, d / f"{prefix}_bifurcation.png"),
                 "Bifurcation diagrams: X_gh after the transient over the forcing frequency η, deterministic (black) "
                 "and all stochastic runs (grey) (thesis Fig. 4.30, 4.34, 4.61)."))
-    fig, axes = plt.subplots(1, len(qs), figsize=(5 * len(qs), 3.6), squeeze=False)
+    fig, axes = new_subplots(1, len(qs), figsize=(5 * len(qs), 3.6), squeeze=False)
     for i, q in enumerate(qs):
         ax = axes[0, i]
         for k, m in enumerate(models):
@@ -305,7 +302,7 @@ def forcing_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "forcin
     out.append((_save(fig, d / f"{prefix}_mean_std.png"),
                 "E[X_gh] ± σ(X_gh) over η for each model (thesis Fig. 4.31, 4.35, 4.64, 4.68)."))
     if "sigma_ratio" in ds:
-        fig, ax = plt.subplots(figsize=(6, 3.4))
+        fig, ax = new_subplots(figsize=(6, 3.4))
         for q in qs:
             ax.plot(eta, ds["sigma_ratio"].sel(forcing_q=q).values, "o-", ms=3, label=f"q = {q:g}")
         ax.axhline(1.0, color="0.5", lw=0.8)
@@ -325,7 +322,7 @@ def lyapunov_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "lyapu
     qs = ds["forcing_q"].values
     nn = ds["normal_force"].values
     eta = ds["eta"].values
-    fig, axes = plt.subplots(len(qs), len(models), figsize=(4.3 * len(models), 3.2 * len(qs)), squeeze=False)
+    fig, axes = new_subplots(len(qs), len(models), figsize=(4.3 * len(models), 3.2 * len(qs)), squeeze=False)
     for i, q in enumerate(qs):
         for j, m in enumerate(models):
             ax = axes[i, j]
@@ -356,7 +353,7 @@ def normal_force_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "n
     nn = ds["normal_force"].values
     for di, dval in enumerate(ds["damping_ratio"].values):
         if "trajectory" in ds:
-            fig, axes = plt.subplots(1, len(models), figsize=(4.3 * len(models), 3.5), squeeze=False)
+            fig, axes = new_subplots(1, len(models), figsize=(4.3 * len(models), 3.5), squeeze=False)
             for j, m in enumerate(models):
                 ax = axes[0, j]
                 for k, nf in enumerate(nn):
@@ -373,7 +370,7 @@ def normal_force_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "n
             out.append((_save(fig, d / f"{prefix}_phase_D{di}.png"),
                         f"Phase diagrams at D = {dval:g} for each model and normal force (thesis Fig. 4.12–4.14, "
                         "4.18–4.20; sheet 4.44–4.46, 4.49–4.51)."))
-        fig, axes = plt.subplots(1, len(nn), figsize=(4.2 * len(nn), 3.2), squeeze=False)
+        fig, axes = new_subplots(1, len(nn), figsize=(4.2 * len(nn), 3.2), squeeze=False)
         for k, nf in enumerate(nn):
             ax = axes[0, k]
             drawn = False
