@@ -14,6 +14,7 @@ import json
 import tempfile
 import time
 
+from stochfric.report.html import write_report
 from stochfric.studies.common import parse_grid
 from stochfric.studies.config import DampingConfig
 from stochfric.studies.damping import damping_study
@@ -48,7 +49,7 @@ def main() -> None:
     if a.reproduce:
         with tempfile.TemporaryDirectory() as d:
             t = time.perf_counter()
-            _, timings = reproduce(d, quick=a.quick)
+            _, timings = reproduce(d, quick=a.quick, report=write_report)
             res["reproduce_s"] = time.perf_counter() - t
             res["reproduce_timings_s"] = timings
     print(json.dumps(res, indent=1))

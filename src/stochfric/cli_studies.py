@@ -421,6 +421,7 @@ def reproduce_command(
     json_out: JsonOpt = False,
 ) -> None:
     """All studies of thesis chapter 4 for brake and sheet, results and DIR/index.html."""
+    from .report.html import write_report
     from .studies.executors import make_executor
     from .studies.reproduce import plan, reproduce
 
@@ -437,7 +438,8 @@ def reproduce_command(
                 prog.tasks(d, n)
 
             results, timings = reproduce(out, quick=quick, seed=seed, executor=ex, progress=on_tasks,
-                                         study_done=lambda res: prog.end(res.stats.computed, res.stats.loaded))
+                                         study_done=lambda res: prog.end(res.stats.computed, res.stats.loaded),
+                                         report=write_report)
     except (StudyError, ValueError, OSError) as exc:
         raise _fail(str(exc)) from None
     except KeyboardInterrupt as exc:

@@ -71,17 +71,18 @@ def reproduce(
     executor: Executor | None = None,
     checkpoint: str | Path | None = None,
     progress: Callable[[str, int, int], None] | None = None,
-    report: bool = True,
+    report: Callable[..., Any] | None = None,
     study_done: Callable[[StudyResult], None] | None = None,
 ) -> tuple[list[StudyResult], dict[str, float]]:
-    """Run :func:`plan`, save every result under ``out/<preset>/``, write ``out/index.html``.
+    """Run :func:`plan`, save every result under ``out/<preset>/`` and, with ``report``, write the report.
+
+    ``report(results, out, title=…, quick=…)`` renders the results (the CLI passes
+    :func:`stochfric.report.html.write_report`; the studies layer does not import the report).
 
     ``progress(label, done, total)`` is called with the study's label (``"brake/damping"``) after
     every finished task, ``study_done(result)`` after every saved study.  Finished tasks are
     checkpointed (default ``out/checkpoints``), so an interrupted run resumes where it stopped.
     """
-    from ..report.html import write_report
-
     base = Path(out)
     ck = str(checkpoint) if checkpoint is not None else str(base / "checkpoints")
     results: list[StudyResult] = []
@@ -98,9 +99,9 @@ def reproduce(
         if study_done is not None:
             study_done(res)
     timings["studies_total"] = time.perf_counter() - t0
-    if report:
+    if report is not None:
         t = time.perf_counter()
-        write_report(results, base, title="stochfric: reproduction of thesis chapter 4"
+        report(results, base, title="stochfric: reproduction of thesis chapter 4"
                      + (" (quick)" if quick else ""), quick=quick)
         timings["report"] = time.perf_counter() - t
     timings["total"] = time.perf_counter() - t0
