@@ -2,7 +2,7 @@
 
 Usage::
 
-    python benchmarks/bench_oscillator.py [--quick] [--json OUT]
+    python benchmarks/bench_oscillator.py [--quick] [--json OUT] [--before REV]
 
 Everything is measured in one process and reported as *ratios* against baselines run in
 that same process, so the figures compare like with like on whatever machine runs them:
@@ -13,8 +13,14 @@ that same process, so the figures compare like with like on whatever machine run
   ``accurate``; on the brake preset (N = 5600 N, pressure law 4.13, as the CLI builds it) and
   on the thesis's demonstration case (γ0 = 1, n = 10, D = 0, law III).  For ``accurate`` a
   "step" is one Δτ of the sampling grid (``τ_end/Δτ`` per run), so its rate is simulated time.
-  The white-noise rates include drawing the Wiener increments (end-to-end); the
-  ``kernel only`` rows time the compiled Euler–Maruyama call with the increments pre-drawn.
+  The white-noise rates include drawing the Wiener increments (end-to-end: since issue 13
+  inside the kernel, Philox4x32-10); the ``kernel only`` rows time the compiled Euler–Maruyama
+  call with the same increments pre-drawn.  In the same run, the generation paths before
+  issue 13: ``white euler, pcg64 buffer`` (numpy's normals drawn into a buffer,
+  ``white_stream="pcg64"``) and ``contact euler, generate per run`` (``process.generate`` per
+  trajectory instead of one batch evaluation).
+* **before** (``--before REV``) — the same rates with the package of git revision ``REV``,
+  timed first in a subprocess on the same machine; ratios before/now per model.
 * **baselines** — :func:`stochfric.oscillator.reference.euler_python` (the thesis's Euler
   method as a plain Python loop), :func:`em_python` below (the same loop with the
   Euler–Maruyama update, increments pre-drawn), and
@@ -33,6 +39,7 @@ several repeats, which is the figure least disturbed by other load on the machin
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import functools
 import json
 import math
@@ -51,9 +58,10 @@ import numpy.typing as npt
 import scipy
 
 from stochfric.oscillator import kernels as _k
+from stochfric.oscillator import philox as _ph
 from stochfric.oscillator import reference
 from stochfric.oscillator.friction_laws import FrictionLaw, law_III, pressure_law
-from stochfric.oscillator.integrate import simulate, trajectory_seed
+from stochfric.oscillator.integrate import simulate
 from stochfric.oscillator.parameters import OscillatorParameters, PhysicalParameters
 from stochfric.process.model import BandLimitedProcessModel
 from stochfric.process.presets import brake
@@ -87,7 +95,7 @@ class Case:
     name: str
     params: OscillatorParameters
     law: FrictionLaw
-    process: BandLimitedProcessModel | None
+    process: BandLimitedProcessModel | Any | None
     sigma_zeta: float | None
     x0: tuple[float, float]
 
@@ -246,15 +254,34 @@ def _time(fn: Callable[[], object], repeats: int) -> tuple[float, float]:
 
 
 def _sim(case: Case, model: str, integrator: str, runs: int, tau_end: float,
-         workers: int | None = 1, seed: int = 1) -> Any:
+         workers: int | None = 1, seed: int = 1, **kw: Any) -> Any:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # e.g. "process exhausted" on long contact runs
         return simulate(
             case.params, model=model, law=case.law, process=case.process,
             sigma_zeta=case.sigma_zeta if model == "white" else None, x0=case.x0,
             tau_end=tau_end, dt=DT, integrator=integrator, runs=runs, seed=seed,
-            workers=workers,
+            workers=workers, **kw,
         )
+
+
+class _PerTrajectory:
+    """A process model that ``simulate`` does not recognise as a spectral representation, so
+    it calls ``generate`` once per trajectory (the generation path before issue 13)."""
+
+    def __init__(self, model: Any) -> None:
+        self._m = model
+        self.dx, self.length = model.dx, model.length
+        self.grid_is_periodic = model.grid_is_periodic
+
+    def generate(self, p: float, rng: np.random.Generator) -> npt.NDArray[np.float64]:
+        return np.asarray(self._m.generate(p, rng))
+
+    def sigma_zeta(self, p: float) -> float:
+        return float(self._m.sigma_zeta(p))
+
+    def to_dict(self) -> dict[str, Any]:
+        return dict(self._m.to_dict())
 
 
 #: (model, integrator) pairs of the rate table.
@@ -270,15 +297,12 @@ CONFIGS = (
 
 def _white_increments(case: Case, runs: int, tau_end: float, seed: int = 1
                       ) -> npt.NDArray[np.float64]:
-    """The increments ``simulate`` draws for runs ``0..runs-1`` of parameter set 0."""
+    """The increments ``simulate`` draws for runs ``0..runs-1`` of parameter set 0 (its default
+    Philox stream, :func:`stochfric.oscillator.philox.step_normals`)."""
     nsteps = round(tau_end / DT)
-    root = np.random.SeedSequence(seed)
-    dw = np.empty((runs, nsteps))
-    for r in range(runs):
-        rng = np.random.Generator(np.random.PCG64(trajectory_seed(root, 0, r)))
-        rng.standard_normal(out=dw[r])
-        dw[r] *= math.sqrt(DT)
-    return dw
+    keys = _ph.trajectory_keys(np.random.SeedSequence(seed), np.zeros(runs, dtype=np.int64),
+                               np.arange(runs))
+    return np.stack([_ph.step_normals(k, nsteps) for k in keys]).reshape(runs, nsteps) * math.sqrt(DT)
 
 
 def _kernel_only(case: Case, dw: npt.NDArray[np.float64], noise: int) -> Callable[[], None]:
@@ -344,6 +368,20 @@ def _case_rates(rep: Report, case: Case, cfg: dict[str, Any]) -> None:
         wall, cpu = _time(functools.partial(_sim, case, model, integ, runs, tau), reps)
         rep.entries.append(Entry("rate", case.name, f"{model} {integ}", runs, steps, wall, cpu,
                                  steps / wall, "Δτ-grid steps" if acc else ""))
+    # the generation paths before issue 13, in the same run: numpy's PCG64 normals drawn into a
+    # buffer (white_stream="pcg64", the same numbers as then) and the contact process generated
+    # per trajectory by process.generate (a wrapper simulate does not recognise)
+    runs, tau = int(cfg["runs"]), float(cfg["tau_end"])
+    steps = runs * round(tau / DT)
+    wall, cpu = _time(functools.partial(_sim, case, "white", "euler", runs, tau,
+                                        white_stream="pcg64"), reps)
+    rep.entries.append(Entry("rate", case.name, "white euler, pcg64 buffer", runs, steps, wall,
+                             cpu, steps / wall, "numbers of versions before issue 13"))
+    if case.process is not None:
+        wall, cpu = _time(functools.partial(_sim, dataclasses.replace(
+            case, process=_PerTrajectory(case.process)), "contact", "euler", runs, tau), reps)
+        rep.entries.append(Entry("rate", case.name, "contact euler, generate per run", runs,
+                                 steps, wall, cpu, steps / wall, "process.generate per trajectory"))
     # the compiled call alone (Wiener increments pre-drawn)
     runs, tau = int(cfg["runs"]), float(cfg["tau_end"])
     dw = _white_increments(case, runs, tau)
@@ -400,6 +438,64 @@ def _case_rates(rep: Report, case: Case, cfg: dict[str, Any]) -> None:
 
 
 
+#: Issue 13: end-to-end ns per trajectory-step on one core (brake, τ = 50, Δτ = 0.005).
+WHITE_TARGET_NS = 4.0
+CONTACT_TARGET_NS = 6.0
+
+#: Run in a subprocess against the source tree of another revision (``--before REF``): the
+#: rates of ``simulate`` for the models of issue 13, with that revision's package.  Uses only
+#: API that exists in every revision since the presets (simulate, PhysicalParameters, brake).
+_BEFORE_SNIPPET = r"""
+import json, sys, time, warnings
+warnings.simplefilter("ignore")
+from stochfric.oscillator.friction_laws import pressure_law
+from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.parameters import PhysicalParameters
+from stochfric.process.presets import brake
+runs, tau, reps, dt = int(sys.argv[1]), float(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4])
+pre = brake()
+p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
+                       normal_force=5600.0, damping_ratio=pre.study_parameters["damping_undamped"],
+                       contact_area=pre.contact_area).to_dimensionless()
+law = pressure_law(pre.process.mean(p.pressure))
+out = {}
+for model, integ, n in (("deterministic", "euler", runs), ("white", "euler", runs),
+                        ("white", "milstein", runs), ("contact", "euler", runs),
+                        ("contact", "accurate", max(1, runs // 16))):
+    kw = dict(model=model, law=law, process=pre.process, x0=(0.0, p.gamma0), dt=dt,
+              integrator=integ, seed=1, workers=1)
+    simulate(p, runs=1, tau_end=1.0, **kw)
+    best = float("inf")
+    for _ in range(reps):
+        t0 = time.perf_counter()
+        simulate(p, runs=n, tau_end=tau, **kw)
+        best = min(best, time.perf_counter() - t0)
+    out[f"{model} {integ}"] = best / (n * round(tau / dt))
+print(json.dumps(out))
+"""
+
+
+def before_rates(ref: str, size: str) -> dict[str, float]:
+    """Seconds per trajectory-step of ``simulate`` (one core, brake) with the package of
+    revision ``ref`` (``git archive`` of its ``src`` into a temporary directory, run in a
+    subprocess with that directory first on ``PYTHONPATH``)."""
+    import subprocess
+    import tempfile
+
+    cfg = SIZES[size]
+    repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    with tempfile.TemporaryDirectory(prefix="stochfric-before-") as tmp:
+        arch = subprocess.run(["git", "archive", ref, "src"], cwd=repo, check=True,
+                              capture_output=True).stdout
+        subprocess.run(["tar", "-x", "-C", tmp], input=arch, check=True)
+        env = dict(os.environ, PYTHONPATH=os.path.join(tmp, "src"),
+                   NUMBA_CACHE_DIR=os.path.join(tmp, "numba-cache"))
+        res = subprocess.run([sys.executable, "-c", _BEFORE_SNIPPET, str(cfg["runs"]),
+                              str(cfg["tau_end"]), str(cfg["repeats"]), str(DT)],
+                             env=env, check=True, capture_output=True, text=True)
+    return {k: float(v) for k, v in json.loads(res.stdout.strip().splitlines()[-1]).items()}
+
+
 def machine_info() -> dict[str, Any]:
     """The machine and the software versions the figures were taken with."""
     info: dict[str, Any] = {
@@ -422,11 +518,24 @@ def machine_info() -> dict[str, Any]:
     return info
 
 
-def run_benchmarks(size: str = "quick", *, log: Callable[[str], None] | None = None) -> Report:
-    """Run the suite at ``size`` (``full`` | ``quick`` | ``smoke``) and return the report."""
+def run_benchmarks(size: str = "quick", *, log: Callable[[str], None] | None = None,
+                   before: str | None = None) -> Report:
+    """Run the suite at ``size`` (``full`` | ``quick`` | ``smoke``) and return the report.
+
+    ``before``: a git revision; its package's rates are measured first, in a subprocess on
+    the same machine (:func:`before_rates`), and reported as ``before`` entries and
+    before/after ratios.
+    """
     cfg = SIZES[size]
     say = log or (lambda _m: None)
     rep = Report(size=size, machine=machine_info())
+    if before is not None:
+        say(f"  timing revision {before} (subprocess, compiles its kernels first) ...")
+        for what, sec in before_rates(before, size).items():
+            runs = int(cfg["acc_runs"] if "accurate" in what else cfg["runs"])
+            steps = runs * round(float(cfg["tau_end"]) / DT)
+            rep.entries.append(Entry("before", "brake", what, runs, steps, sec * steps, math.nan,
+                                     1.0 / sec, f"revision {before}"))
     reps = int(cfg["repeats"])
     cases = [brake_case(), demo_case()]
 
@@ -491,6 +600,25 @@ def run_benchmarks(size: str = "quick", *, log: Callable[[str], None] | None = N
     rep.targets[f"10,000 white-noise runs < {HEADLINE_TARGET_S:g} s"] = {
         "value": t10k, "met": t10k < HEADLINE_TARGET_S,
         "measured_runs": hr}
+
+    # issue 13: end to end on one core, and against the previous generation paths in this run
+    def ns(what: str, group: str = "rate") -> float:
+        return 1e9 / next(e.rate for e in rep.entries
+                          if e.case == "brake" and e.what == what and e.group == group)
+
+    for what, target in (("white euler", WHITE_TARGET_NS), ("contact euler", CONTACT_TARGET_NS)):
+        v = ns(what)
+        rep.targets[f"brake: {what} end to end <= {target:g} ns/step"] = {"value": v, "met": v <= target}
+    rep.ratios["brake: white euler, pcg64 buffer / Philox in kernel (time)"] = (
+        ns("white euler, pcg64 buffer") / ns("white euler"))
+    rep.ratios["brake: contact euler, generate per run / per batch (time)"] = (
+        ns("contact euler, generate per run") / ns("contact euler"))
+    rep.ratios["brake: white euler / deterministic euler (time)"] = ns("white euler") / ns("deterministic euler")
+    rep.ratios["brake: contact euler / deterministic euler (time)"] = ns("contact euler") / ns("deterministic euler")
+    if before is not None:
+        for what in ("deterministic euler", "white euler", "white milstein", "contact euler",
+                     "contact accurate"):
+            rep.ratios[f"brake: {what}, {before} / now (time)"] = ns(what, "before") / ns(what)
     if hasattr(os, "getloadavg"):
         rep.machine["loadavg_end"] = os.getloadavg()[0]
     return rep
@@ -526,10 +654,13 @@ def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0] if __doc__ else None)
     ap.add_argument("--quick", action="store_true", help="smaller sizes (< 60 s)")
     ap.add_argument("--json", type=str, default=None, metavar="OUT", help="write JSON here")
+    ap.add_argument("--before", type=str, default=None, metavar="REV",
+                    help="also time the package of git revision REV (subprocess) for before/after")
     args = ap.parse_args(argv)
     size = "quick" if args.quick else "full"
     t0 = time.perf_counter()
-    rep = run_benchmarks(size, log=lambda m: print(m, file=sys.stderr, flush=True))
+    rep = run_benchmarks(size, log=lambda m: print(m, file=sys.stderr, flush=True),
+                         before=args.before)
     print(format_report(rep))
     print(f"\n(total {time.perf_counter() - t0:.1f} s)")
     if args.json:
