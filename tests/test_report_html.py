@@ -22,6 +22,7 @@ import pytest
 
 import stochfric.report.study_figures as study_figures
 from stochfric.report.html import WARNING_HELP, damping_reading, process_statistics_section, write_report
+from stochfric.studies.chapter3 import chapter3_analysis
 from stochfric.studies.config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
 from stochfric.studies.damping import damping_study
 from stochfric.studies.forcing import forcing_study
@@ -94,7 +95,7 @@ def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
     try:
         with pytest.MonkeyPatch.context() as mp:
             mp.setattr(study_figures, "_save", inspecting_save)
-            return write_report(results, d, title="test report", contact=True)
+            return write_report(results, d, title="test report", chapter3=chapter3_analysis(d, quick=True))
     finally:
         os.umask(old)
 
@@ -120,7 +121,7 @@ def test_friction_process_section(tmp_path: Path) -> None:
     from stochfric.oscillator.parameters import PhysicalParameters
     from stochfric.process.model import load_process_model
 
-    text = process_statistics_section(tmp_path, quick=True)
+    text = process_statistics_section(tmp_path, chapter3_analysis(tmp_path, quick=True))
     for needle in ("Ergodicity", "E[μ]", "σ_μ", "ℓ_corr", "a p<sup>b</sup> + c"):
         assert needle in text, needle
     p = _Imgs()

@@ -213,7 +213,7 @@ def _execute(cfg: Any, executor: str, workers: int | None, scheduler: str | None
         if report is not None:
             from .report.html import write_report
 
-            files.append(str(write_report([res], report, contact=False)))
+            files.append(str(write_report([res], report)))
     except (StudyError, ValueError, OSError) as exc:
         raise _fail(str(exc)) from None
     except KeyboardInterrupt as exc:
@@ -393,7 +393,7 @@ def run_command(
                 res.save(out / f"{i:02d}_{cfg.kind}_{cfg.preset}")
                 prog.end(res.stats.computed, res.stats.loaded)
                 results.append(res)
-        index = write_report(results, out, contact=False) if rf.output.report else None
+        index = write_report(results, out) if rf.output.report else None
     except (StudyError, ValueError, OSError) as exc:
         raise _fail(str(exc)) from None
     except KeyboardInterrupt as exc:

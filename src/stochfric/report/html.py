@@ -2,10 +2,10 @@
 
 :func:`write_report` draws every figure of every study result, writes tables of the key
 numbers, a short computed reading of the results, and the parameters, seeds and package
-versions of each study.  A chapter-3 section analyses the shipped real surface
-(:func:`stochfric.surface.io.default_surface_path`) with the surface and contact code
-(method §1–2) and :func:`process_statistics_section` the statistics of μ and the
-friction-process model from that surface (method §3–§4; module ``process_section``).
+versions of each study.  Given a :class:`~stochfric.studies.chapter3.Chapter3` result, chapter-3
+sections show the shipped real surface's statistics and GW contact (method §1–2) and the
+statistics of μ and the friction-process model from that surface (method §3–§4; module
+``process_section``).  The report renders; it computes nothing.
 """
 
 from __future__ import annotations
@@ -20,7 +20,11 @@ from typing import Any
 
 import numpy as np
 
+from ..contact.figures import write_contact_figures
 from ..io_utils import package_versions, write_text_atomic
+from ..studies.chapter3 import Chapter3
+from ..surface.figures import write_surface_figures
+from .process_section import friction_process_section
 from .study_figures import FIGURES
 
 _CSS = """
@@ -397,33 +401,15 @@ TITLES = {"damping": "Damping: D_max^d, D_max^s and the Hopf boundary (method §
           "normal-force": "Normal force: phase diagrams, PDFs, E[X_gh] ± σ, VarK (method §6.1)"}
 
 
-def contact_section(directory: Path) -> str:
-    """Chapter-3 analysis of the shipped real surface: statistics, summits, GW contact (method §1–2)."""
-    try:
-        from ..contact.asperity import asperity_contact
-        from ..contact.figures import write_contact_figures
-        from ..contact.materials import load_material
-        from ..surface.figures import write_surface_figures
-        from ..surface.io import default_surface_path, read_surface
-        from ..surface.preprocess import Preparation, prepare
-        from ..surface.statistics import surface_statistics
-        from ..surface.summits import summits_of
-
-        path = default_surface_path()
-        raw = read_surface(path)
-        prep = Preparation(detrend="plane", median_radius=0, step=1)
-        fine, coarse = prepare(raw, prep)
-        fs = summits_of(fine, rule="thesis")
-        cs = fs if coarse is fine else summits_of(coarse, rule="thesis")
-        stats = surface_statistics(coarse, cs).to_dict()
-        mat = load_material("brake-pad")
-        res = asperity_contact(coarse, cs, mat, None, preparation=prep.to_dict())
-        sub = directory / "contact"
-        figs = [Path(p) for p in write_surface_figures(sub, fine=fine, coarse=coarse, fine_summits=fs,
-                                                       coarse_summits=cs, step=1)]
-        figs += [Path(p) for p in write_contact_figures(sub, [res])]
-    except Exception as exc:  # the report must not fail because of an optional section
-        return f"<p>The contact analysis of the shipped surface could not be run: {html.escape(str(exc))}</p>"
+def contact_section(directory: Path, ch3: Chapter3) -> str:
+    """Chapter-3 analysis of the shipped real surface: statistics, summits, GW contact (method §1–2),
+    rendered from ``ch3``; writes its figures only."""
+    path, stats, mat, res = ch3.surface_path, ch3.surface_stats, ch3.material, ch3.contact
+    sub = directory / "contact"
+    figs = [Path(p) for p in write_surface_figures(sub, fine=ch3.fine, coarse=ch3.coarse,
+                                                   fine_summits=ch3.fine_summits,
+                                                   coarse_summits=ch3.coarse_summits, step=ch3.preparation.step)]
+    figs += [Path(p) for p in write_contact_figures(sub, [res])]
     um = 1e-6
     rows = [[res.approach_m[k] / um, res.contact_area_m2[k], res.area_fraction[k], res.pressure_pa[k] / 1e6,
              int(res.n_contacts[k]), res.mu[k]] for k in range(res.approach_m.size)]
@@ -438,14 +424,9 @@ def contact_section(directory: Path) -> str:
     return "".join(out)
 
 
-def process_statistics_section(directory: Path, *, quick: bool = False) -> str:
+def process_statistics_section(directory: Path, ch3: Chapter3) -> str:
     """Statistics of μ and the friction-process model of the shipped surface (method §3–§4)."""
-    from .process_section import friction_process_section
-
-    try:
-        return friction_process_section(directory, quick=quick)
-    except Exception as exc:  # an optional section must not lose the rest of the report
-        return f"<p>The friction-process statistics section failed: {html.escape(str(exc))}</p>"
+    return friction_process_section(directory, ch3)
 
 
 def write_report(
@@ -453,11 +434,14 @@ def write_report(
     directory: str | Path,
     *,
     title: str = "stochfric studies",
-    contact: bool = True,
+    chapter3: Chapter3 | None = None,
     extra_html: str = "",
-    quick: bool = False,
 ) -> Path:
-    """Write ``directory/index.html`` (and the PNG figures) for the study ``results``."""
+    """Write ``directory/index.html`` (and the PNG figures) for the study ``results``.
+
+    ``chapter3`` (:func:`stochfric.studies.chapter3.chapter3_analysis`) adds the chapter-3
+    sections; the report renders it and computes nothing.
+    """
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
     body = [f"<h1>{html.escape(title)}</h1>",
@@ -486,11 +470,11 @@ def write_report(
     if readings:
         body.insert(2, "<h2>Reading</h2><p>One answer per study; details, tables and figures in its section."
                     "</p><ul class='answers'>" + "".join(readings) + "</ul>" + warnings_section(results))
-    if contact:
+    if chapter3 is not None:
         body.append("<h2>Chapter 3: contact analysis of the shipped real surface</h2>")
-        body.append(contact_section(d))
+        body.append(contact_section(d, chapter3))
         body.append("<h2>Chapter 3: statistics of μ and the friction-process model</h2>")
-        body.append(process_statistics_section(d, quick=quick))
+        body.append(process_statistics_section(d, chapter3))
     body.append(extra_html)
     body.append("<h2>Versions</h2><pre>" + html.escape(json.dumps(package_versions(), indent=1)) + "</pre>")
     page = (f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{html.escape(title)}</title>"

@@ -1,5 +1,5 @@
 """Report section for method §3–§4: statistics of μ and the friction-process model of the
-shipped measured surface (statistical contact analysis, issue 4)."""
+shipped measured surface, rendered from a computed :class:`~stochfric.studies.chapter3.Chapter3`."""
 
 from __future__ import annotations
 
@@ -8,40 +8,18 @@ import math
 from pathlib import Path
 from typing import Any
 
-#: Default seed of the section (recorded on the page).
-SECTION_SEED = 2013
+from ..process.figures import write_process_figures
+from ..studies.chapter3 import Chapter3
 
 
-def friction_process_section(directory: Path, *, quick: bool = False, seed: int = SECTION_SEED) -> str:
-    """Run the statistical contact analysis of the shipped surface and return its HTML section.
-
-    Brake-pad material (Tables 3.1/3.2), plane detrend, no filter, the default approach range
-    (in units of σ_S) and a_y; ``quick``: 30 realisations and 4 long surfaces instead of
-    100 and 10.  Writes the model file, the NetCDF of all statistics and the figures under
-    ``directory/friction_process``.
-    """
-    from ..contact.asperity import default_approach_m
-    from ..contact.materials import load_material
-    from ..process.ensemble import default_window_shift_points
-    from ..process.figures import write_process_figures
-    from ..process.statistics import AnalysisConfig, analyse
-    from ..surface.io import default_surface_path, read_surface
-    from ..surface.preprocess import Preparation, prepare
-    from ..surface.summits import summits_of
-
-    out = directory / "friction_process"
-    out.mkdir(parents=True, exist_ok=True)
-    surface = read_surface(default_surface_path())
-    _fine, coarse = prepare(surface, Preparation())
-    u = default_approach_m(summits_of(coarse))
-    cfg = AnalysisConfig(
-        realizations=30 if quick else 100, long_surfaces=4 if quick else 10,
-        window_shift_points=default_window_shift_points(coarse.nb_grid_pts[1]), seed=seed,
-    )
-    a = analyse(coarse, load_material("brake-pad"), u, cfg, name="shipped surface (al3d-1)")
-    model_path = a.model.save(out / "friction_process.json")
-    nc_path = a.to_netcdf(out / "statistics.nc")
-    figs = write_process_figures(a, out / "figures")
+def friction_process_section(directory: Path, ch3: Chapter3) -> str:
+    """HTML of the statistical contact analysis of the shipped surface (method §3–§4), rendered from
+    ``ch3`` (:func:`stochfric.studies.chapter3.chapter3_analysis`); writes its figures only."""
+    a = ch3.analysis
+    cfg = a.config
+    seed = ch3.seed
+    model_path, nc_path = ch3.model_path, ch3.statistics_path
+    figs = write_process_figures(a, directory / "friction_process" / "figures")
     d: dict[str, Any] = a.to_json_dict()
 
     def f(v: Any, spec: str = ".4g") -> str:

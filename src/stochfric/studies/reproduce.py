@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from .base import StudyResult
+from .chapter3 import chapter3_analysis
 from .common import parse_grid
 from .config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
 from .damping import damping_study
@@ -76,8 +77,10 @@ def reproduce(
 ) -> tuple[list[StudyResult], dict[str, float]]:
     """Run :func:`plan`, save every result under ``out/<preset>/`` and, with ``report``, write the report.
 
-    ``report(results, out, title=…, quick=…)`` renders the results (the CLI passes
-    :func:`stochfric.report.html.write_report`; the studies layer does not import the report).
+    ``report(results, out, title=…, chapter3=…)`` renders the results and the chapter-3 analysis of
+    the shipped surface (:func:`~stochfric.studies.chapter3.chapter3_analysis`, computed here with
+    ``seed``; the CLI passes :func:`stochfric.report.html.write_report`; the studies layer does not
+    import the report).
 
     ``progress(label, done, total)`` is called with the study's label (``"brake/damping"``) after
     every finished task, ``study_done(result)`` after every saved study.  Finished tasks are
@@ -101,8 +104,11 @@ def reproduce(
     timings["studies_total"] = time.perf_counter() - t0
     if report is not None:
         t = time.perf_counter()
-        report(results, base, title="stochfric: reproduction of thesis chapter 4"
-                     + (" (quick)" if quick else ""), quick=quick)
+        ch3 = chapter3_analysis(base, quick=quick, seed=seed)
+        timings["chapter3"] = time.perf_counter() - t
+        t = time.perf_counter()
+        report(results, base, title="stochfric: reproduction of thesis chapter 4" + (" (quick)" if quick else ""),
+               chapter3=ch3)
         timings["report"] = time.perf_counter() - t
     timings["total"] = time.perf_counter() - t0
     return results, timings
