@@ -89,8 +89,8 @@ def test_study_run_reproduce_output_paths_checked_first(tmp_path: Path) -> None:
 def test_surface_contact_process_output_paths_checked_first(
     args: list[str], needle: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    import stochfric.cli_process as cli_process
-    import stochfric.cli_surface as cli_surface
+    import stochfric.cli.process as cli_process
+    import stochfric.cli.surface as cli_surface
 
     def boom(*_a: Any, **_k: Any) -> Any:
         raise AssertionError("the surface was read before the output paths were checked")
@@ -131,7 +131,7 @@ def test_simulate_refuses_requests_that_do_not_fit_in_memory(args: list[str]) ->
 
 
 def test_simulate_memory_estimate_scales_with_the_request() -> None:
-    from stochfric.cli import _simulation_memory_bytes
+    from stochfric.cli.simulate import _simulation_memory_bytes
 
     base = _simulation_memory_bytes(100, 50.0, 0.005, save_every=10, trajectories=False, model="deterministic",
                                     process_points=0, workers=1)

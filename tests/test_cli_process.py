@@ -11,7 +11,7 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from stochfric.cli_process import register
+from stochfric.cli.process import register
 from stochfric.oscillator.integrate import simulate
 from stochfric.oscillator.parameters import PhysicalParameters
 from stochfric.process.ensemble import default_window_shift_points

@@ -12,7 +12,7 @@ import pytest
 from typer.testing import CliRunner
 
 from stochfric.cli import app
-from stochfric.cli_studies import _StudyProgress
+from stochfric.cli.studies import _StudyProgress
 from stochfric.studies.config import DampingConfig
 
 reproduce_mod = importlib.import_module("stochfric.studies.reproduce")

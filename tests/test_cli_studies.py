@@ -9,7 +9,7 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from stochfric.cli_studies import register
+from stochfric.cli.studies import register
 
 
 @pytest.fixture(scope="module")

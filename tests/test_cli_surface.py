@@ -11,7 +11,7 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from stochfric.cli_surface import parse_approach_um, parse_size_um, register
+from stochfric.cli.surface import parse_approach_um, parse_size_um, register
 from stochfric.contact.asperity import ContactError, read_contact_result
 from stochfric.surface.io import SurfaceError, default_surface_path
 

@@ -24,7 +24,7 @@ LAYERS: dict[str, int] = {
     "oscillator": 4,
     "studies": 5,
     "report": 6,
-    "cli": 7, "cli_process": 7, "cli_studies": 7, "cli_surface": 7, "__main__": 7,
+    "cli": 7, "__main__": 7,
 }  # fmt: skip
 
 

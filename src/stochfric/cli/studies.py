@@ -16,7 +16,7 @@ from typing import Annotated, Any
 import typer
 from pydantic import ValidationError
 
-from .studies.common import StudyError
+from ..studies.common import StudyError
 
 ModelsOpt = Annotated[str | None, typer.Option("--models", help="Comma-separated: deterministic,white,contact.")]
 PresetOpt = Annotated[str, typer.Option("--preset", help="Thesis case: brake | sheet.")]
@@ -126,7 +126,7 @@ def _interrupted(exc: KeyboardInterrupt, what: str, checkpoint: Path | None) -> 
     import shlex
     import sys
 
-    from .studies.executors import SweepInterrupted
+    from ..studies.executors import SweepInterrupted
 
     done = total = None
     if isinstance(exc, SweepInterrupted):
@@ -146,7 +146,7 @@ def _interrupted(exc: KeyboardInterrupt, what: str, checkpoint: Path | None) -> 
 
 def _check_dirs(**dirs: Path | str | None) -> None:
     """Check every output directory before any work (``StudyError`` with the option name)."""
-    from .io_utils import OutputPathError, check_output_path
+    from ..io_utils import OutputPathError, check_output_path
 
     for name, d in dirs.items():
         if d is not None:
@@ -181,8 +181,8 @@ def _common(preset: str, process: Path | None, runs: int | None, seed: int, tau_
 
 
 def _validate(kind: str, fields: dict[str, Any]) -> Any:
-    from .studies import config as c
-    from .studies.run_config import _format_errors
+    from ..studies import config as c
+    from ..studies.run_config import _format_errors
 
     cls = {"damping": c.DampingConfig, "forcing": c.ForcingConfig, "lyapunov": c.LyapunovConfig,
            "normal-force": c.NormalForceConfig}[kind]
@@ -194,8 +194,8 @@ def _validate(kind: str, fields: dict[str, Any]) -> Any:
 
 def _execute(cfg: Any, executor: str, workers: int | None, scheduler: str | None, checkpoint: Path | None,
              out: Path | None, report: Path | None, json_out: bool) -> None:
-    from .studies.executors import make_executor
-    from .studies.reproduce import run_study
+    from ..studies.executors import make_executor
+    from ..studies.reproduce import run_study
 
     try:
         _check_dirs(out=out, report=report, checkpoint=checkpoint)
@@ -211,7 +211,7 @@ def _execute(cfg: Any, executor: str, workers: int | None, scheduler: str | None
         if out is not None:
             files += [str(p) for p in res.save(out)]
         if report is not None:
-            from .report.html import write_report
+            from ..report.html import write_report
 
             files.append(str(write_report([res], report)))
     except (StudyError, ValueError, OSError) as exc:
@@ -232,7 +232,7 @@ def _print_summary(kind: str, s: dict[str, Any]) -> None:
     from rich.console import Console
     from rich.table import Table
 
-    from .report.html import READERS, dmax_text, model_choices_text
+    from ..report.html import READERS, dmax_text, model_choices_text
 
     con = Console()
     con.print(f"[bold]stochfric study {kind}[/] preset={s.get('preset')} runs={s.get('runs')} seed={s.get('seed')} "
@@ -370,10 +370,10 @@ def run_command(
     json_out: JsonOpt = False,
 ) -> None:
     """Run the studies of a TOML file (validated; results, checkpoints and report as configured)."""
-    from .report.html import write_report
-    from .studies.executors import make_executor
-    from .studies.reproduce import run_study
-    from .studies.run_config import load_run_file
+    from ..report.html import write_report
+    from ..studies.executors import make_executor
+    from ..studies.reproduce import run_study
+    from ..studies.run_config import load_run_file
 
     what = str(file)
     ckpt: Path | None = None
@@ -406,7 +406,7 @@ def run_command(
         typer.echo(json.dumps(payload, allow_nan=False))
         return
     for r in results:
-        from .report.html import READERS
+        from ..report.html import READERS
 
         typer.echo(f"{r.kind} ({r.summary.get('preset')}): {READERS[r.kind](r.summary)[1]}")
     typer.echo(f"results in {out}" + (f", report {index}" if index else ""))
@@ -421,9 +421,9 @@ def reproduce_command(
     json_out: JsonOpt = False,
 ) -> None:
     """All studies of thesis chapter 4 for brake and sheet, results and DIR/index.html."""
-    from .report.html import write_report
-    from .studies.executors import make_executor
-    from .studies.reproduce import plan, reproduce
+    from ..report.html import write_report
+    from ..studies.executors import make_executor
+    from ..studies.reproduce import plan, reproduce
 
     what = "reproduce"
     try:
@@ -451,7 +451,7 @@ def reproduce_command(
     if json_out:
         typer.echo(json.dumps(payload))
         return
-    from .report.html import READERS
+    from ..report.html import READERS
 
     for r in results:
         typer.echo(f"{r.kind} ({r.summary.get('preset')}): {READERS[r.kind](r.summary)[1]}")

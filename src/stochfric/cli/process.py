@@ -17,7 +17,7 @@ from typing import Annotated, Any
 import numpy as np
 import typer
 
-from stochfric.cli_surface import (
+from stochfric.cli.surface import (
     DetrendOpt,
     FileArg,
     FillOpt,

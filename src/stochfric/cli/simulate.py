@@ -1,7 +1,6 @@
-"""Command line: parse, call, print.  No physics here.
+"""Command ``simulate``: the friction oscillator (method §5).  Parse, call, print; no physics here.
 
-``stochfric simulate`` runs the friction oscillator (method §5).  Errors in the
-input end with a one-line message and exit code 2, never with a traceback.
+Errors in the input end with a one-line message and exit code 2, never with a traceback.
 """
 
 from __future__ import annotations
@@ -21,21 +20,6 @@ from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
-from . import __version__
-from .cli_process import register as register_process_commands
-from .cli_studies import register as register_study_commands
-from .cli_surface import register as register_surface_commands
-
-app = typer.Typer(
-    name="stochfric",
-    help="Stochastic friction from measured surfaces, and what it does to friction-induced "
-    "vibration (after N. Gaus, KIT 2013).",
-    no_args_is_help=True,
-    add_completion=False,
-    pretty_exceptions_enable=False,
-    # plain help text: rich markup would swallow units such as "[kg]" and turn "A:B:NUM" into an emoji
-    rich_markup_mode=None,
-)
 err_console = Console(stderr=True)
 
 
@@ -86,21 +70,6 @@ def fail(message: str) -> typer.Exit:
     return typer.Exit(code=2)
 
 
-def _version(value: bool) -> None:
-    if value:
-        typer.echo(f"stochfric {__version__}")
-        raise typer.Exit()
-
-
-@app.callback()
-def _root(
-    version: Annotated[
-        bool, typer.Option("--version", callback=_version, is_eager=True, help="Show version.")
-    ] = False,
-) -> None:
-    """stochfric command line."""
-
-
 def _build_parameters(
     preset: str | None,
     gamma0: float | None,
@@ -120,8 +89,8 @@ def _build_parameters(
     """Turn the CLI options into OscillatorParameters (and the preset, if any)."""
     from dataclasses import replace
 
-    from .oscillator.parameters import OscillatorParameters, ParameterError, PhysicalParameters
-    from .process.presets import get_preset
+    from ..oscillator.parameters import OscillatorParameters, ParameterError, PhysicalParameters
+    from ..process.presets import get_preset
 
     if q is not None and forcing_amplitude is not None:
         raise ParameterError("give the forcing as --forcing-amplitude Q [N] or --q, not both")
@@ -210,7 +179,6 @@ def _progress_bar(enabled: bool) -> tuple[Progress | None, Any]:
     return prog, None
 
 
-@app.command()
 def simulate(
     preset: Annotated[
         PresetChoice | None,
@@ -297,13 +265,13 @@ def simulate(
     """Run the friction oscillator (deterministic, white-noise or contact-process friction)."""
     from dataclasses import replace
 
-    from .oscillator.friction_laws import get_law, pressure_law
-    from .oscillator.integrate import SimulationWarningCategory
-    from .oscillator.integrate import simulate as run_sim
-    from .oscillator.parameters import ParameterError
+    from ..oscillator.friction_laws import get_law, pressure_law
+    from ..oscillator.integrate import SimulationWarningCategory
+    from ..oscillator.integrate import simulate as run_sim
+    from ..oscillator.parameters import ParameterError
 
     try:
-        from .io_utils import check_output_path
+        from ..io_utils import check_output_path
 
         if out is not None:
             check_output_path(out, option="--out")
@@ -318,7 +286,7 @@ def simulate(
             raise ParameterError("--forcing-frequency and --eta are the same η; give one")
         process: Any = pre.process if pre is not None else None
         if process_file is not None:
-            from .process.model import load_process_model
+            from ..process.model import load_process_model
 
             process = load_process_model(process_file)
         if white_intensity is not None:
@@ -336,7 +304,7 @@ def simulate(
             if pre is None or process_file is not None:
                 raise ParameterError("--process-level psd_level rescales a preset's process: use --preset, "
                                      "not --process")
-            from .process.presets import psd_level_process
+            from ..process.presets import psd_level_process
 
             process = replace(psd_level_process(pre), base=process, sigma_zeta_rule=process.sigma_zeta_rule)
         # default: the pressure law (4.13) whenever a process model gives E[μ](p)
@@ -362,7 +330,7 @@ def simulate(
         te = tau_end if tau_end is not None else (pre.tau_end if pre else 50.0)
         step = dt if dt is not None else (pre.dt if pre else 0.005)
         if te > 0 and step > 0:
-            from .io_utils import require_memory
+            from ..io_utils import require_memory
 
             save_traj = plot is not None or out is not None
             need = _simulation_memory_bytes(
@@ -405,12 +373,12 @@ def simulate(
     summary["preset"] = pre.name if pre else None
     try:
         if out is not None:
-            from .io_utils import write_netcdf_atomic, write_text_atomic
+            from ..io_utils import write_netcdf_atomic, write_text_atomic
 
             write_netcdf_atomic(out / "simulation.nc", result.to_dataset())
             write_text_atomic(out / "simulation.json", json.dumps(summary, indent=1))
         if plot is not None:
-            from .report.figures import plot_phase_portrait
+            from ..report.figures import plot_phase_portrait
 
             plot_phase_portrait(result, plot)
     except OSError as exc:  # disk full, place removed meanwhile: the previous files stay intact
@@ -465,15 +433,6 @@ def _print_summary(result: Any, summary: dict[str, Any], out: Path | None, plot:
         con.print(f"wrote {plot}")
 
 
-register_surface_commands(app)
-register_process_commands(app)
-register_study_commands(app)
-
-
-def main() -> None:
-    """Console-script entry point."""
-    app()
-
-
-if __name__ == "__main__":  # pragma: no cover
-    main()
+def register(app: typer.Typer) -> None:
+    """Add the ``simulate`` command to ``app``."""
+    app.command("simulate")(simulate)

@@ -1,0 +1,5 @@
+"""``python -m stochfric.cli``."""
+
+from .app import main
+
+main()
