@@ -8,11 +8,11 @@ request that does not fit, with the figures and what to change.
 from __future__ import annotations
 
 from stochfric.contact.asperity import ContactError
+from stochfric.io_utils import available_memory_bytes
 
 __all__ = [
     "MEMORY_FIXED_BYTES",
     "MEMORY_PER_POINT_BYTES",
-    "available_memory_bytes",
     "check_memory",
     "estimate_peak_memory_bytes",
 ]
@@ -30,31 +30,19 @@ def estimate_peak_memory_bytes(grid: tuple[int, int], length_factor: int) -> int
     return MEMORY_FIXED_BYTES + MEMORY_PER_POINT_BYTES * int(grid[0]) * int(grid[1]) * int(length_factor)
 
 
-def available_memory_bytes() -> int | None:
-    """Memory available to new allocations [bytes] (Linux ``/proc/meminfo`` MemAvailable), or None."""
-    try:
-        with open("/proc/meminfo", encoding="ascii") as fh:
-            for line in fh:
-                if line.startswith("MemAvailable:"):
-                    return int(line.split()[1]) * 1024
-    except (OSError, ValueError, IndexError):
-        return None
-    return None
-
-
 def check_memory(grid: tuple[int, int], length_factor: int, available: int | None = None) -> int:
     """Refuse, before any work, an analysis whose long surfaces do not fit in memory.
 
     Returns the estimate [bytes]; raises :class:`ContactError` with the figures and what to change
-    when it exceeds the available memory (``available``; default :func:`available_memory_bytes`).
+    when it exceeds the available memory (``available``; default
+    :func:`stochfric.io_utils.available_memory_bytes`).
     """
     need = estimate_peak_memory_bytes(grid, length_factor)
     have = available_memory_bytes() if available is None else available
     if have is not None and need > have:
-        gib = 2.0**30
         raise ContactError(
-            f"the analysis needs about {need / gib:.1f} GiB (long surfaces of {grid[0]} × {length_factor * grid[1]} "
-            f"points) but {have / gib:.1f} GiB are available; use a smaller --length-factor, coarsen the map "
+            f"the analysis needs about {format_bytes(need)} (long surfaces of {grid[0]} × {length_factor * grid[1]} "
+            f"points) but {format_bytes(have)} are available; use a smaller --length-factor, coarsen the map "
             "(--step 2 or more), or crop it (--size-um with a cropped file)"
         )
     return need

@@ -111,5 +111,5 @@ def test_memory_estimate_refuses_before_work() -> None:
     est = estimate_peak_memory_bytes((1700, 1700), 10)
     assert 1118 * 2**20 < est < 4 * 2**30
     assert check_memory((200, 296), 10, available=2**30) == estimate_peak_memory_bytes((200, 296), 10)
-    with pytest.raises(ContactError, match=r"GiB.*--length-factor"):
+    with pytest.raises(ContactError, match=r"GB.*--length-factor"):
         check_memory((1700, 1700), 100, available=8 * 2**30)
