@@ -8,7 +8,7 @@ request that does not fit, with the figures and what to change.
 from __future__ import annotations
 
 from stochfric.contact.asperity import ContactError
-from stochfric.io_utils import available_memory_bytes
+from stochfric.io_utils import available_memory_bytes, format_bytes
 
 __all__ = [
     "MEMORY_FIXED_BYTES",
