@@ -298,6 +298,38 @@ class TaskSpec:
     extra: dict[str, Any] = field(default_factory=dict, compare=False)
 
 
+def task_for(
+    config: Any,
+    setup: StudySetup,
+    *,
+    index: int,
+    label: str,
+    model: str,
+    params: Sequence[OscillatorParameters],
+    runs: int | None = None,
+    x0: tuple[tuple[float, float], ...] | str | None = "config",
+    **fields: Any,
+) -> TaskSpec:
+    """A :class:`TaskSpec` with the fields every study fills the same way from its config and setup.
+
+    ``runs`` defaults to :func:`runs_for` ``(model, config.runs)``; ``x0="config"`` repeats
+    ``config.x0`` for every parameter set (``None`` if the config has none); the integrator
+    follows :func:`integrator_for`, the time grid, process and white-noise increment the setup.
+    ``fields`` sets the remaining :class:`TaskSpec` fields (``common_random_numbers``,
+    ``keep_trajectory_runs``, ``save_every``).
+    """
+    ps = tuple(params)
+    start = (None if config.x0 is None else tuple(config.x0 for _ in ps)) if isinstance(x0, str) else x0
+    return TaskSpec(
+        index=index, label=label, model=model, params=ps,
+        runs=runs_for(model, config.runs) if runs is None else runs,
+        tau_end=setup.tau_end, dt=setup.dt,
+        integrator=integrator_for(model, config.integrator, config.sde_integrator),
+        root_entropy=config.seed, process=setup.process, x0=start,
+        path_coordinate=config.path_coordinate, white_increment=setup.white_increment, **fields,
+    )  # fmt: skip
+
+
 def execute_task(spec: TaskSpec, threads: int | None = None) -> dict[str, npt.NDArray[Any]]:
     """Run one task; returns plain arrays (``x_gh``, ``t_gh`` trimmed to the longest run,
     ``stick_count``, ``n_belt_speed_without_stick``, optional ``trajectory``, ``warnings``).

@@ -51,12 +51,12 @@ from .base import StudyResult, provenance_attrs, sweep
 from .common import (
     StudySetup,
     TaskSpec,
-    integrator_for,
     law_for,
     model_choices,
     pad_events,
     runs_for,
     setup_for,
+    task_for,
     warnings_of,
     window_mask,
 )
@@ -135,14 +135,9 @@ def phase_tasks(config: DampingConfig, setup: StudySetup, phase_force: float, da
     for k, model in enumerate(config.models):
         params = tuple(setup.parameters(phase_force, d) for d in dampings)
         runs = min(runs_for(model, config.runs), config.phase_runs)
-        tasks.append(TaskSpec(
-            index=first_index + k, label=f"{model} phase N={phase_force:g}", model=model, params=params,
-            runs=runs, tau_end=setup.tau_end, dt=setup.dt,
-            integrator=integrator_for(model, config.integrator, config.sde_integrator),
-            root_entropy=config.seed, process=setup.process,
-            x0=None if config.x0 is None else tuple(config.x0 for _ in params),
-            common_random_numbers=config.common_random_numbers, path_coordinate=config.path_coordinate,
-            white_increment=setup.white_increment,
+        tasks.append(task_for(
+            config, setup, index=first_index + k, label=f"{model} phase N={phase_force:g}", model=model,
+            params=params, runs=runs, common_random_numbers=config.common_random_numbers,
             keep_trajectory_runs=runs, save_every=config.save_every,
         ))
     return tasks
@@ -158,14 +153,9 @@ def damping_tasks(config: DampingConfig) -> tuple[list[TaskSpec], dict[str, Any]
     for model in config.models:
         for nf in forces:
             params = tuple(setup.parameters(nf, d) for d in config.damping)
-            tasks.append(TaskSpec(
-                index=idx, label=f"{model} N={nf:g}", model=model, params=params,
-                runs=runs_for(model, config.runs), tau_end=setup.tau_end, dt=setup.dt,
-                integrator=integrator_for(model, config.integrator, config.sde_integrator),
-                root_entropy=config.seed, process=setup.process,
-                x0=None if config.x0 is None else tuple(config.x0 for _ in params),
-                common_random_numbers=config.common_random_numbers, path_coordinate=config.path_coordinate,
-                white_increment=setup.white_increment,
+            tasks.append(task_for(
+                config, setup, index=idx, label=f"{model} N={nf:g}", model=model, params=params,
+                common_random_numbers=config.common_random_numbers,
             ))
             idx += 1
     pf = config.phase_force if config.phase_force is not None else default_phase_force(

@@ -22,11 +22,10 @@ from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
 from .base import StudyResult, provenance_attrs, sweep
 from .common import (
     TaskSpec,
-    integrator_for,
     model_choices,
     pad_events,
-    runs_for,
     setup_for,
+    task_for,
     warnings_of,
     window_mask,
 )
@@ -46,14 +45,7 @@ def forcing_tasks(config: ForcingConfig) -> tuple[list[TaskSpec], dict[str, Any]
     for model in config.models:
         for q in config.forcing_q:
             params = tuple(setup.parameters(nf, d, q * setup.preset.stiffness, eta) for eta in config.eta)
-            tasks.append(TaskSpec(
-                index=idx, label=f"{model} q={q:g}", model=model, params=params,
-                runs=runs_for(model, config.runs), tau_end=setup.tau_end, dt=setup.dt,
-                integrator=integrator_for(model, config.integrator, config.sde_integrator),
-                root_entropy=config.seed, process=setup.process,
-                x0=None if config.x0 is None else tuple(config.x0 for _ in params),
-                path_coordinate=config.path_coordinate, white_increment=setup.white_increment,
-            ))
+            tasks.append(task_for(config, setup, index=idx, label=f"{model} q={q:g}", model=model, params=params))
             idx += 1
     return tasks, {"setup": setup, "normal_force": nf, "damping": d}
 

@@ -59,11 +59,10 @@ from ..io_utils import package_versions
 from .base import StudyResult, provenance_attrs, sweep
 from .common import (
     TaskSpec,
-    integrator_for,
     model_choices,
     pad_events,
-    runs_for,
     setup_for,
+    task_for,
     warnings_of,
 )
 from .config import LyapunovConfig
@@ -164,13 +163,9 @@ def lyapunov_tasks(config: LyapunovConfig) -> tuple[list[TaskSpec], dict[str, An
                     base = config.x0 if config.x0 is not None else (0.0, p.gamma0)
                     params += [p, p, p]
                     x0s += [(float(base[0]) + k * config.perturbation, float(base[1])) for k in (0, 1, 2)]
-                tasks.append(TaskSpec(
-                    index=idx, label=f"{model} q={q:g} N={nf:g}", model=model, params=tuple(params),
-                    runs=runs_for(model, config.runs), tau_end=setup.tau_end, dt=setup.dt,
-                    integrator=integrator_for(model, config.integrator, config.sde_integrator),
-                    root_entropy=config.seed, process=setup.process, x0=tuple(x0s),
-                    common_random_numbers=True, path_coordinate=config.path_coordinate,
-                    white_increment=setup.white_increment,
+                tasks.append(task_for(
+                    config, setup, index=idx, label=f"{model} q={q:g} N={nf:g}", model=model, params=params,
+                    x0=tuple(x0s), common_random_numbers=True,
                 ))
                 idx += 1
     return tasks, {"setup": setup, "forces": forces, "damping": d}

@@ -22,11 +22,11 @@ from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
 from .base import StudyResult, provenance_attrs, sweep
 from .common import (
     TaskSpec,
-    integrator_for,
     model_choices,
     pad_events,
     runs_for,
     setup_for,
+    task_for,
     warnings_of,
     window_mask,
 )
@@ -50,15 +50,9 @@ def normal_force_tasks(config: NormalForceConfig) -> tuple[list[TaskSpec], dict[
         for d in dampings:
             params = tuple(setup.parameters(nf, d) for nf in forces)
             runs = runs_for(model, config.runs)
-            tasks.append(TaskSpec(
-                index=idx, label=f"{model} D={d:g}", model=model, params=params, runs=runs,
-                tau_end=setup.tau_end, dt=setup.dt,
-                integrator=integrator_for(model, config.integrator, config.sde_integrator),
-                root_entropy=config.seed, process=setup.process,
-                x0=None if config.x0 is None else tuple(config.x0 for _ in params),
-                path_coordinate=config.path_coordinate,
-                white_increment=setup.white_increment, keep_trajectory_runs=min(config.phase_runs, runs),
-                save_every=config.save_every,
+            tasks.append(task_for(
+                config, setup, index=idx, label=f"{model} D={d:g}", model=model, params=params, runs=runs,
+                keep_trajectory_runs=min(config.phase_runs, runs), save_every=config.save_every,
             ))
             idx += 1
     return tasks, {"setup": setup, "forces": forces, "dampings": dampings}
