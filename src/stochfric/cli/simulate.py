@@ -192,6 +192,11 @@ def simulate(
         typer.Option(help="Table 4.1 law or the pressure law (4.13); default: pressure with a "
                      "preset or process model, III otherwise."),
     ] = None,
+    mu0: Annotated[
+        float,
+        typer.Option("--mu0", help="Static coefficient μ0 of the pressure law (4.13) [-]; thesis 0.4. It must "
+                     "exceed E[μ](p) of the process model (the drop to the kinetic value)."),
+    ] = 0.4,
     normal_force: Annotated[
         float | None, typer.Option(help="Normal force N [newtons] (needs stiffness).")
     ] = None,
@@ -317,7 +322,15 @@ def simulate(
                     "pressure p = N/A: use --preset, or --process FILE with physical parameters and "
                     "--contact-area"
                 )
-            law = pressure_law(process.mean(params.pressure))
+            mu_fit = process.mean(params.pressure)
+            if mu_fit > mu0:
+                raise ParameterError(
+                    f"the pressure law (4.13) needs E[μ](p) <= μ0, but the process model gives E[μ] = {mu_fit:.4g} "
+                    f"at p = {params.pressure / 1e6:.4g} MPa and μ0 = {mu0:g}: the kinetic friction would turn "
+                    f"negative at high sliding speed; give a larger static coefficient (--mu0 {mu_fit + 0.2:.2g} or "
+                    "more) or another law (--friction-law III)"
+                )
+            law = pressure_law(mu_fit, mu0=mu0)
         else:
             law = get_law(law_name)
         if model is not ModelChoice.deterministic and process is None and not (

@@ -24,7 +24,7 @@ import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal, Protocol, overload, runtime_checkable
+from typing import Any, Literal, Protocol, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -143,7 +143,6 @@ class ModelFunction:
         return cls(a=data["a"], b=data["b"], c=data["c"])
 
 
-@runtime_checkable
 class FrictionProcessModel(Protocol):
     """What the oscillator needs from a friction-process model (method §4e, §5.1, §5.2).
 
