@@ -155,10 +155,10 @@ def solve_ivp_contact(case: Case, proc: npt.NDArray[np.float64], tau_end: float,
         if stick:
             limb = max(lim, n * (mu0 + muhat(path)))
             # stick: x1 = x1s + γ0 (τ − τs); breakaway where |x1 + 2Dγ0| = limb (closed form)
-            tb = t + ((limb - 2 * d * g0) - x1) / g0
+            tb = t + max(0.0, ((limb - 2 * d * g0) - x1) / g0)
             if tb >= tau_end:
                 break
-            x1 = limb - 2 * d * g0
+            x1 += g0 * (tb - t)
             t = tb
             s = 1.0
             stick = False
@@ -179,7 +179,13 @@ def solve_ivp_contact(case: Case, proc: npt.NDArray[np.float64], tau_end: float,
         if sol.status != 1:
             break
         ye = sol.y_events[0][0]
-        t, x1, x2, path = float(sol.t_events[0][0]), float(ye[0]), g0, float(ye[2])
+        te = float(sol.t_events[0][0])
+        if te - t < 1e-9:
+            # the first slip runs against the unbalanced force (friction exceeds it): carried
+            # on with the belt for one Δτ, then slip is tried again (the kernels' rule)
+            x1, x2, t = x1 + g0 * DT, g0, t + DT
+            continue
+        t, x1, x2, path = te, float(ye[0]), g0, float(ye[2])
         if abs(x1 + 2 * d * g0) <= lim:
             xs.append(x1)
             stick = True

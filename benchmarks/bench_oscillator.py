@@ -19,14 +19,17 @@ that same process, so the figures compare like with like on whatever machine run
   issue 13: ``white euler, pcg64 buffer`` (numpy's normals drawn into a buffer,
   ``white_stream="pcg64"``) and ``contact euler, generate per run`` (``process.generate`` per
   trajectory instead of one batch evaluation).
-* **before** (``--before REV``) — the same rates with the package of git revision ``REV``,
-  timed first in a subprocess on the same machine; ratios before/now per model.
+* **before** (``--before REV``) — the rates of the issue-13 models with the package of git
+  revision ``REV`` (in a subprocess) and with this one, three rounds alternately, best of each
+  (so both see the same load); ratios before/now per model.
 * **baselines** — :func:`stochfric.oscillator.reference.euler_python` (the thesis's Euler
   method as a plain Python loop), :func:`em_python` below (the same loop with the
   Euler–Maruyama update, increments pre-drawn), and
   :func:`stochfric.oscillator.reference.simulate_solve_ivp` (scipy ``solve_ivp`` with
   events, DOP853, rtol 1e-12); ratios kernel/python-loop and accurate/solve_ivp.  Each
   baseline's X_gh is checked against the kernel's, so both do the same work.
+* **generator** — ns per normal of the kernel's Philox4x32-10 blocks alone and with the
+  Box–Muller transform (compiled loop over 32 lanes), and of numpy's PCG64 ``standard_normal``.
 * **scaling** — Euler and Euler–Maruyama ensembles with ``workers=1`` vs ``workers=2``
   (repeats interleaved, best of each; CPU time / wall time shows whether two threads ran).
 * **headline** — 10,000 white-noise runs of τ = 50 at Δτ = 0.005 (brake, N = 5600 N) on all
@@ -342,6 +345,55 @@ def _kernel_only(case: Case, dw: npt.NDArray[np.float64], noise: int) -> Callabl
     return call
 
 
+# --- the normal generator alone -----------------------------------------------------------------
+
+@numba.njit(error_model="numpy")
+def _philox_words(keys: npt.NDArray[np.uint64], npairs: int, out: npt.NDArray[np.uint64]) -> None:
+    """Philox4x32-10 blocks only (two 64-bit words per lane and pair), lanes as in the kernel."""
+    zero = np.uint64(0)
+    for p in range(npairs):
+        c = np.uint64(p)
+        for j in range(keys.shape[0]):
+            k = keys[j]
+            o0, o1, o2, o3 = _ph.philox4x32_10(c, zero, zero, zero, k & _ph._MASK32, k >> _ph._S32)
+            out[0, j] = (o1 << _ph._S32) | o0
+            out[1, j] = (o3 << _ph._S32) | o2
+
+
+@numba.njit(error_model="numpy")
+def _philox_normals(keys: npt.NDArray[np.uint64], npairs: int, out: npt.NDArray[np.float64]) -> None:
+    """Philox4x32-10 + Box–Muller: the kernel's normals (two per lane and pair)."""
+    for p in range(npairs):
+        c = np.uint64(p)
+        for j in range(keys.shape[0]):
+            out[0, j], out[1, j] = _ph.pair_normals(keys[j], c)
+
+
+def _generator_rates(rep: Report, cfg: dict[str, Any]) -> None:
+    """ns per normal: Philox blocks alone, Philox + Box–Muller (32 lock-step lanes, compiled
+    loop), and numpy's ``Generator(PCG64).standard_normal`` into a buffer."""
+    lanes = _k.LOCKSTEP
+    npairs = max(1, int(cfg["runs"]) * round(float(cfg["tau_end"]) / DT) // (2 * lanes) // 8)
+    keys = _ph.trajectory_keys(np.random.SeedSequence(1), np.zeros(lanes, dtype=np.int64),
+                               np.arange(lanes))
+    words = np.zeros((2, lanes), dtype=np.uint64)
+    normals = np.zeros((2, lanes))
+    _philox_words(keys, 1, words)
+    _philox_normals(keys, 1, normals)
+    n = 2 * lanes * npairs
+    reps = int(cfg["repeats"])
+    for what, fn in (("Philox4x32-10 words", lambda: _philox_words(keys, npairs, words)),
+                     ("Philox4x32-10 + Box–Muller", lambda: _philox_normals(keys, npairs, normals))):
+        wall, cpu = _time(fn, reps)
+        rep.entries.append(Entry("generator", "-", what, lanes, n, wall, cpu, n / wall,
+                                 "per normal, 32 lanes, compiled loop"))
+    buf = np.empty(n)
+    rng = np.random.Generator(np.random.PCG64(1))
+    wall, cpu = _time(lambda: rng.standard_normal(out=buf), reps)
+    rep.entries.append(Entry("generator", "-", "numpy PCG64 standard_normal", 1, n, wall, cpu,
+                             n / wall, "per normal, into a buffer"))
+
+
 def _xgh_diff(a: npt.ArrayLike, b: npt.NDArray[np.float64]) -> float:
     """Largest |ΔX_gh| relative to max |X_gh| between a baseline and the kernel (inf: count)."""
     av = np.asarray(a, dtype=np.float64)
@@ -461,7 +513,7 @@ law = pressure_law(pre.process.mean(p.pressure))
 out = {}
 for model, integ, n in (("deterministic", "euler", runs), ("white", "euler", runs),
                         ("white", "milstein", runs), ("contact", "euler", runs),
-                        ("contact", "accurate", max(1, runs // 16))):
+                        ("contact", "accurate", max(1, runs // 16))):  # = BEFORE_CONFIGS
     kw = dict(model=model, law=law, process=pre.process, x0=(0.0, p.gamma0), dt=dt,
               integrator=integ, seed=1, workers=1)
     simulate(p, runs=1, tau_end=1.0, **kw)
@@ -475,25 +527,50 @@ print(json.dumps(out))
 """
 
 
-def before_rates(ref: str, size: str) -> dict[str, float]:
+#: (model, integrator) pairs of the before/after table.
+BEFORE_CONFIGS = (("deterministic", "euler"), ("white", "euler"), ("white", "milstein"),
+                  ("contact", "euler"), ("contact", "accurate"))
+
+
+def before_after(ref: str, cfg: dict[str, Any], rounds: int = 3,
+                 log: Callable[[str], None] | None = None) -> tuple[dict[str, float], dict[str, float]]:
     """Seconds per trajectory-step of ``simulate`` (one core, brake) with the package of
-    revision ``ref`` (``git archive`` of its ``src`` into a temporary directory, run in a
-    subprocess with that directory first on ``PYTHONPATH``)."""
+    revision ``ref`` and with this one, ``rounds`` times alternately, best of each.
+
+    ``ref``: ``git archive`` of its ``src`` into a temporary directory, timed by
+    :data:`_BEFORE_SNIPPET` in a subprocess with that directory first on ``PYTHONPATH`` (its
+    numba cache kept in the directory across rounds).  Alternating the two keeps both under
+    the same load of a shared machine.
+    """
     import subprocess
     import tempfile
 
-    cfg = SIZES[size]
+    say = log or (lambda _m: None)
     repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    case = brake_case()
+    runs, tau, reps = int(cfg["runs"]), float(cfg["tau_end"]), int(cfg["repeats"])
+    before: dict[str, float] = {}
+    after: dict[str, float] = {}
     with tempfile.TemporaryDirectory(prefix="stochfric-before-") as tmp:
         arch = subprocess.run(["git", "archive", ref, "src"], cwd=repo, check=True,
                               capture_output=True).stdout
         subprocess.run(["tar", "-x", "-C", tmp], input=arch, check=True)
         env = dict(os.environ, PYTHONPATH=os.path.join(tmp, "src"),
                    NUMBA_CACHE_DIR=os.path.join(tmp, "numba-cache"))
-        res = subprocess.run([sys.executable, "-c", _BEFORE_SNIPPET, str(cfg["runs"]),
-                              str(cfg["tau_end"]), str(cfg["repeats"]), str(DT)],
-                             env=env, check=True, capture_output=True, text=True)
-    return {k: float(v) for k, v in json.loads(res.stdout.strip().splitlines()[-1]).items()}
+        for r in range(rounds):
+            say(f"  before/after round {r + 1}/{rounds} (revision {ref} in a subprocess) ...")
+            res = subprocess.run([sys.executable, "-c", _BEFORE_SNIPPET, str(runs), str(tau),
+                                  str(reps), str(DT)], env=env, check=True, capture_output=True,
+                                 text=True)
+            got = json.loads(res.stdout.strip().splitlines()[-1])
+            for k, v in got.items():
+                before[k] = min(before.get(k, math.inf), float(v))
+            for model, integ in BEFORE_CONFIGS:
+                n = max(1, runs // 16) if integ == "accurate" else runs
+                wall, _ = _time(functools.partial(_sim, case, model, integ, n, tau), reps)
+                key = f"{model} {integ}"
+                after[key] = min(after.get(key, math.inf), wall / (n * round(tau / DT)))
+    return before, after
 
 
 def machine_info() -> dict[str, Any]:
@@ -523,19 +600,21 @@ def run_benchmarks(size: str = "quick", *, log: Callable[[str], None] | None = N
     """Run the suite at ``size`` (``full`` | ``quick`` | ``smoke``) and return the report.
 
     ``before``: a git revision; its package's rates are measured first, in a subprocess on
-    the same machine (:func:`before_rates`), and reported as ``before`` entries and
+    the same machine (:func:`before_after`), and reported as ``before``/``after`` entries and
     before/after ratios.
     """
     cfg = SIZES[size]
     say = log or (lambda _m: None)
     rep = Report(size=size, machine=machine_info())
     if before is not None:
-        say(f"  timing revision {before} (subprocess, compiles its kernels first) ...")
-        for what, sec in before_rates(before, size).items():
-            runs = int(cfg["acc_runs"] if "accurate" in what else cfg["runs"])
+        b_sec, a_sec = before_after(before, cfg, log=say)
+        for what in b_sec:
+            runs = max(1, int(cfg["runs"]) // 16) if "accurate" in what else int(cfg["runs"])
             steps = runs * round(float(cfg["tau_end"]) / DT)
-            rep.entries.append(Entry("before", "brake", what, runs, steps, sec * steps, math.nan,
-                                     1.0 / sec, f"revision {before}"))
+            rep.entries.append(Entry("before", "brake", what, runs, steps, b_sec[what] * steps,
+                                     math.nan, 1.0 / b_sec[what], f"revision {before}"))
+            rep.entries.append(Entry("after", "brake", what, runs, steps, a_sec[what] * steps,
+                                     math.nan, 1.0 / a_sec[what], "this revision, alternated"))
     reps = int(cfg["repeats"])
     cases = [brake_case(), demo_case()]
 
@@ -549,6 +628,7 @@ def run_benchmarks(size: str = "quick", *, log: Callable[[str], None] | None = N
     # 1. rates on one core, and the baselines
     for case in cases:
         _case_rates(rep, case, cfg)
+    _generator_rates(rep, cfg)
     wall, cpu = _time(lambda: _sim(cases[0], "deterministic", "euler", 1, DT), reps)
     rep.entries.append(Entry("overhead", "brake", "simulate call, 1 run x 1 step", 1, 1, wall,
                              cpu, 1.0 / wall, "calls/s"))
@@ -616,9 +696,9 @@ def run_benchmarks(size: str = "quick", *, log: Callable[[str], None] | None = N
     rep.ratios["brake: white euler / deterministic euler (time)"] = ns("white euler") / ns("deterministic euler")
     rep.ratios["brake: contact euler / deterministic euler (time)"] = ns("contact euler") / ns("deterministic euler")
     if before is not None:
-        for what in ("deterministic euler", "white euler", "white milstein", "contact euler",
-                     "contact accurate"):
-            rep.ratios[f"brake: {what}, {before} / now (time)"] = ns(what, "before") / ns(what)
+        for model, integ in BEFORE_CONFIGS:
+            what = f"{model} {integ}"
+            rep.ratios[f"brake: {what}, {before} / now (time)"] = ns(what, "before") / ns(what, "after")
     if hasattr(os, "getloadavg"):
         rep.machine["loadavg_end"] = os.getloadavg()[0]
     return rep

@@ -170,13 +170,64 @@ def _fill_pair(
     keys: npt.NDArray[np.uint64], pair: np.uint64, sqdt: float, wk: npt.NDArray[np.float64],
     zodd: npt.NDArray[np.float64],
 ) -> None:  # pragma: no cover
-    """``wk = R_{2p} √Δτ`` and ``zodd = R_{2p+1}`` for every lane (``pair = p``): one Philox
-    block and one Box–Muller pair per lane, branch-free.  A function of its own (not inlined)
-    so that the compiler vectorises this loop across the lanes."""
+    """``wk = R_{2p} √Δτ`` and ``zodd = R_{2p+1} √Δτ`` for every lane (``pair = p``): one
+    Philox block and one Box–Muller pair per lane, branch-free.  A function of its own (not
+    inlined) so that the compiler vectorises this loop across the lanes."""
     for jj in range(keys.shape[0]):
         z0, z1 = pair_normals(keys[jj], pair)
         wk[jj] = z0 * sqdt
-        zodd[jj] = z1
+        zodd[jj] = z1 * sqdt
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _fast_pass_contact(
+    ng: int, dt: float, vx1: npt.NDArray[np.float64], vx2: npt.NDArray[np.float64],
+    vstk: npt.NDArray[np.float64], vs: npt.NDArray[np.float64], vpath: npt.NDArray[np.float64],
+    vlimb: npt.NDArray[np.float64], vdone: npt.NDArray[np.float64], cg: npt.NDArray[np.float64],
+    cc2: npt.NDArray[np.float64], cvs: npt.NDArray[np.float64], cp0: npt.NDArray[np.float64],
+    cp1: npt.NDArray[np.float64], cp2: npt.NDArray[np.float64], cp3: npt.NDArray[np.float64],
+    cd2: npt.NDArray[np.float64], cn: npt.NDArray[np.float64], cpdx: npt.NDArray[np.float64],
+    pseg: npt.NDArray[np.float64], pv0: npt.NDArray[np.float64], pv1: npt.NDArray[np.float64],
+    position: bool, mass_path: bool,
+) -> int:  # pragma: no cover
+    """Branch-free fast pass of :func:`run_fixed_step_batch` for a group with the contact
+    process (no white noise): μ = μ_k + μ̂, μ̂ interpolated from the lane's cached segment
+    ``[pseg, pseg + 1]`` with the arithmetic of :func:`process_value_row`.  Lanes that cannot
+    complete the step (an event, or the reading coordinate left the segment) are marked in
+    ``vdone``; returns their number.  A loop of its own so that the plain fast pass keeps its
+    SIMD code."""
+    nmiss = 0
+    for jj in range(ng):
+        a1 = vx1[jj]
+        a2 = vx2[jj]
+        gam = cg[jj]
+        x1s = a1 + gam * dt
+        ok_stick = abs(x1s + cc2[jj]) <= vlimb[jj]
+        vr = gam - a2
+        s = 1.0 if vr > 0.0 else -1.0
+        avr = abs(vr)
+        v = cvs[jj] * avr
+        mu = cp0[jj] / (1.0 + cp1[jj] * v) + cp2[jj] + cp3[jj] * v * v
+        u = (a1 if position else vpath[jj]) / cpdx[jj]
+        fl = math.floor(u)
+        w = u - fl
+        hit = fl == pseg[jj]
+        mu += (1.0 - w) * pv0[jj] + w * pv1[jj]
+        drift = -a1 - cd2[jj] * a2 + cn[jj] * mu * s
+        x1n = a1 + a2 * dt
+        x2n = a2 + drift * dt
+        ok_slip = (vr != 0.0) & ((gam - x2n) * s > 0.0)
+        dp = abs(x1n - a1) if mass_path else avr * dt
+        is_st = vstk[jj] != 0.0
+        good = ok_stick if is_st else (ok_slip & hit)
+        slip_ok = good & (not is_st)
+        vx1[jj] = (x1s if is_st else x1n) if good else a1
+        vx2[jj] = (gam if is_st else x2n) if good else a2
+        vpath[jj] = vpath[jj] + dp if slip_ok else vpath[jj]
+        vs[jj] = s if slip_ok else vs[jj]
+        vdone[jj] = 1.0 if good else 0.0
+        nmiss += 0 if good else 1
+    return nmiss
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
@@ -544,21 +595,22 @@ def run_fixed_step_batch(
             for jj in range(ng):
                 _load_segment(jj, g0 + jj, vx1[jj] if position else vpath[jj], cpdx[jj], proc,
                               n_proc, pseg, pv0, pv1)
-        if philox:
-            gkeys = keys[g0:g1]
-            zodd = np.zeros(ng)  # R_{k+1}, computed with R_k from the same Philox block
+        wbuf = wk
+        wodd = np.zeros(ng)  # ΔW_{k+1}, from the same Philox block as ΔW_k
+        gkeys = keys[g0:g1] if philox else keys[:0]
         for k in range(nsteps):
             if white:
                 if not philox:
                     for jj in range(ng):
                         wk[jj] = dw[g0 + jj, k]
                 elif k & 1:
-                    for jj in range(ng):
-                        wk[jj] = zodd[jj] * sqdt
+                    wk = wodd
                 else:
-                    # one Philox block per lane gives R_k and R_{k+1}: branch-free, vectorised
-                    _fill_pair(gkeys, np.uint64(k >> 1), sqdt, wk, zodd)
-            if vector:
+                    # one Philox block per lane gives ΔW_k and ΔW_{k+1}: branch-free, vectorised
+                    wk = wbuf
+                    _fill_pair(gkeys, np.uint64(k >> 1), sqdt, wk, wodd)
+            nmiss = 0  # lanes the fast pass could not complete
+            if vector and not contact:
                 # fast pass, branch-free: both candidates, then a select per lane
                 for jj in range(ng):
                     a1 = vx1[jj]
@@ -571,13 +623,6 @@ def run_fixed_step_batch(
                     avr = abs(vr)
                     v = cvs[jj] * avr
                     mu = cp0[jj] / (1.0 + cp1[jj] * v) + cp2[jj] + cp3[jj] * v * v
-                    hit = True
-                    if contact:
-                        u = (a1 if position else vpath[jj]) / cpdx[jj]
-                        fl = math.floor(u)
-                        w = u - fl
-                        hit = fl == pseg[jj]
-                        mu += (1.0 - w) * pv0[jj] + w * pv1[jj]
                     drift = -a1 - cd2[jj] * a2 + cn[jj] * mu * s
                     x1n = a1 + a2 * dt
                     if white:
@@ -593,13 +638,21 @@ def run_fixed_step_batch(
                     ok_slip = (vr != 0.0) & ((gam - x2n) * s > 0.0)
                     dp = abs(x1n - a1) if mass_path else avr * dt
                     is_st = vstk[jj] != 0.0
-                    good = ok_stick if is_st else (ok_slip & hit)
+                    good = ok_stick if is_st else ok_slip
                     slip_ok = good & (not is_st)
                     vx1[jj] = (x1s if is_st else x1n) if good else a1
                     vx2[jj] = (gam if is_st else x2n) if good else a2
                     vpath[jj] = vpath[jj] + dp if slip_ok else vpath[jj]
                     vs[jj] = s if slip_ok else vs[jj]
                     vdone[jj] = 1.0 if good else 0.0
+                    nmiss += 0 if good else 1
+            elif vector:
+                # the same fast pass with the contact process, read from the lanes' segment
+                # caches (the same interpolation as process_value_row); a lane whose reading
+                # coordinate left its segment takes the full step
+                nmiss += _fast_pass_contact(ng, dt, vx1, vx2, vstk, vs, vpath, vlimb, vdone, cg,
+                                            cc2, cvs, cp0, cp1, cp2, cp3, cd2, cn, cpdx, pseg, pv0,
+                                            pv1, position, mass_path)
             else:
                 # scalar fast pass (forcing or a tabulated law in the group)
                 for jj in range(ng):
@@ -649,7 +702,10 @@ def run_fixed_step_batch(
                                 vs[jj] = s
                                 done = True
                     vdone[jj] = 1.0 if done else 0.0
+                    nmiss += 0 if done else 1
             save = nsave > 0 and (k + 1) % decimate == 0
+            if nmiss == 0 and not save:
+                continue  # no lane needs the full step (most steps): skip the per-lane loop
             for jj in range(ng):
                 j = g0 + jj
                 if vdone[jj] == 0.0:
