@@ -595,7 +595,6 @@ def run_fixed_step_batch(
             for jj in range(ng):
                 _load_segment(jj, g0 + jj, vx1[jj] if position else vpath[jj], cpdx[jj], proc,
                               n_proc, pseg, pv0, pv1)
-        wbuf = wk
         wodd = np.zeros(ng)  # ΔW_{k+1}, from the same Philox block as ΔW_k
         gkeys = keys[g0:g1] if philox else keys[:0]
         for k in range(nsteps):
@@ -604,10 +603,10 @@ def run_fixed_step_batch(
                     for jj in range(ng):
                         wk[jj] = dw[g0 + jj, k]
                 elif k & 1:
-                    wk = wodd
+                    for jj in range(ng):
+                        wk[jj] = wodd[jj]
                 else:
                     # one Philox block per lane gives ΔW_k and ΔW_{k+1}: branch-free, vectorised
-                    wk = wbuf
                     _fill_pair(gkeys, np.uint64(k >> 1), sqdt, wk, wodd)
             nmiss = 0  # lanes the fast pass could not complete
             if vector and not contact:
