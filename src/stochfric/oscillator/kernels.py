@@ -180,6 +180,41 @@ def _fill_pair(
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _lane_candidates(
+    a1: float, a2: float, gam: float, c2: float, limb: float, vscale: float, p0: float,
+    p1: float, p2: float, p3: float, dt: float,
+) -> tuple[float, bool, float, float, float, float]:  # pragma: no cover
+    """Fast pass, one lane: the stick candidate ``x1s`` and whether it holds (4.2), and for the
+    slip candidate ``v_rel``, ``s``, ``|v_rel|`` and μ_k in rational form (the arithmetic of
+    :func:`_advance`)."""
+    x1s = a1 + gam * dt
+    ok_stick = abs(x1s + c2) <= limb
+    vr = gam - a2
+    s = 1.0 if vr > 0.0 else -1.0
+    avr = abs(vr)
+    v = vscale * avr
+    mu = p0 / (1.0 + p1 * v) + p2 + p3 * v * v
+    return x1s, ok_stick, vr, s, avr, mu
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _lane_commit(
+    jj: int, good: bool, is_st: bool, x1s: float, x1n: float, x2n: float, gam: float, a1: float,
+    a2: float, dp: float, s: float, vx1: npt.NDArray[np.float64], vx2: npt.NDArray[np.float64],
+    vpath: npt.NDArray[np.float64], vs: npt.NDArray[np.float64], vdone: npt.NDArray[np.float64],
+) -> int:  # pragma: no cover
+    """Fast pass, one lane: select the stick or slip candidate (or keep the state when the
+    lane needs the full step) without branches; returns 1 when it needs the full step."""
+    slip_ok = good & (not is_st)
+    vx1[jj] = (x1s if is_st else x1n) if good else a1
+    vx2[jj] = (gam if is_st else x2n) if good else a2
+    vpath[jj] = vpath[jj] + dp if slip_ok else vpath[jj]
+    vs[jj] = s if slip_ok else vs[jj]
+    vdone[jj] = 1.0 if good else 0.0
+    return 0 if good else 1
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _fast_pass_contact(
     ng: int, dt: float, vx1: npt.NDArray[np.float64], vx2: npt.NDArray[np.float64],
     vstk: npt.NDArray[np.float64], vs: npt.NDArray[np.float64], vpath: npt.NDArray[np.float64],
@@ -201,13 +236,8 @@ def _fast_pass_contact(
         a1 = vx1[jj]
         a2 = vx2[jj]
         gam = cg[jj]
-        x1s = a1 + gam * dt
-        ok_stick = abs(x1s + cc2[jj]) <= vlimb[jj]
-        vr = gam - a2
-        s = 1.0 if vr > 0.0 else -1.0
-        avr = abs(vr)
-        v = cvs[jj] * avr
-        mu = cp0[jj] / (1.0 + cp1[jj] * v) + cp2[jj] + cp3[jj] * v * v
+        x1s, ok_stick, vr, s, avr, mu = _lane_candidates(a1, a2, gam, cc2[jj], vlimb[jj], cvs[jj],
+                                                         cp0[jj], cp1[jj], cp2[jj], cp3[jj], dt)
         u = (a1 if position else vpath[jj]) / cpdx[jj]
         fl = math.floor(u)
         w = u - fl
@@ -220,13 +250,8 @@ def _fast_pass_contact(
         dp = abs(x1n - a1) if mass_path else avr * dt
         is_st = vstk[jj] != 0.0
         good = ok_stick if is_st else (ok_slip & hit)
-        slip_ok = good & (not is_st)
-        vx1[jj] = (x1s if is_st else x1n) if good else a1
-        vx2[jj] = (gam if is_st else x2n) if good else a2
-        vpath[jj] = vpath[jj] + dp if slip_ok else vpath[jj]
-        vs[jj] = s if slip_ok else vs[jj]
-        vdone[jj] = 1.0 if good else 0.0
-        nmiss += 0 if good else 1
+        nmiss += _lane_commit(jj, good, is_st, x1s, x1n, x2n, gam, a1, a2, dp, s, vx1, vx2, vpath,
+                              vs, vdone)
     return nmiss
 
 
@@ -615,13 +640,9 @@ def run_fixed_step_batch(
                     a1 = vx1[jj]
                     a2 = vx2[jj]
                     gam = cg[jj]
-                    x1s = a1 + gam * dt
-                    ok_stick = abs(x1s + cc2[jj]) <= vlimb[jj]
-                    vr = gam - a2
-                    s = 1.0 if vr > 0.0 else -1.0
-                    avr = abs(vr)
-                    v = cvs[jj] * avr
-                    mu = cp0[jj] / (1.0 + cp1[jj] * v) + cp2[jj] + cp3[jj] * v * v
+                    x1s, ok_stick, vr, s, avr, mu = _lane_candidates(
+                        a1, a2, gam, cc2[jj], vlimb[jj], cvs[jj], cp0[jj], cp1[jj], cp2[jj],
+                        cp3[jj], dt)
                     drift = -a1 - cd2[jj] * a2 + cn[jj] * mu * s
                     x1n = a1 + a2 * dt
                     if white:
@@ -638,13 +659,8 @@ def run_fixed_step_batch(
                     dp = abs(x1n - a1) if mass_path else avr * dt
                     is_st = vstk[jj] != 0.0
                     good = ok_stick if is_st else ok_slip
-                    slip_ok = good & (not is_st)
-                    vx1[jj] = (x1s if is_st else x1n) if good else a1
-                    vx2[jj] = (gam if is_st else x2n) if good else a2
-                    vpath[jj] = vpath[jj] + dp if slip_ok else vpath[jj]
-                    vs[jj] = s if slip_ok else vs[jj]
-                    vdone[jj] = 1.0 if good else 0.0
-                    nmiss += 0 if good else 1
+                    nmiss += _lane_commit(jj, good, is_st, x1s, x1n, x2n, gam, a1, a2, dp, s, vx1,
+                                          vx2, vpath, vs, vdone)
             elif vector:
                 # the same fast pass with the contact process, read from the lanes' segment
                 # caches (the same interpolation as process_value_row); a lane whose reading
