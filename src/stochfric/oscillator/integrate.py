@@ -7,7 +7,11 @@ stream, the child with spawn key ``(i, r)`` of the root seed
 (:class:`numpy.random.SeedSequence`); with ``common_random_numbers=True`` the key is
 ``(0, r)`` for every set, so run ``r`` sees the same noise at every parameter set.  The
 numbers of a trajectory therefore do not depend on the number of threads, the batch
-size or the order of execution.
+size or the order of execution.  White noise: the child's first 64 bits key the Philox
+stream drawn inside the compiled kernel (``white_stream="philox"``, default) or seed numpy's
+PCG64 (``"pcg64"``, the numbers of earlier versions).  Contact process: the child seeds
+numpy's PCG64 for the phases of the spectral representation (computed in compiled code for
+the package's process models, bit for bit).
 
 Models (METHOD §5): ``deterministic`` (friction law only), ``white`` (law + Gaussian
 white noise of intensity σ_ζ in the relative path, §5.1; integrators ``euler`` =

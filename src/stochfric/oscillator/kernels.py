@@ -1,9 +1,12 @@
 """Compiled fixed-step kernels of the friction oscillator (METHOD.md §5, thesis 4.1).
 
 Pure numerical code: arrays in, arrays out; no I/O, no global random state.  The
-random input (Wiener increments ``ΔW_k`` or one friction-process realisation) is
-drawn by the caller from the trajectory's own stream and passed in, so a trajectory's
-numbers never depend on which thread or process ran it.
+random input comes from the trajectory's own stream, so a trajectory's numbers never
+depend on which thread or process ran it: one friction-process realisation, or the Wiener
+increments ``ΔW_k``, is passed in by the caller, or (white noise, ``WHITE_PHILOX``) the
+increments are drawn inside the kernel from the counter-based Philox4x32-10 stream keyed by
+the trajectory (:mod:`stochfric.oscillator.philox`; counter = step, so no buffer and no
+sequential state).
 
 State and equations (dimensionless, eq. 4.6/4.7): ``x1 = y/L``, ``x2 = dx1/dτ``,
 ``x3 = x30 + ητ`` (carried analytically), and a path coordinate for the
