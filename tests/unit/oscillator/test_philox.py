@@ -1,7 +1,8 @@
 """The counter-based generator of the white-noise kernels (stochfric.oscillator.philox).
 
-Philox4x32-10 against the known-answer vectors of its published specification (Random123,
-``tests/kat_vectors``); the branch-free elementary functions against the C library; the
+Philox4x32-10 (the kernels') and Philox4x64-10 against the known-answer vectors of their
+published specification (Random123, ``tests/kat_vectors``), the 4x64 variant also bit for bit
+against numpy's independent ``Philox``; the branch-free elementary functions against the C library; the
 Box–Muller transform against its textbook formula; the compiled SeedSequence hash against
 numpy's; and the kernel's in-place draws against the same numbers given as increments.
 Moments, KS and independence of the normals are in tests/statistical/test_philox_normals.py.
@@ -36,6 +37,41 @@ def test_philox4x32_10_known_answers(ctr: tuple[int, ...], key: tuple[int, ...],
                                      expected: tuple[int, ...]) -> None:
     out = P.philox4x32_10_array(np.array(ctr, dtype=np.uint64), np.array(key, dtype=np.uint64))
     assert [int(v) for v in out] == list(expected)
+
+
+#: Random123 tests/kat_vectors, the three "philox4x64 10" lines.
+KAT_PHILOX4X64_10 = [
+    ((0, 0, 0, 0), (0, 0),
+     (0x16554D9ECA36314C, 0xDB20FE9D672D0FDC, 0xD7E772CEE186176B, 0x7E68B68AEC7BA23B)),
+    ((2**64 - 1,) * 4, (2**64 - 1,) * 2,
+     (0x87B092C3013FE90B, 0x438C3C67BE8D0224, 0x9CC7D7C69CD777B6, 0xA09CAEBF594F0BA0)),
+    ((0x243F6A8885A308D3, 0x13198A2E03707344, 0xA4093822299F31D0, 0x082EFA98EC4E6C89),
+     (0x452821E638D01377, 0xBE5466CF34E90C6C),
+     (0xA528F45403E61D95, 0x38C72DBD566E9788, 0xA5A1610E72FD18B5, 0x57BD43B5E52B7FE6)),
+]
+
+
+@pytest.mark.parametrize(("ctr", "key", "expected"), KAT_PHILOX4X64_10)
+def test_philox4x64_10_known_answers(ctr: tuple[int, ...], key: tuple[int, ...],
+                                     expected: tuple[int, ...]) -> None:
+    out = P.philox4x64_10_array(np.array(ctr, dtype=np.uint64), np.array(key, dtype=np.uint64))
+    assert [int(v) for v in out] == list(expected)
+
+
+def test_philox4x64_10_equals_numpys_independent_implementation() -> None:
+    """numpy's ``Philox`` (4x64-10) increments its 256-bit counter, then encrypts: its n-th block
+    is philox(counter + n).  The round structure shared with the kernels' 4x32 variant is thereby
+    checked against an implementation that is not ours."""
+    rng = np.random.default_rng(11)
+    for _ in range(20):
+        c = rng.integers(0, 2**64, 4, dtype=np.uint64, endpoint=False)
+        k = rng.integers(0, 2**64, 2, dtype=np.uint64, endpoint=False)
+        c[0] = np.uint64(2**64 - 3)  # the increment carries into word 1 after three blocks
+        raw = np.random.Philox(counter=c, key=k).random_raw(20)
+        for n in range(1, 6):
+            total = sum(int(w) << (64 * i) for i, w in enumerate(c)) + n
+            cn = np.array([(total >> (64 * i)) & (2**64 - 1) for i in range(4)], dtype=np.uint64)
+            np.testing.assert_array_equal(raw[4 * (n - 1): 4 * n], P.philox4x64_10_array(cn, k))
 
 
 def _ulps(got: np.ndarray, ref: np.ndarray) -> np.ndarray:
