@@ -241,7 +241,8 @@ def _fast_pass_contact(
         gam = cg[jj]
         x1s, ok_stick, vr, s, avr, mu = _lane_candidates(a1, a2, gam, cc2[jj], vlimb[jj], cvs[jj],
                                                          cp0[jj], cp1[jj], cp2[jj], cp3[jj], dt)
-        u = (a1 if position else vpath[jj]) / cpdx[jj]
+        path = vpath[jj]  # loaded unconditionally: a load inside the select below kept the
+        u = (a1 if position else path) / cpdx[jj]  # loop from vectorising (4.6 vs 1.1 ns/step)
         fl = math.floor(u)
         w = u - fl
         hit = fl == pseg[jj]
