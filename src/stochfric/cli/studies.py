@@ -455,6 +455,8 @@ def reproduce_command(
 
     for r in results:
         typer.echo(f"{r.kind} ({r.summary.get('preset')}): {READERS[r.kind](r.summary)[1]}")
+    split = ", ".join(f"{k} {v:.1f} s" for k, v in timings.items() if k not in ("studies_total", "total"))
+    typer.echo(f"time per step: {split}")
     typer.echo(f"report {out / 'index.html'}; total {timings['total']:.1f} s")
 
 
