@@ -24,7 +24,7 @@ from stochfric.process.presets import brake
 RUNS = 1500
 
 
-def _first_xgh(stream: str, force: float, seed: int) -> np.ndarray:
+def _second_xgh(stream: str, force: float, seed: int) -> np.ndarray:
     pre = brake()
     p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
                            normal_force=force, damping_ratio=5e-6,
@@ -40,8 +40,8 @@ def _first_xgh(stream: str, force: float, seed: int) -> np.ndarray:
 
 @pytest.mark.parametrize("force", [720.0, 5600.0])
 def test_philox_and_pcg64_streams_agree_in_distribution(force: float) -> None:
-    a = _first_xgh("philox", force, seed=11)
-    b = _first_xgh("pcg64", force, seed=12)
+    a = _second_xgh("philox", force, seed=11)
+    b = _second_xgh("pcg64", force, seed=12)
     n = RUNS
     se_mean = math.sqrt(a.var(ddof=1) / n + b.var(ddof=1) / n)
     assert abs(a.mean() - b.mean()) < 4 * se_mean
