@@ -1,0 +1,189 @@
+"""The report renders hand-built results (stochfric.report): no study and no simulation runs here.
+
+tests/test_report_html.py renders the output of real (small) studies; this file feeds the report
+results written by hand, with the integrators switched off, so that every number on the page is one
+this test put in: the Lyapunov section's table and headline, the warnings explained, the provenance,
+HTML escaping, the damping verdict ("is the deterministic limit safe?") and the phase portrait of a
+hand-built simulation result.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+from pathlib import Path
+from typing import Any, NoReturn
+
+import matplotlib.image as mpimg
+import numpy as np
+import pytest
+import xarray as xr
+
+from stochfric.oscillator import accurate, integrate, kernels
+from stochfric.oscillator.friction_laws import law_II
+from stochfric.oscillator.parameters import OscillatorParameters
+from stochfric.oscillator.result import SimulationResult
+from stochfric.report import plot_phase_portrait, write_report
+from stochfric.report.html import WARNING_HELP, damping_headline, dmax_text, forcing_reading, rich_text
+from stochfric.studies.base import StudyResult
+
+PNG = b"\x89PNG\r\n\x1a\n"
+
+
+def _lyapunov_result() -> StudyResult:
+    models = ["deterministic", "white"]
+    eta = np.array([1.0, 1.5, 2.0])
+    forces = np.array([4000.0, 8000.0])
+    lam = np.array([[[[0.10, -0.20, 0.05], [np.nan, 0.30, -0.10]]],
+                    [[[0.02, np.nan, -0.01], [0.04, 0.01, -0.30]]]])  # model, q, N, η
+    status = np.where(np.isfinite(lam), "ok", "merged")
+    status[0, 0, 1, 0] = "nonlinear"
+    ds = xr.Dataset(
+        {"lyapunov": (("model", "forcing_q", "normal_force", "eta"), lam, {"units": "1"}),
+         "status": (("model", "forcing_q", "normal_force", "eta"), status)},
+        coords={"model": models, "forcing_q": [5e-5], "normal_force": forces, "eta": eta},
+        attrs={"config_json": json.dumps({"runs": 2, "eta": [1.0, 1.5, 2.0]}),
+               "setup_json": json.dumps({"gamma0": 1.41e-3, "process": {"secret": "not shown"}}),
+               "seed_entropy": "20131234", "seed_rule": "task k uses SeedSequence(seed, spawn_key=(k,))",
+               "versions_json": json.dumps({"stochfric": "0.1.0"})},
+    )
+    summary: dict[str, Any] = {
+        "preset": "brake", "models": models, "perturbation": 1e-6, "tau_end": 200.0,
+        "counts": {"deterministic": {"ok": 4, "merged": 1, "too-few-transitions": 0, "nonlinear": 1},
+                   "white": {"ok": 5, "merged": 1, "too-few-transitions": 0, "nonlinear": 0}},
+        "significance": {"deterministic": {"positive": 2, "negative": 0, "defined": 4},
+                         "white": {"positive": 1, "negative": 1, "defined": 5}},
+        "warnings": [{"code": "process-exhausted", "count": 3}, {"code": "no-such-code", "count": 1}],
+    }
+    return StudyResult(kind="lyapunov", dataset=ds, summary=summary)
+
+
+def _refuse(*args: Any, **kwargs: Any) -> NoReturn:
+    raise AssertionError("the report must render results, not simulate")
+
+
+@pytest.fixture(scope="module")
+def page(tmp_path_factory: pytest.TempPathFactory) -> tuple[Path, str]:
+    d = tmp_path_factory.mktemp("report")
+    with pytest.MonkeyPatch.context() as mp:
+        for mod, name in ((integrate, "simulate"), (kernels, "run_fixed_step_batch"),
+                          (accurate, "run_accurate_batch")):
+            mp.setattr(mod, name, _refuse)
+        index = write_report([_lyapunov_result()], d, title="run <7> & co")
+    return index, index.read_text(encoding="utf-8")
+
+
+def test_the_page_is_written_with_its_figure(page: tuple[Path, str]) -> None:
+    index, text = page
+    assert index.name == "index.html" and text.startswith("<!DOCTYPE html>")
+    srcs = re.findall(r'<img src="([^"]+)"', text)
+    assert srcs == ["00_lyapunov_brake.png"]
+    png = index.parent / srcs[0]
+    assert png.read_bytes()[:8] == PNG and mpimg.imread(png).shape[0] > 100
+    assert "<h1>run &lt;7&gt; &amp; co</h1>" in text and "<title>run &lt;7&gt; &amp; co</title>" in text
+    assert "Chapter 3" not in text  # no chapter-3 analysis given: no such section
+
+
+def test_the_lyapunov_table_and_headline_show_the_given_numbers(page: tuple[Path, str]) -> None:
+    _, text = page
+    rows = re.findall(r"<tr>(<td>.*?)</tr>", text)
+    assert "<td>deterministic</td><td>4</td><td>1</td><td>0</td><td>1</td><td>2</td><td>0</td>" in rows
+    assert "<td>white</td><td>5</td><td>1</td><td>0</td><td>0</td><td>1</td><td>1</td>" in rows
+    reading = text[text.index("<h2>Reading</h2>"):text.index("<h2 id='s0'>")]
+    assert ("brake, Lyapunov exponent on the stick line: cells with λ &gt; 0 by more than 2 SE: "
+            "deterministic 2, white 1.") in reading
+    assert "perturbation δ = 1e-06, τ<sub>end</sub> = 200" in text
+    assert "<a href='#s0'>lyapunov</a>" in reading
+
+
+def test_every_warning_is_counted_and_explained(page: tuple[Path, str]) -> None:
+    _, text = page
+    assert "<dt>process-exhausted: lyapunov (brake) ×3</dt>" in text
+    what, todo = WARNING_HELP["process-exhausted"]
+    assert rich_text(what) in text and rich_text(todo) in text
+    assert "<dt>no-such-code: lyapunov (brake) ×1</dt>" in text  # an unknown code still appears
+    assert "See the warning messages of the simulations." in text
+    assert "Simulation warnings: process-exhausted ×3, no-such-code ×1" in text
+
+
+def test_provenance_is_shown_without_the_process_internals(page: tuple[Path, str]) -> None:
+    _, text = page
+    assert "seed entropy: 20131234; task k uses SeedSequence(seed, spawn_key=(k,))" in text
+    assert "&quot;gamma0&quot;: 0.00141" in text and "not shown" not in text
+    assert "<summary>config</summary>" in text and "<summary>versions</summary>" in text
+    assert "<h2>Versions</h2>" in text
+
+
+# --- the readings, from hand-built summaries ---------------------------------------------------------
+
+
+def _damping_summary(det: list[float | None], white: list[float | None]) -> dict[str, Any]:
+    return {"preset": "brake", "normal_force": [1000.0, 2000.0, 3000.0], "damping": [0.05, 0.1, 0.15, 0.2, 0.25],
+            "d_hopf": [0.02, 0.04, 0.06], "d_max_deterministic": det, "phase": {"normal_force": 2000.0},
+            "d_max_stochastic": {"white": [{"value": v, "interval": [v, None]} for v in white]}}
+
+
+def test_damping_headline_says_where_the_deterministic_limit_is_unsafe() -> None:
+    line = damping_headline(_damping_summary([0.1, 0.15, 0.2], [0.1, 0.2, 0.2]))
+    assert line == ("brake, N = 2000 N: stick-slip up to D = 0.15 deterministically, up to 0.2 [0.2, > grid] "
+                    "with white noise — the deterministic limit is not safe (white sticks beyond it). Forces "
+                    "where a stochastic model sticks beyond D_max^d (3 forces): white: 2000 N.")
+
+
+def test_damping_headline_safe_and_at_the_grid_edges() -> None:
+    safe = damping_headline(_damping_summary([0.1, 0.15, 0.2], [0.1, 0.15, None]))
+    assert "— the deterministic limit is safe here" in safe and "white: none" in safe
+    edge = damping_headline(_damping_summary([0.1, 0.25, 0.2], [0.1, 0.25, 0.2]))
+    assert "stick-slip up to D = 0.25 or beyond (the grid end) deterministically" in edge
+    assert "— the limits reach the grid end: extend the D grid to compare them" in edge
+    none = damping_headline(_damping_summary([0.1, None, 0.2], [0.1, None, 0.2]))
+    assert "no stick-slip even at D = 0.05 (the grid start) deterministically" in none
+
+
+def test_dmax_text_and_rich_text() -> None:
+    grid = [0.05, 0.1, 0.15]
+    assert dmax_text(0.1, grid) == "0.1"
+    assert dmax_text(0.15, grid) == "≥ 0.15 (> grid)"
+    assert dmax_text(None, grid) == dmax_text(float("nan"), grid) == "< grid start (0.05)"
+    assert rich_text("D_max^d < X_gh & stick_window") == (
+        "D<sub>max</sub><sup>d</sup> &lt; X<sub>gh</sub> &amp; stick_window")
+
+
+def test_forcing_reading_pairs_each_q_with_its_median_and_interval() -> None:
+    summary = {"forcing_q": [5e-5, 5e-4], "sigma_ratio_median": {"5e-05": 1.2, "0.0005": 1.05},
+               "sigma_ratio_median_ci": {"5e-05": {"low": 1.1, "high": 1.3}}}
+    table, txt = forcing_reading(summary)
+    assert "<tr><td>5e-05</td><td>1.2</td><td>1.1 … 1.3</td></tr>" in table
+    assert "<tr><td>0.0005</td><td>1.05</td><td>—</td></tr>" in table
+    assert txt.startswith("q = 5e-05: median σ_contact/σ_white over η = 1.2 (95 % bootstrap interval 1.1 … 1.3); "
+                          "q = 0.0005: median σ_contact/σ_white over η = 1.05 (95 % bootstrap interval —)")
+
+
+# --- the phase portrait of one simulation result -----------------------------------------------------
+
+
+def _simulation(forced: bool, trajectory: bool = True) -> SimulationResult:
+    p = OscillatorParameters(gamma0=1.0, n=10.0, q=0.5 if forced else 0.0, eta=1.15 if forced else 0.0)
+    tau = np.linspace(0.0, 10.0, 201)
+    traj = np.stack([np.broadcast_to(tau, (2, 201)), np.stack([np.cos(tau), 0.9 * np.cos(tau)]),
+                     np.stack([-np.sin(tau), -0.9 * np.sin(tau)])], axis=-1)[None]
+    x_gh = np.array([[[1.0, np.nan], [0.9, 0.95]]])
+    return SimulationResult(
+        params=[p], x_gh=x_gh, t_gh=x_gh * 0 + 5.0, stick_count=np.array([[1, 2]]), diagnostics={},
+        trajectory=traj if trajectory else None, model="deterministic", integrator="accurate", dt=0.05,
+        tau_end=10.0, runs=2, seed_entropy=1, path_coordinate="mass", x0=[(0.0, 1.0)],
+        laws=[law_II().to_dict()], sigma_zeta=[0.0], process=None)
+
+
+@pytest.mark.parametrize("forced", [False, True], ids=["2-D", "3-D forced"])
+def test_phase_portrait_of_a_hand_built_result(tmp_path: Path, forced: bool) -> None:
+    out = plot_phase_portrait(_simulation(forced), tmp_path / "sub" / "phase.png")
+    assert out.read_bytes()[:8] == PNG and mpimg.imread(out).shape[:2] == (676, 910)  # 7 × 5.2 in at 130 dpi
+    svg = plot_phase_portrait(_simulation(forced), tmp_path / "phase.svg")
+    assert "<svg" in svg.read_text(encoding="utf-8")[:500]
+
+
+def test_phase_portrait_needs_a_trajectory(tmp_path: Path) -> None:
+    with pytest.raises(ValueError, match="save_trajectory=True"):
+        plot_phase_portrait(_simulation(False, trajectory=False), tmp_path / "x.png")
+    assert not (tmp_path / "x.png").exists()
