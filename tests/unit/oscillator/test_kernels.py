@@ -24,7 +24,7 @@ import numpy as np
 import pytest
 
 from stochfric.oscillator import kernels as K
-from stochfric.oscillator.friction_laws import SHAPE_CONSTANT, SHAPE_RATIONAL
+from stochfric.oscillator.friction_laws import SHAPE_CONSTANT, SHAPE_RATIONAL, SHAPE_TABULATED
 
 LAW_II = (SHAPE_CONSTANT, np.array([0.25, 0.0, 0.0, 0.0]), 0.4)  # μ_k = 0.25, μ_s = 0.4
 LAW_III = (SHAPE_RATIONAL, np.array([0.3, 1.42, 0.1, 0.01]), 0.4)  # (μ0 − μ1, 1.42, μ1, 0.01)
@@ -193,6 +193,36 @@ def test_a_start_on_the_stick_line_below_the_static_band_slips_forward() -> None
     assert out["x2"][0] == pytest.approx(1.025, abs=1e-12)
 
 
+def test_forced_breakaway_interpolates_the_moving_stick_bound() -> None:
+    """Eq. (4.9): with forcing the force F = x1 + 2Dγ0 − q cos ητ moves in time.  q = 0.5, η = 1.15,
+    D = 0, from (4.2, 1.0) stuck (F(0) = 3.7): after Δτ = 0.1, F = 4.3 − 0.5 cos 0.115 ≈ 3.80330 still
+    holds; the next step ends with F ≈ 3.90988 — the bound 4 is crossed inside step 3, at
+    θ = (4 − F(0.2))/(F(0.3) − F(0.2)) of it (linear interpolation of the force), then slip s = +1."""
+    q, eta, dt = 0.5, 1.15, 0.1
+
+    def force(x1: float, t: float) -> float:
+        return x1 - q * math.cos(eta * t)
+
+    f2, f3 = force(4.4, 0.2), force(4.5, 0.3)
+    assert f2 < 4.0 < f3
+    th = (4.0 - f2) / (f3 - f2)
+    h = dt * (1 - th)
+    x1b = 4.4 + th * dt
+    x2 = 1.0 + h * (-x1b + 10 * 0.25 + q * math.cos(eta * (0.2 + th * dt)))
+    out = run((4.2, 1.0), 3, dt, q=q, eta=eta)
+    assert out["n_break"][0] == 1 and out["stick"][0] == 0.0
+    np.testing.assert_allclose(out["traj"][0, 2, 1:], [4.4, 1.0], atol=1e-13)
+    assert out["x1"][0] == pytest.approx(x1b + h, abs=1e-13)
+    assert out["x2"][0] == pytest.approx(x2, abs=1e-13)
+
+
+def test_a_tabulated_law_is_read_by_the_kernel() -> None:
+    """A measured μ(|v|) table (0, 0.4), (1, 0.2), (2, 0.3): at |v_rel| = 1.5 m/s μ = 0.25."""
+    law = (SHAPE_TABULATED, np.array([3.0, 0.0, 1.0, 2.0, 0.4, 0.2, 0.3]), 0.4)
+    out = run((0.0, -0.5), 1, 0.01, law=law)
+    assert out["x2"][0] == pytest.approx(-0.5 + 0.01 * 10 * 0.25, abs=1e-14)
+
+
 # --- white noise: Euler–Maruyama and Milstein steps with a given increment ---------------------------
 
 
@@ -229,21 +259,24 @@ def test_process_value_interpolates_linearly_and_repeats_periodically() -> None:
     np.testing.assert_allclose(pv, [0.0, 0.5, 1.6, 4.5, 0.5, 1.6, 0.0], atol=1e-14)
 
 
-@pytest.mark.parametrize("path_mode", [K.PATH_MASS, K.PATH_RELATIVE], ids=["mass", "relative"])
+@pytest.mark.parametrize("path_mode", [K.PATH_MASS, K.PATH_RELATIVE, K.PATH_POSITION],
+                         ids=["mass", "relative", "position"])
 def test_contact_slip_steps_add_the_process_read_at_the_path(path_mode: int) -> None:
     """μ = μ_k + μ̂(path): μ̂ on the grid dx = 0.002 with values 0, 0.1, 0.2, …; the path starts at 0
-    and grows by |Δx1| (mass) or |γ0 − x2| Δτ (relative) per slip step."""
+    and grows by |Δx1| (mass, and position mode) or |γ0 − x2| Δτ (relative) per slip step; the
+    position mode (eq. 4.36/4.38 as printed) reads μ̂ at x1 itself (x1 = 0.201 → grid point 100.5,
+    i.e. 4.5 after the periodic continuation with 8 points)."""
     proc = 0.1 * np.arange(8)
     dx, dt, g0, n = 0.002, 0.01, 1.0, 10.0
-    x1, x2, path = 0.2, -0.3, 0.0
+    x1, x2, path = 0.201, -0.3, 0.0
     for _ in range(2):
-        u = path / dx
+        u = (x1 if path_mode == K.PATH_POSITION else path) / dx
         i = math.floor(u)
-        mu_hat = proc[i] + (u - i) * (proc[i + 1] - proc[i])
+        mu_hat = proc[i % 8] + (u - i) * (proc[(i + 1) % 8] - proc[i % 8])
         acc = -x1 + n * (0.25 + mu_hat)
-        dpath = abs(x2) * dt if path_mode == K.PATH_MASS else abs(g0 - x2) * dt
+        dpath = abs(g0 - x2) * dt if path_mode == K.PATH_RELATIVE else abs(x2) * dt
         x1, x2, path = x1 + x2 * dt, x2 + acc * dt, path + dpath
-    out = run((0.2, -0.3), 2, dt, noise=K.NOISE_PROCESS, path_mode=path_mode, proc=proc, proc_dx=dx)
+    out = run((0.201, -0.3), 2, dt, noise=K.NOISE_PROCESS, path_mode=path_mode, proc=proc, proc_dx=dx)
     assert out["path"][0] == pytest.approx(path, abs=1e-15)
     assert out["x1"][0] == pytest.approx(x1, abs=1e-14) and out["x2"][0] == pytest.approx(x2, abs=1e-14)
 
