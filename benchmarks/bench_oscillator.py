@@ -63,11 +63,11 @@ import scipy
 from stochfric.oscillator import kernels as _k
 from stochfric.oscillator import philox as _ph
 from stochfric.oscillator import reference
-from stochfric.oscillator.friction_laws import FrictionLaw, law_III, pressure_law
+from stochfric.oscillator.case import build_case
+from stochfric.oscillator.friction_laws import FrictionLaw, law_III
 from stochfric.oscillator.integrate import simulate
-from stochfric.oscillator.parameters import OscillatorParameters, PhysicalParameters
+from stochfric.oscillator.parameters import OscillatorParameters
 from stochfric.process.model import BandLimitedProcessModel
-from stochfric.process.presets import brake
 
 #: Problem sizes per mode.  ``runs``: trajectories per rate measurement; ``tau_end``: τ per
 #: run; ``repeats``: timing repeats (best taken); ``scale_runs``: ensemble of the scaling
@@ -140,16 +140,10 @@ class Report:
 # --- cases ----------------------------------------------------------------------------------
 
 def brake_case(normal_force: float = 5600.0) -> Case:
-    """Brake preset as the CLI builds it: physical → dimensionless, pressure law (4.13)."""
-    pre = brake()
-    params = PhysicalParameters(
-        mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
-        normal_force=normal_force, damping_ratio=pre.study_parameters["damping_undamped"],
-        contact_area=pre.contact_area,
-    ).to_dimensionless()
-    assert params.pressure is not None
-    law = pressure_law(pre.process.mean(params.pressure))
-    return Case("brake", params, law, pre.process, None, (0.0, params.gamma0))
+    """Brake preset as the CLI builds it (:func:`~stochfric.oscillator.case.build_case`: D = 5·10⁻⁶,
+    pressure law 4.13)."""
+    c = build_case("brake", normal_force=normal_force)
+    return Case("brake", c.params, c.law, c.process, None, (0.0, c.params.gamma0))
 
 
 def demo_case() -> Case:
@@ -503,7 +497,6 @@ warnings.simplefilter("ignore")
 from stochfric.oscillator.friction_laws import pressure_law
 from stochfric.oscillator.integrate import simulate
 from stochfric.oscillator.parameters import PhysicalParameters
-from stochfric.process.presets import brake
 runs, tau, reps, dt = int(sys.argv[1]), float(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4])
 pre = brake()
 p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,

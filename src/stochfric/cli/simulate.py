@@ -70,88 +70,6 @@ def fail(message: str) -> typer.Exit:
     return typer.Exit(code=2)
 
 
-def _build_parameters(
-    preset: str | None,
-    gamma0: float | None,
-    n: float | None,
-    normal_force: float | None,
-    damping: float | None,
-    q: float | None,
-    eta: float | None,
-    forcing_amplitude: float | None,
-    mass: float | None,
-    stiffness: float | None,
-    belt_speed: float | None,
-    damping_coefficient: float | None,
-    contact_area: float | None,
-    omega0: float | None,
-) -> tuple[Any, Any]:
-    """Turn the CLI options into OscillatorParameters (and the preset, if any)."""
-    from dataclasses import replace
-
-    from ..oscillator.parameters import OscillatorParameters, ParameterError, PhysicalParameters
-    from ..process.presets import get_preset
-
-    if q is not None and forcing_amplitude is not None:
-        raise ParameterError("give the forcing as --forcing-amplitude Q [N] or --q, not both")
-    if damping is not None and damping_coefficient is not None:
-        raise ParameterError("give the damping as --damping D or --damping-coefficient, not both")
-    if normal_force is not None and n is not None:
-        raise ParameterError("give the normal force as --normal-force [N] or --n, not both")
-    pre = get_preset(preset) if preset else None
-    physical = pre is not None or any(v is not None for v in (mass, stiffness, belt_speed))
-    if physical:
-        if gamma0 is not None or omega0 is not None:
-            raise ParameterError(
-                "--gamma0/--omega0 are for dimensionless input; with a preset or physical "
-                "parameters set --belt-speed, --mass, --stiffness instead"
-            )
-        m_ = mass if mass is not None else (pre.mass if pre else None)
-        c_ = stiffness if stiffness is not None else (pre.stiffness if pre else None)
-        v_ = belt_speed if belt_speed is not None else (pre.belt_speed if pre else None)
-        a_ = contact_area if contact_area is not None else (pre.contact_area if pre else None)
-        missing = [k for k, v in (("--mass", m_), ("--stiffness", c_), ("--belt-speed", v_))
-                   if v is None]
-        if missing:
-            raise ParameterError(f"physical parameters need {', '.join(missing)} (or a --preset)")
-        assert m_ is not None and c_ is not None and v_ is not None
-        if n is not None:
-            nf = n * c_
-        elif normal_force is not None:
-            nf = normal_force
-        elif pre is not None:
-            nf = pre.default_normal_force
-        else:
-            raise ParameterError("give the normal force --normal-force N [newtons] or --n")
-        phys = PhysicalParameters(
-            mass=m_, stiffness=c_, belt_speed=v_, normal_force=nf,
-            damping_coefficient=damping_coefficient,
-            damping_ratio=damping if damping is not None else (
-                None if damping_coefficient is not None else (
-                    pre.study_parameters.get("damping_undamped", 0.0) if pre else 0.0)),
-            forcing_amplitude=(q * c_ if q is not None else (forcing_amplitude or 0.0)),
-            contact_area=a_,
-        )
-        # η is a ratio: Ω = η ω0, with ω0 from the validated mass and stiffness
-        phys = replace(phys, forcing_frequency=(eta or 0.0) * phys.omega0)
-        return phys.to_dimensionless(), pre
-    if normal_force is not None or forcing_amplitude is not None or damping_coefficient is not None:
-        raise ParameterError(
-            "--normal-force, --forcing-amplitude and --damping-coefficient are in SI units and "
-            "need --mass/--stiffness/--belt-speed or a --preset; for dimensionless input use "
-            "--n, --q, --damping"
-        )
-    if gamma0 is None or n is None:
-        raise ParameterError(
-            "give either --preset {brake,sheet}, physical parameters (--mass --stiffness "
-            "--belt-speed --normal-force), or dimensionless --gamma0 and --n"
-        )
-    return OscillatorParameters(
-        gamma0=gamma0, n=n, damping_ratio=damping or 0.0, q=q or 0.0, eta=eta or 0.0,
-        omega0=omega0 if omega0 is not None else 1.0, contact_area=contact_area,
-    ), None
-
-
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
 
 
@@ -268,9 +186,7 @@ def simulate(
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
 ) -> None:
     """Run the friction oscillator (deterministic, white-noise or contact-process friction)."""
-    from dataclasses import replace
-
-    from ..oscillator.friction_laws import get_law, pressure_law
+    from ..oscillator.case import build_case
     from ..oscillator.integrate import SimulationWarningCategory
     from ..oscillator.integrate import simulate as run_sim
     from ..oscillator.parameters import ParameterError
@@ -282,66 +198,21 @@ def simulate(
             check_output_path(out, option="--out")
         if plot is not None:
             check_output_path(plot, option="--plot", kind="file", suffixes=PLOT_SUFFIXES)
-        params, pre = _build_parameters(
-            preset.value if preset else None, gamma0, n, normal_force, damping, q,
-            forcing_frequency if forcing_frequency is not None else eta, forcing_amplitude,
-            mass, stiffness, belt_speed, damping_coefficient, contact_area, omega0,
-        )
         if forcing_frequency is not None and eta is not None and forcing_frequency != eta:
             raise ParameterError("--forcing-frequency and --eta are the same η; give one")
-        process: Any = pre.process if pre is not None else None
-        if process_file is not None:
-            from ..process.model import load_process_model
-
-            process = load_process_model(process_file)
-        if white_intensity is not None:
-            if process is None:
-                raise ParameterError("--white-intensity needs a friction-process model (--preset or --process)")
-            if sigma_zeta is not None:
-                raise ParameterError("give either --sigma-zeta or --white-intensity, not both")
-            rule = "sigma_mu" if white_intensity is WhiteIntensityChoice.thesis else white_intensity.value
-            process = replace(process, sigma_zeta_rule=rule)
-        if process is not None and process_length is not None:
-            # keep the grid spanning whole periods: n = round(length/dx) points of dx = length/n
-            npts = max(2, round(process_length / process.dx))
-            process = replace(process, length=process_length, dx=process_length / npts)
-        if process_level is ProcessLevelChoice.psd_level:
-            if pre is None or process_file is not None:
-                raise ParameterError("--process-level psd_level rescales a preset's process: use --preset, "
-                                     "not --process")
-            from ..process.presets import psd_level_process
-
-            process = replace(psd_level_process(pre), base=process, sigma_zeta_rule=process.sigma_zeta_rule)
-        # default: the pressure law (4.13) whenever a process model gives E[μ](p)
-        law_name = friction_law.value if friction_law else (
-            "pressure" if process is not None and params.pressure is not None else "III")
-        if law_name == "pressure":
-            if process is None or params.pressure is None:
-                raise ParameterError(
-                    "the pressure law (4.13) needs E[μ](p) from a friction-process model and the "
-                    "pressure p = N/A: use --preset, or --process FILE with physical parameters and "
-                    "--contact-area"
-                )
-            mu_fit = process.mean(params.pressure)
-            if mu_fit > mu0:
-                raise ParameterError(
-                    f"the pressure law (4.13) needs E[μ](p) <= μ0, but the process model gives E[μ] = {mu_fit:.4g} "
-                    f"at p = {params.pressure / 1e6:.4g} MPa and μ0 = {mu0:g}: the kinetic friction would turn "
-                    f"negative at high sliding speed; give a larger static coefficient (--mu0 {mu_fit + 0.2:.2g} or "
-                    "more) or another law (--friction-law III)"
-                )
-            law = pressure_law(mu_fit, mu0=mu0)
-        else:
-            law = get_law(law_name)
-        if model is not ModelChoice.deterministic and process is None and not (
-            model is ModelChoice.white and sigma_zeta is not None
-        ):
-            raise ParameterError(
-                f"the {model.value} model needs a friction-process model: use --preset or --process FILE"
-                + (" or --sigma-zeta" if model is ModelChoice.white else "")
-            )
-        te = tau_end if tau_end is not None else (pre.tau_end if pre else 50.0)
-        step = dt if dt is not None else (pre.dt if pre else 0.005)
+        case = build_case(
+            preset.value if preset else None, normal_force=normal_force, n=n, damping_ratio=damping,
+            damping_coefficient=damping_coefficient, forcing_amplitude=forcing_amplitude, q=q,
+            eta=forcing_frequency if forcing_frequency is not None else eta, mass=mass, stiffness=stiffness,
+            belt_speed=belt_speed, contact_area=contact_area, gamma0=gamma0, omega0=omega0,
+            process_file=process_file, process_length=process_length,
+            white_intensity=white_intensity.value if white_intensity else None,
+            process_level=process_level.value if process_level else None,
+            friction_law=friction_law.value if friction_law else None, mu0=mu0, model=model.value,
+            sigma_zeta=sigma_zeta, tau_end=tau_end, dt=dt,
+        )
+        pre, process = case.preset, case.process
+        te, step = case.tau_end, case.dt
         if te > 0 and step > 0:
             from ..io_utils import require_memory
 
@@ -367,14 +238,11 @@ def simulate(
             warnings.simplefilter("ignore", SimulationWarningCategory)
             try:
                 result = run_sim(
-                    params, model=model.value, law=law, process=process,
-                    sigma_zeta=sigma_zeta, x0=(float(x0[0]), float(x0[1])) if x0 else None, tau_end=te, dt=step,
-                    integrator=integrator.value, runs=runs, seed=seed,
-                    path_coordinate=path_coordinate.value,
+                    case.params, **case.simulate_kwargs(model.value),
+                    x0=(float(x0[0]), float(x0[1])) if x0 else None, integrator=integrator.value, runs=runs,
+                    seed=seed, path_coordinate=path_coordinate.value,
                     save_trajectory=plot is not None or out is not None, save_every=save_every,
                     workers=workers, progress=cb,
-                    white_increment="thesis" if (white_intensity is WhiteIntensityChoice.thesis
-                                                 and model is ModelChoice.white) else "ito",
                 )
             finally:
                 if prog is not None:

@@ -1,4 +1,7 @@
-"""Shared pieces of the studies (method §6): setup, grids, the stick window, task specs.
+"""Shared pieces of the studies (method §6): grids, the stick window, task specs.
+
+The case of a study (preset, process model, N, D → parameters and friction law) is built by
+:mod:`stochfric.oscillator.case`; :func:`setup_for` takes it from a study config.
 
 A study is a list of independent *tasks*; one task is one :func:`simulate` call that
 batches many parameter sets (e.g. every damping ratio D of one normal force N and one
@@ -17,46 +20,35 @@ and ``contact`` (plus a band-limited process from the friction-process model, §
 
 from __future__ import annotations
 
-import dataclasses
 import json
 import math
 import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from ..oscillator.friction_laws import FrictionLaw, pressure_law
-from ..oscillator.parameters import OscillatorParameters, PhysicalParameters
-from ..process.model import FrictionProcessModel, load_process_model
-from ..process.presets import PROCESS_LEVELS, Preset, get_preset, process_with_level
+from ..oscillator.case import MODELS, CaseError, CaseSetup, case_setup, law_for
+from ..oscillator.case import PATH_COORDINATES as PATH_COORDINATES
+from ..oscillator.case import WHITE_INTENSITY_RULES as WHITE_INTENSITY_RULES
+from ..oscillator.case import process_rule_of as process_rule_of
+from ..oscillator.case import white_increment_of as white_increment_of
+from ..oscillator.case import with_white_intensity as with_white_intensity
+from ..oscillator.friction_laws import FrictionLaw
+from ..oscillator.parameters import OscillatorParameters
 from ..random import child_seed
 
-MODELS: tuple[str, ...] = ("deterministic", "white", "contact")
-PATH_COORDINATES: tuple[str, ...] = ("mass", "relative", "position")
-WHITE_INTENSITY_RULES: tuple[str, ...] = ("sigma_mu", "spectral_level", "thesis")
-
-
-def white_increment_of(rule: str) -> str:
-    """The :func:`simulate` ``white_increment`` of a white-intensity rule: ``thesis`` → ``"thesis"``
-    (printed eq. 4.31, σ_ζ,eff = σ_μ(p)·Lω0·Δτ), every other rule → ``"ito"``."""
-    return "thesis" if rule == "thesis" else "ito"
-
-
-def process_rule_of(rule: str) -> str:
-    """The process model's σ_ζ rule behind a white-intensity rule (``thesis`` uses σ_ζ = σ_μ(p))."""
-    return "sigma_mu" if rule == "thesis" else rule
+#: The studies' names for the case of :mod:`stochfric.oscillator.case`: a study's configuration
+#: errors are case errors, its setup is the case setup.
+StudyError = CaseError
+StudySetup = CaseSetup
+make_setup = case_setup
 
 #: Default stick window: a run "has a stick-slip cycle" when it has at least one slip→stick
 #: transition with τ in (STICK_WINDOW · τ_end, τ_end] (after the transient, method §7.9).
 STICK_WINDOW = 0.5
-
-
-class StudyError(ValueError):
-    """A study is configured wrongly; the message says what to change."""
 
 
 def parse_grid(spec: str | Sequence[float] | float) -> tuple[float, ...]:
@@ -98,133 +90,11 @@ def parse_grid(spec: str | Sequence[float] | float) -> tuple[float, ...]:
     return tuple(float(f"{v:.12g}") for v in vals)
 
 
-@dataclass(frozen=True)
-class StudySetup:
-    """The oscillator case of a study: preset (m, c, v0, A) and friction-process model."""
-
-    preset: Preset
-    process: FrictionProcessModel
-    process_source: str
-    tau_end: float
-    dt: float
-    white_intensity: str = "sigma_mu"
-    process_level: str = "sigma_mu"
-
-    @property
-    def white_increment(self) -> str:
-        """``"thesis"`` for the printed-(4.31) reproduction mode, else ``"ito"``."""
-        return white_increment_of(self.white_intensity)
-
-    def parameters(
-        self, normal_force: float, damping_ratio: float, forcing_amplitude: float = 0.0, eta: float = 0.0
-    ) -> OscillatorParameters:
-        """Dimensionless parameters (4.6/4.7) at N [N], D, Q [N] and η = Ω/ω0."""
-        pre = self.preset
-        phys = PhysicalParameters(
-            mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed, normal_force=normal_force,
-            damping_ratio=damping_ratio, forcing_amplitude=forcing_amplitude,
-            forcing_frequency=eta * math.sqrt(pre.stiffness / pre.mass), contact_area=pre.contact_area,
-        )
-        p = phys.to_dimensionless()
-        # η exactly as given (Ω = η ω0 and back may differ in the last bit)
-        return p.replace(eta=float(eta))
-
-    def describe(self) -> dict[str, Any]:
-        """JSON-compatible record of the case (for provenance)."""
-        pre = self.preset
-        return {
-            "preset": pre.name,
-            "mass_kg": pre.mass,
-            "stiffness_n_per_m": pre.stiffness,
-            "belt_speed_m_s": pre.belt_speed,
-            "contact_area_m2": pre.contact_area,
-            "omega0_rad_s": pre.omega0,
-            "gamma0": pre.gamma0,
-            "process_source": self.process_source,
-            "process": self.process.to_dict(),
-            "tau_end": self.tau_end,
-            "dt": self.dt,
-            "white_intensity": self.white_intensity,
-            "white_increment": self.white_increment,
-            "process_level": self.process_level,
-        }
-
-
-def with_white_intensity(process: FrictionProcessModel, rule: str) -> FrictionProcessModel:
-    """The process model with its σ_ζ rule set to ``rule`` (``"sigma_mu"`` | ``"spectral_level"``;
-    ``"thesis"`` uses the process rule ``"sigma_mu"`` and scales it in :func:`simulate`).
-
-    Only the white-noise model's intensity ``process.sigma_zeta(p)`` changes; the mean and the
-    realisations of the contact-analysis process do not depend on the rule.
-    """
-    if rule not in WHITE_INTENSITY_RULES:
-        raise StudyError(f"white-noise intensity rule must be one of {list(WHITE_INTENSITY_RULES)}, got {rule!r}")
-    rule = process_rule_of(rule)
-    if getattr(process, "sigma_zeta_rule", None) == rule:
-        return process
-    if not (dataclasses.is_dataclass(process) and any(f.name == "sigma_zeta_rule"
-                                                      for f in dataclasses.fields(process))):
-        raise StudyError(f"the friction-process model {type(process).__name__} has no sigma_zeta_rule; "
-                         "use white_intensity = 'sigma_mu'")
-    try:
-        out: FrictionProcessModel = dataclasses.replace(process, sigma_zeta_rule=rule)
-    except ValueError as exc:
-        raise StudyError(f"white-noise intensity rule {rule!r}: {exc}") from None
-    return out
-
-
-def make_setup(
-    preset: str = "brake",
-    process_file: str | Path | None = None,
-    tau_end: float | None = None,
-    dt: float | None = None,
-    white_intensity: str = "sigma_mu",
-    process_level: str = "sigma_mu",
-) -> StudySetup:
-    """Resolve a preset name and an optional friction-process model file (``--process FILE``);
-    the σ_ζ rule ``white_intensity`` is applied to the process model (it overrides a file's own).
-    ``process_level`` ``"psd_level"`` (reproduction mode, presets only) replaces the preset's
-    process by :class:`~stochfric.process.presets.PsdLevelProcessModel`."""
-    try:
-        pre = get_preset(preset)
-    except ValueError as exc:
-        raise StudyError(str(exc)) from None
-    if process_level not in PROCESS_LEVELS:
-        raise StudyError(f"process level must be one of {list(PROCESS_LEVELS)}, got {process_level!r}")
-    if process_file is not None:
-        if process_level != "sigma_mu":
-            raise StudyError("process_level 'psd_level' rescales a preset's process; it cannot be combined with "
-                             "a process file (process_file / --process)")
-        process = load_process_model(process_file)
-        source = f"file:{process_file}"
-    else:
-        process = process_with_level(pre, process_level)
-        source = f"preset:{pre.name}" + ("" if process_level == "sigma_mu" else f" ({process_level})")
-    process = with_white_intensity(process, white_intensity)
-    te = float(tau_end) if tau_end is not None else pre.tau_end
-    step = float(dt) if dt is not None else pre.dt
-    return StudySetup(preset=pre, process=process, process_source=source, tau_end=te, dt=step,
-                      white_intensity=white_intensity, process_level=process_level)
-
-
 def setup_for(config: Any, tau_end: float | None = None) -> StudySetup:
     """:func:`make_setup` from a study config (``tau_end`` overrides a missing ``config.tau_end``)."""
     te = config.tau_end if config.tau_end is not None else tau_end
     return make_setup(config.preset, config.process_file, te, config.dt, config.white_intensity,
                       getattr(config, "process_level", "sigma_mu"))
-
-
-def white_sigma_zeta(setup: StudySetup, normal_force: float) -> float:
-    """σ_ζ of the white-noise model at N [N] (p = N/A) under the setup's σ_ζ rule (for ``thesis``:
-    the nominal σ_ζ = σ_μ(p); see :func:`white_sigma_zeta_effective`)."""
-    return float(setup.process.sigma_zeta(float(normal_force) / setup.preset.contact_area))
-
-
-def white_sigma_zeta_effective(setup: StudySetup, normal_force: float) -> float:
-    """The intensity the white-noise SDE actually uses: σ_ζ, or σ_ζ·Lω0·Δτ (L = 1 m) in ``thesis``
-    mode (printed eq. 4.31, docs/oscillator.md)."""
-    s = white_sigma_zeta(setup, normal_force)
-    return s * setup.preset.omega0 * setup.dt if setup.white_increment == "thesis" else s
 
 
 def model_choices(config: Any, setup: StudySetup, forces: Sequence[float]) -> dict[str, Any]:
@@ -235,17 +105,9 @@ def model_choices(config: Any, setup: StudySetup, forces: Sequence[float]) -> di
         "white_intensity": config.white_intensity,
         "white_increment": setup.white_increment,
         "process_level": setup.process_level,
-        "sigma_zeta": [white_sigma_zeta(setup, nf) for nf in forces],
-        "sigma_zeta_effective": [white_sigma_zeta_effective(setup, nf) for nf in forces],
+        "sigma_zeta": [setup.sigma_zeta(nf) for nf in forces],
+        "sigma_zeta_effective": [setup.sigma_zeta_effective(nf) for nf in forces],
     }
-
-
-def law_for(process: FrictionProcessModel, params: OscillatorParameters) -> FrictionLaw:
-    """The pressure law (4.13/4.33) with μ_fit = E[μ](p) of the process model, p = N/A."""
-    p = params.pressure
-    if p is None:
-        raise StudyError("the pressure law needs p = N/A: parameters without stiffness or contact area")
-    return pressure_law(process.mean(p))
 
 
 def check_models(models: Sequence[str]) -> tuple[str, ...]:

@@ -51,7 +51,6 @@ from .base import StudyResult, provenance_attrs, sweep
 from .common import (
     StudySetup,
     TaskSpec,
-    law_for,
     model_choices,
     pad_events,
     runs_for,
@@ -253,8 +252,7 @@ def damping_study(
                 dmax[mi, ni], dlo[mi, ni], dhi[mi, ni] = d_max_stochastic(
                     dgrid, k[mi, ni], int(n_runs[mi, ni, 0]), confidence=config.confidence,
                     p_detect=config.p_detect)
-    d_hopf = np.array([hopf_damping(p0, law_for(setup.process, p0))
-                       for p0 in (setup.parameters(nf, float(dgrid[0])) for nf in forces)])
+    d_hopf = np.array([hopf_damping(c.params, c.law) for c in (setup.case(nf, float(dgrid[0])) for nf in forces)])
     coords: dict[str, Any] = {
         "model": models,
         "normal_force": ("normal_force", np.asarray(forces, float), {"units": "N", "long_name": "normal force N"}),

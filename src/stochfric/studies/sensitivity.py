@@ -13,7 +13,7 @@ import argparse
 import math
 from typing import Any
 
-from .common import law_for, make_setup
+from .common import make_setup
 from .config import DampingConfig, LyapunovConfig
 from .damping import damping_study
 from .lyapunov import lyapunov_study
@@ -30,8 +30,8 @@ def damping_sensitivity(preset: str = "brake", normal_force: float | None = None
     """D_max^d and D_max^s (white, contact) for variants of the open choices."""
     setup = make_setup(preset)
     nf = normal_force if normal_force is not None else float(setup.preset.study_parameters["damping_study_force"])
-    p = setup.parameters(nf, 0.0)
-    law = law_for(setup.process, p)
+    case = setup.case(nf, 0.0)
+    p, law = case.params, case.law
     x1s = p.n * float(law.kinetic(p.belt_speed))  # static rest position (4.8): n μ(v0)
     base: dict[str, Any] = {"preset": preset, "normal_forces": (nf,), "runs": runs, "seed": seed}
     variants: list[tuple[str, dict[str, Any]]] = [
