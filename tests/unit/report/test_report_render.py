@@ -24,7 +24,15 @@ from stochfric.oscillator.friction_laws import law_II
 from stochfric.oscillator.parameters import OscillatorParameters
 from stochfric.oscillator.result import SimulationResult
 from stochfric.report import plot_phase_portrait, write_report
-from stochfric.report.html import WARNING_HELP, damping_headline, dmax_text, forcing_reading, rich_text
+from stochfric.report.html import (
+    WARNING_HELP,
+    damping_headline,
+    dmax_text,
+    forcing_reading,
+    model_choices_text,
+    normal_force_headline,
+    rich_text,
+)
 from stochfric.studies.base import StudyResult
 
 PNG = b"\x89PNG\r\n\x1a\n"
@@ -157,6 +165,30 @@ def test_forcing_reading_pairs_each_q_with_its_median_and_interval() -> None:
     assert "<tr><td>0.0005</td><td>1.05</td><td>—</td></tr>" in table
     assert txt.startswith("q = 5e-05: median σ_contact/σ_white over η = 1.2 (95 % bootstrap interval 1.1 … 1.3); "
                           "q = 0.0005: median σ_contact/σ_white over η = 1.05 (95 % bootstrap interval —)")
+
+
+def test_normal_force_headline_names_the_forces_with_stick_slip() -> None:
+    summary = {"preset": "sheet", "normal_force": [400.0, 880.0], "damping": [5e-6, 0.17],
+               "models": ["deterministic", "contact"],
+               "n_events": {"deterministic": [[12, 9], [0, 3]], "contact": [[10, 8], [None, 0]]}}
+    assert normal_force_headline(summary) == (
+        "sheet, N = 400, 880 N: at D = 5e-06 stick-slip at every force in every model; at D = 0.17 stick-slip "
+        "deterministic 880 N; contact nowhere.")
+
+
+def test_reproduction_modes_are_labelled_as_such() -> None:
+    """docs/oscillator.md: the printed-(4.31) intensity and the position read mode are reproduction modes
+    only, and must say so wherever they are used."""
+    default = model_choices_text({"path_coordinate": "mass", "white_intensity": "sigma_mu",
+                                  "sigma_zeta": [0.0742, 0.08], "normal_force": [5600.0, 8000.0]})
+    assert "REPRODUCTION MODE" not in default
+    assert "σ_ζ of the white model = 0.0742 (N = 5600 N), 0.08 (N = 8000 N)." in default
+    repro = model_choices_text({"path_coordinate": "position", "white_intensity": "thesis",
+                                "white_increment": "thesis", "sigma_zeta": 0.0742,
+                                "sigma_zeta_effective": [0.2624], "process_level": "psd_level"})
+    assert repro.count("REPRODUCTION MODE") == 3
+    assert "effective σ_ζ,eff = 0.2624" in repro
+    assert model_choices_text({}) == ""
 
 
 # --- the phase portrait of one simulation result -----------------------------------------------------
