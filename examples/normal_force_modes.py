@@ -15,9 +15,10 @@ Equivalent to ``stochfric study normal-force --preset brake|sheet --runs 300`` w
 Prints, per preset, force and mode, E[X_gh] and σ(X_gh) with bootstrap standard errors (runs
 resampled) and σ contact/white with its 95 % bootstrap interval; with ``--figure FILE`` draws
 σ(X_gh) ± SE per case and mode.  Also the forcing-study ratio σ contact/white (median over η
-with 95 % interval) per mode with ``--forcing``.
+with 95 % interval) per mode with ``--forcing``, and D_max^d / D_max^s per mode with ``--damping``.
 
-    python examples/normal_force_modes.py --runs 300 --figure docs/figures/normal_force_modes.png
+    python examples/normal_force_modes.py --runs 300 --forcing --damping \
+        --figure docs/figures/normal_force_modes.png
 """
 
 from __future__ import annotations
@@ -26,7 +27,8 @@ import argparse
 import warnings
 from typing import Any
 
-from stochfric.studies.config import ForcingConfig, NormalForceConfig
+from stochfric.studies.config import DampingConfig, ForcingConfig, NormalForceConfig
+from stochfric.studies.damping import damping_study
 from stochfric.studies.forcing import forcing_study
 from stochfric.studies.normal_force import normal_force_study
 
@@ -102,12 +104,39 @@ def forcing(preset: str, runs: int, seed: int) -> list[str]:
     return lines
 
 
+#: the damping-study force per preset (the thesis's phase-diagram forces)
+DAMPING_FORCE = {"brake": 5600.0, "sheet": 1400.0}
+
+
+def _dmax(cell: Any) -> str:
+    """'value [value, next grid point]' of a D_max^s entry, with '> grid' where it has no end."""
+    value, (low, high) = cell["value"], cell["interval"]
+    if value is None:
+        return "—"
+    return f"{value:g} [{low:g}, {'> grid' if high is None else f'{high:g}'}]"
+
+
+def damping(preset: str, runs: int, seed: int) -> list[str]:
+    """D_max^d and D_max^s per mode at one force, D = 0.05 … 0.25 × 41 (as `study damping`)."""
+    lines = []
+    for name, mode in MODES.items():
+        cfg = DampingConfig(preset=preset, normal_forces=(DAMPING_FORCE[preset],), runs=runs, seed=seed,
+                            **mode)  # type: ignore[arg-type]
+        s = damping_study(cfg).to_json_dict()
+        det = s["d_max_deterministic"][0]
+        lines.append(f"| {preset} | {name} | {det:g} | {_dmax(s['d_max_stochastic']['white'][0])} | "
+                     f"{_dmax(s['d_max_stochastic']['contact'][0])} |")
+    return lines
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--runs", type=int, default=300)
     ap.add_argument("--seed", type=int, default=2013)
     ap.add_argument("--figure", default=None)
     ap.add_argument("--forcing", action="store_true", help="also the forcing-study σ ratio (10 runs, η = 0:3:61)")
+    ap.add_argument("--damping", action="store_true",
+                    help="also D_max^d, D_max^s per mode (10 runs, seed 0, D = 0.05:0.25:41, N = 5600 / 1400 N)")
     a = ap.parse_args()
     warnings.simplefilter("ignore")
     all_res = {}
@@ -124,6 +153,11 @@ def main() -> None:
         print("|---|---|---|---|")
         for preset in ("brake", "sheet"):
             print("\n".join(forcing(preset, 10, a.seed)), flush=True)
+    if a.damping:
+        print("\n| preset | mode | D_max^d | D_max^s white | D_max^s contact |")
+        print("|---|---|---|---|---|")
+        for preset in ("brake", "sheet"):
+            print("\n".join(damping(preset, 10, 0)), flush=True)
 
 
 if __name__ == "__main__":
