@@ -228,12 +228,19 @@ def breakaway_time(
     return np.inf
 
 
+#: A sample at τ = k·save_dt belongs to the step that ends there even when k·save_dt rounds a
+#: hair above the step's end (3·0.1 = 0.30000000000000004 > 0.3): without this tolerance the last
+#: row at τ_end stayed unwritten (0, 0, 0).  Relative to save_dt; the dense output is evaluated
+#: at most 1e-9·save_dt past the step's end (an extrapolation of that size).
+SAVE_TOL = 1e-9
+
+
 @numba.njit(cache=True, nogil=True)
 def _save_stick(
     traj: npt.NDArray[np.float64], isave: int, save_dt: float, x1s: float, tau_s: float,
     tau_e: float, gamma0: float,
 ) -> int:  # pragma: no cover
-    while isave < traj.shape[0] and isave * save_dt <= tau_e:
+    while isave < traj.shape[0] and isave * save_dt <= tau_e + SAVE_TOL * save_dt:
         ts = isave * save_dt
         traj[isave, 0] = ts
         traj[isave, 1] = x1s + gamma0 * (ts - tau_s)
@@ -299,7 +306,12 @@ def run_accurate(
         return lim
 
     stick = x20 == gamma0 and abs(_stick_force(x10, 0.0, prm)) <= _lim_eff(0.0)
-    s = 1.0 if x20 <= gamma0 else -1.0
+    # off the belt speed the relative velocity decides; on it (and outside the static band) the
+    # unbalanced force does: slip backwards (s = +1) when it exceeds +limit, forwards below −limit
+    if x20 == gamma0:
+        s = 1.0 if _stick_force(x10, 0.0, prm) >= 0.0 else -1.0
+    else:
+        s = 1.0 if x20 < gamma0 else -1.0
     h = min(h0, max_step)
 
     while tau < tau_end:
@@ -364,7 +376,7 @@ def run_accurate(
                         ev = EV_NODE
             h_next = h * min(5.0, max(0.2, 0.9 * max(err, 1e-10) ** -0.2))
             if ev == EV_NONE:
-                while isave < traj.shape[0] and isave * save_dt <= tau + h:
+                while isave < traj.shape[0] and isave * save_dt <= tau + h + SAVE_TOL * save_dt:
                     tq = (isave * save_dt - tau) / h
                     traj[isave, 0] = isave * save_dt
                     traj[isave, 1] = _dense(y, ynew, k, h, tq, 0)
@@ -380,7 +392,7 @@ def run_accurate(
                 continue
             # event inside the step: recompute the state exactly at it
             hev = th * h
-            while isave < traj.shape[0] and isave * save_dt <= tau + hev:
+            while isave < traj.shape[0] and isave * save_dt <= tau + hev + SAVE_TOL * save_dt:
                 tq = (isave * save_dt - tau) / h
                 traj[isave, 0] = isave * save_dt
                 traj[isave, 1] = _dense(y, ynew, k, h, tq, 0)

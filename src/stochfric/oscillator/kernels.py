@@ -578,7 +578,12 @@ def run_fixed_step_batch(
             x2 = x0[j, 1]
             fs[_F_X1, jj] = x1
             fs[_F_X2, jj] = x2
-            fs[_F_S, jj] = -1.0 if x2 > gamma0 else 1.0
+            # on the belt speed the unbalanced force decides the direction of a first slip
+            # (forwards, s = −1, when it is below the static band); off it the relative velocity
+            if x2 == gamma0:
+                fs[_F_S, jj] = 1.0 if _stick_force(x1, 0.0, row) >= 0.0 else -1.0
+            else:
+                fs[_F_S, jj] = -1.0 if x2 > gamma0 else 1.0
             fs[_F_PATH, jj] = 0.0
             fs[_F_LIMB, jj] = _breakaway_limit(lim, nn, mu_k0, noise, proc, j, n_proc[j],
                                                row[P_PROC_DX], x1 if position else 0.0)

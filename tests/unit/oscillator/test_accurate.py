@@ -104,9 +104,6 @@ def test_a_constant_process_shifts_the_kinetic_coefficient() -> None:
     assert out["tgh"][0] == pytest.approx(t0, abs=1e-9)
 
 
-@pytest.mark.xfail(strict=True, reason="bug: a start on the stick line below the static band takes s = +1 "
-                   "(x2 <= γ0 convention) and keeps that friction sign for the whole slip phase: the "
-                   "mass is pushed ahead of the belt with friction pointing forwards")
 def test_a_start_on_the_stick_line_below_the_static_band_slips_forward() -> None:
     """From (−5, γ0): the force 5 exceeds n μ_s = 4 pushing forwards, so s = −1, ξ = x1 + 2.5,
     ξ0 = −2.5: x2 = cos τ + 2.5 sin τ returns to γ0 at τ = 2 atan(2.5) = 2.38058 with ξ = +2.5,
@@ -189,10 +186,6 @@ def test_dormand_prince_step_has_local_order_five_and_dense_output_order_four() 
     assert ynew[2] == pytest.approx(path, rel=1e-7)
 
 
-@pytest.mark.xfail(strict=True, reason="bug: the trajectory sample at τ = k·save_dt is only written while "
-                   "k·save_dt <= τ_end in floating point; 3·0.1 = 0.30000000000000004 > 0.3, so the last row "
-                   "(which simulate allocates) stays (0, 0, 0) — the time axis jumps back to 0 and the "
-                   "phase portrait to the origin")
 def test_the_last_trajectory_sample_at_tau_end_is_written() -> None:
     """Sticking from (0, γ0) for the whole run: rows τ = 0, 0.1, 0.2, 0.3 with x1 = τ, x2 = 1.
     (simulate(..., integrator='accurate', tau_end=0.3, dt=0.1, save_every=1) allocates these 4 rows.)"""

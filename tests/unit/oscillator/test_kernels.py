@@ -182,9 +182,6 @@ def test_lanes_of_one_lock_step_group_are_independent() -> None:
     assert out["counts"].tolist() == [1 if j % 4 == 0 else 0 for j in range(len(starts))]
 
 
-@pytest.mark.xfail(strict=True, reason="bug: a start on the stick line below the static band (x1 + 2Dγ0 < −n μ_s) "
-                   "takes s = +1 by convention; the first slip step then 'goes against the force' and the mass "
-                   "is carried with the belt instead of being pushed ahead of it")
 def test_a_start_on_the_stick_line_below_the_static_band_slips_forward() -> None:
     """From (−5, γ0) the spring pushes with 5 > n μ_s = 4: the mass must leave the belt forwards
     (x2 > γ0, friction −n μ_k): one step gives x2 = 1 + 0.01·(5 − 2.5) = 1.025 (docs/oscillator.md:
