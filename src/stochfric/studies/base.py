@@ -1,19 +1,35 @@
-"""The result object every study returns: an xarray Dataset plus a JSON summary."""
+"""What every study shares: the :class:`Study` base (axes, tasks, assemble) and the
+:class:`StudyResult` it returns (an xarray Dataset plus a JSON summary).
+
+A study is a grid of independent tasks, one :func:`~stochfric.oscillator.integrate.simulate` call
+each (:class:`~stochfric.studies.common.TaskSpec`).  A subclass of :class:`Study` names its task
+axes (:meth:`Study.axes`: the friction model first, then the study's own), the parameter sets of
+one grid point (:meth:`Study.task`) and how the results become a dataset and a summary
+(:meth:`Study.assemble`); :meth:`Study.run` is the same for every study: build the tasks, run them
+(:func:`sweep`: executor, checkpoints, progress), assemble.  Task ``k`` is the ``k``-th point of the
+axes in C order and draws its random numbers from spawn key ``(k,)`` of the root seed.
+"""
 
 from __future__ import annotations
 
+import itertools
 import json
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
+import numpy.typing as npt
 import xarray as xr
 
 from ..io_utils import package_versions, write_netcdf_atomic, write_text_atomic
+from .common import StudySetup, TaskSpec, model_choices, pad_events, setup_for, warnings_of
 from .executors import Executor, SweepStats, run_tasks
 from .store import CheckpointStore
+
+#: Progress callback of a study: ``(tasks done, tasks in all)``.
+Progress = Callable[[int, int], None]
 
 
 def jsonable(obj: Any) -> Any:
@@ -93,3 +109,129 @@ def sweep(
     store = CheckpointStore(checkpoint, config.hash_config(), kind=kind) if checkpoint is not None else None
     results, stats = run_tasks(tasks, executor=executor, store=store, progress=progress)
     return results, stats, (store.hash if store is not None else None)
+
+
+def warning_counts(warns: Sequence[dict[str, str]]) -> list[dict[str, Any]]:
+    """``[{"code", "count"}]`` of simulation warnings, sorted by code (the summaries' ``warnings``)."""
+    codes = sorted({w["code"] for w in warns})
+    return [{"code": c, "count": sum(w["code"] == c for w in warns)} for c in codes]
+
+
+class Study:
+    """Base of the four studies of method §6: axes, tasks, sweep, assemble (see the module docstring).
+
+    ``self.config`` is the validated config, ``self.setup`` its case setup (preset, process model,
+    τ_end, Δτ); ``default_tau_end`` replaces the preset's τ_end when the config sets none.
+    """
+
+    kind: ClassVar[str]
+    default_tau_end: ClassVar[float | None] = None
+
+    def __init__(self, config: Any) -> None:
+        self.config = config
+        self.setup: StudySetup = setup_for(config, tau_end=self.default_tau_end)
+
+    # --- to be given by a study ---------------------------------------------------------
+
+    def axes(self) -> dict[str, Sequence[Any]]:
+        """The task axes, outermost first (``{"model": …, …}``): one task per point."""
+        raise NotImplementedError
+
+    def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
+        """The task at one point of :meth:`axes` (``point``: axis name → value)."""
+        raise NotImplementedError
+
+    def assemble(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]], stats: SweepStats,
+                 checkpoint_hash: str | None, executor: Executor | None) -> StudyResult:
+        """The study's dataset and summary from the task results."""
+        raise NotImplementedError
+
+    # --- the same for every study ---------------------------------------------------------
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        """Lengths of the task axes."""
+        return tuple(len(v) for v in self.axes().values())
+
+    def tasks(self) -> list[TaskSpec]:
+        """One task per point of :meth:`axes` (C order), task index = position."""
+        names = list(self.axes())
+        return [self.task(k, dict(zip(names, values, strict=True)))
+                for k, values in enumerate(itertools.product(*self.axes().values()))]
+
+    def task_for(self, index: int, point: dict[str, Any], params: Sequence[Any], **fields: Any) -> TaskSpec:
+        """:func:`~stochfric.studies.common.task_for` at ``point`` (label ``"model name=value …"``)."""
+        from .common import task_for
+
+        label = " ".join([point["model"], *(f"{_LABELS.get(k, k)}={v:g}" for k, v in point.items() if k != "model")])
+        return task_for(self.config, self.setup, index=index, label=label, model=point["model"], params=params,
+                        **fields)
+
+    @classmethod
+    def study(cls, config: Any, *, executor: Executor | None = None, checkpoint: str | None = None,
+              progress: Progress | None = None) -> StudyResult:
+        """Run the study of ``config``: ``cls(config).run(…)`` (the functions ``damping_study`` etc.)."""
+        return cls(config).run(executor=executor, checkpoint=checkpoint, progress=progress)
+
+    def run(self, *, executor: Executor | None = None, checkpoint: str | None = None,
+            progress: Progress | None = None) -> StudyResult:
+        """Build the tasks, run them (checkpointed when ``checkpoint``), assemble the result.  A study
+        with a second stage (the damping study's phase diagrams) overrides this."""
+        tasks = self.tasks()
+        results, stats, chash = sweep(self.kind, self.config, tasks, executor, checkpoint, progress)
+        return self.assemble(tasks, results, stats, chash, executor)
+
+    def stack(self, tasks: Sequence[TaskSpec], results: dict[int, dict[str, Any]], key: str
+              ) -> npt.NDArray[np.float64]:
+        """Per-run arrays of the tasks on the grid: ``[*axes, parameter set, run(, event)]``.
+
+        Event arrays (``x_gh``, ``t_gh``) are NaN-padded to a common event length; runs a task did
+        not do (the deterministic model does one) are NaN.
+        """
+        arrs = [np.asarray(results[t.index][key], dtype=float) for t in tasks]
+        if key in ("x_gh", "t_gh"):
+            arrs = pad_events(arrs)
+        first = arrs[0]
+        out = np.full((*self.shape, first.shape[0], self.config.runs, *first.shape[2:]), np.nan)
+        for t, a in zip(tasks, arrs, strict=True):
+            out[np.unravel_index(t.index, self.shape)][:, : t.runs] = a
+        return out
+
+    def event_variables(self, grid: dict[str, Any], x_gh: npt.NDArray[np.float64], t_gh: npt.NDArray[np.float64],
+                        in_window: npt.NDArray[np.bool_]) -> tuple[dict[str, Any], dict[str, Any], tuple[str, ...]]:
+        """Coordinates (model, ``grid``, run, event), the variables ``x_gh``, ``t_gh``, ``in_window``
+        on them, and their dimension names."""
+        coords: dict[str, Any] = {"model": list(self.config.models), **grid, "run": np.arange(self.config.runs),
+                                  "event": np.arange(x_gh.shape[-1])}
+        dims = tuple(coords)
+        data: dict[str, Any] = {
+            "x_gh": (dims, x_gh, {"units": "1", "long_name": "slip->stick position X_gh"}),
+            "t_gh": (dims, t_gh, {"units": "1"}),
+            "in_window": (dims, in_window.astype(np.int8), {"units": "1", "long_name": "event after the transient"}),
+        }
+        return coords, data, dims
+
+    @staticmethod
+    def warnings(tasks: Sequence[TaskSpec], results: dict[int, dict[str, Any]]) -> list[dict[str, str]]:
+        """The simulation warnings of every task, in task order."""
+        return [w for t in tasks for w in warnings_of(results[t.index])]
+
+    def summary_head(self, forces: Sequence[float], grid: dict[str, Any], **more: Any) -> dict[str, Any]:
+        """The summary fields every study starts with: case, the study's ``grid`` values, seed, time
+        grid, ``more``, models and the modelling choices (σ_ζ at ``forces``)."""
+        cfg, setup = self.config, self.setup
+        return {"study": self.kind, "preset": setup.preset.name, "process_source": setup.process_source, **grid,
+                "runs": cfg.runs, "seed": cfg.seed, "tau_end": setup.tau_end, "dt": setup.dt, **more,
+                "models": list(cfg.models), **model_choices(cfg, setup, forces)}
+
+    def dataset(self, data: dict[str, Any], coords: dict[str, Any], executor: Executor | None,
+                checkpoint_hash: str | None, **attrs: Any) -> xr.Dataset:
+        """The study's dataset with its provenance attributes (config, case, seed, versions, executor)."""
+        ds = xr.Dataset(data, coords=coords)
+        ds.attrs.update(provenance_attrs(self.kind, self.config, self.setup, self.config.seed, executor))
+        ds.attrs.update(attrs)
+        ds.attrs["checkpoint_hash"] = checkpoint_hash or ""
+        return ds
+
+
+_LABELS = {"damping_ratio": "D", "normal_force": "N", "forcing_q": "q"}

@@ -38,27 +38,18 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Callable
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 import xarray as xr
 
+from ..io_utils import package_versions
 from ..oscillator.reference import hopf_damping
 from ..random import BOOTSTRAP_KEY, child_generator
-from .base import StudyResult, provenance_attrs, sweep
-from .common import (
-    StudySetup,
-    TaskSpec,
-    model_choices,
-    pad_events,
-    runs_for,
-    setup_for,
-    task_for,
-    warnings_of,
-    window_mask,
-)
+from .base import Progress, Study, StudyResult, sweep, warning_counts
+from .common import TaskSpec, runs_for, task_for, window_mask
 from .config import DampingConfig
 from .executors import Executor, SweepStats
 from .stats import clopper_pearson, pooled_bootstrap_se
@@ -127,211 +118,191 @@ def auto_phase_damping(damping: npt.ArrayLike, d_max: npt.ArrayLike, n: int = N_
     return tuple(picked)
 
 
-def phase_tasks(config: DampingConfig, setup: StudySetup, phase_force: float, dampings: tuple[float, ...],
-                first_index: int) -> list[TaskSpec]:
-    """One task per model at ``phase_force``: the D in ``dampings``, trajectories kept."""
-    tasks = []
-    for k, model in enumerate(config.models):
-        params = tuple(setup.parameters(phase_force, d) for d in dampings)
-        runs = min(runs_for(model, config.runs), config.phase_runs)
-        tasks.append(task_for(
-            config, setup, index=first_index + k, label=f"{model} phase N={phase_force:g}", model=model,
-            params=params, runs=runs, common_random_numbers=config.common_random_numbers,
-            keep_trajectory_runs=runs, save_every=config.save_every,
-        ))
-    return tasks
+class DampingStudy(Study):
+    """One task per (model, N): all D of that N batched into one simulate call (the grid); after
+    the grid one phase-diagram task per model (:meth:`phase_tasks`), whose D may depend on the grid."""
+
+    kind = "damping"
+
+    def __init__(self, config: DampingConfig) -> None:
+        super().__init__(config)
+        sp = self.setup.preset.study_parameters
+        self.forces: tuple[float, ...] = config.normal_forces or (float(sp["damping_study_force"]),)
+        self.phase_force = float(config.phase_force if config.phase_force is not None else default_phase_force(
+            float(sp["damping_study_force"]), tuple(self.forces)))
+
+    def axes(self) -> dict[str, Sequence[Any]]:
+        return {"model": self.config.models, "normal_force": self.forces}
+
+    def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
+        return self.task_for(index, point, [self.setup.parameters(point["normal_force"], d)
+                                            for d in self.config.damping],
+                             common_random_numbers=self.config.common_random_numbers)
+
+    def phase_tasks(self, dampings: tuple[float, ...], first_index: int) -> list[TaskSpec]:
+        """One task per model at the phase force: the D in ``dampings``, trajectories kept."""
+        config, nf = self.config, self.phase_force
+        tasks = []
+        for k, model in enumerate(config.models):
+            runs = min(runs_for(model, config.runs), config.phase_runs)
+            tasks.append(task_for(
+                config, self.setup, index=first_index + k, label=f"{model} phase N={nf:g}", model=model,
+                params=[self.setup.parameters(nf, d) for d in dampings], runs=runs,
+                common_random_numbers=config.common_random_numbers, keep_trajectory_runs=runs,
+                save_every=config.save_every,
+            ))
+        return tasks
+
+    def run(self, *, executor: Executor | None = None, checkpoint: str | None = None,
+            progress: Progress | None = None) -> StudyResult:
+        """The grid, then the phase diagrams (progress counts both), analysed (module docstring)."""
+        config, setup, forces, phase_force = self.config, self.setup, self.forces, self.phase_force
+        tasks = self.tasks()
+        n_phase = len(config.models) if config.phase_runs > 0 else 0
+        total = len(tasks) + n_phase
+
+        def grid_progress(done: int, _n: int) -> None:
+            if progress is not None:
+                progress(done, total)
+
+        results, stats, chash = sweep(self.kind, config, tasks, executor, checkpoint,
+                                      grid_progress if progress is not None else None)
+        models: list[str] = list(config.models)
+        dgrid = np.asarray(config.damping)
+        nm, nn, nr = len(models), len(forces), config.runs
+        sc = self.stack(tasks, results, "stick_count")
+        nbs = self.stack(tasks, results, "n_belt_speed_without_stick")
+        sig = np.array([float(results[t.index]["sigma_zeta"][0]) for t in tasks]).reshape(nm, nn)
+        warns = self.warnings(tasks, results)
+        x_gh = self.stack(tasks, results, "x_gh")
+        t_gh = self.stack(tasks, results, "t_gh")
+        nev = x_gh.shape[-1]
+        valid = np.isfinite(sc)  # which runs exist (deterministic: run 0 only)
+        inwin = window_mask(t_gh, setup.tau_end, config.stick_window)
+        late = np.where(valid, inwin.any(axis=-1), np.nan)
+        m_late = np.where(valid, inwin.sum(axis=-1), np.nan)
+        n_runs = valid.sum(axis=-1)
+        k = np.nansum(late, axis=-1)
+        prob = k / n_runs
+        lo, hi = clopper_pearson(k, n_runs, config.confidence)
+        xw = np.where(inwin, x_gh, np.nan)
+        with np.errstate(invalid="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            xmean_nan = np.nanmean(xw, axis=(-2, -1))
+            xstd_nan = np.nanstd(xw, axis=(-2, -1), ddof=1)
+            m_mean = np.nanmean(sc, axis=-1)
+        # Monte Carlo uncertainty: E[M] over independent runs (s/√R); E[X_gh], σ(X_gh) by a bootstrap over runs
+        with np.errstate(invalid="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            m_se = np.nanstd(sc, axis=-1, ddof=1) / np.sqrt(n_runs)
+        x_se_mean, x_se_std = pooled_bootstrap_se(
+            xw, n_boot=200, rng=child_generator(config.seed, BOOTSTRAP_KEY))
+        xmean = np.where(np.isfinite(xmean_nan), xmean_nan, 0.0)
+        xstd = np.where(np.isfinite(xstd_nan), xstd_nan, 0.0)
+        # D_max per model and force
+        dmax = np.full((nm, nn), np.nan)
+        dlo = np.full((nm, nn), np.nan)
+        dhi = np.full((nm, nn), np.nan)
+        for mi, model in enumerate(models):
+            for ni in range(nn):
+                if model == "deterministic":
+                    v = d_max_deterministic(dgrid, k[mi, ni] > 0)
+                    dmax[mi, ni] = v
+                    dlo[mi, ni] = v
+                    above = dgrid[dgrid > v] if math.isfinite(v) else dgrid
+                    dhi[mi, ni] = float(above.min()) if above.size else math.nan
+                else:
+                    dmax[mi, ni], dlo[mi, ni], dhi[mi, ni] = d_max_stochastic(
+                        dgrid, k[mi, ni], int(n_runs[mi, ni, 0]), confidence=config.confidence,
+                        p_detect=config.p_detect)
+        d_hopf = np.array([hopf_damping(c.params, c.law) for c in (setup.case(nf, float(dgrid[0])) for nf in forces)])
+        coords: dict[str, Any] = {
+            "model": models,
+            "normal_force": ("normal_force", np.asarray(forces, float), {"units": "N", "long_name": "normal force N"}),
+            "damping_ratio": ("damping_ratio", dgrid, {"units": "1", "long_name": "damping ratio D"}),
+            "run": np.arange(nr),
+            "event": np.arange(nev),
+        }
+        dims5 = ("model", "normal_force", "damping_ratio", "run", "event")
+        dims4 = dims5[:4]
+        dims3 = dims5[:3]
+        data: dict[str, Any] = {
+            "x_gh": (dims5, x_gh, {"units": "1", "long_name": "slip->stick position X_gh = y/L"}),
+            "t_gh": (dims5, t_gh, {"units": "1", "long_name": "tau of slip->stick"}),
+            "stick_count": (dims4, sc, {"units": "1", "long_name": "M: slip->stick transitions in (0, tau_end]"}),
+            "stick_count_window": (dims4, m_late, {"units": "1", "long_name": "transitions in the stick window"}),
+            "n_belt_speed_without_stick": (dims4, nbs, {"units": "1"}),
+            "has_cycle": (dims4, late, {"units": "1",
+                                        "long_name": "1 if a slip->stick transition in the stick window"}),
+            "n_runs": (dims3, n_runs, {"units": "1"}),
+            "stick_probability": (dims3, prob, {"units": "1", "long_name": "fraction of runs with a cycle"}),
+            "stick_probability_low": (dims3, lo, {"units": "1", "long_name": "Clopper-Pearson lower bound"}),
+            "stick_probability_high": (dims3, hi, {"units": "1", "long_name": "Clopper-Pearson upper bound"}),
+            "m_mean": (dims3, m_mean, {"units": "1", "long_name": "E[M] (deterministic: M_d)"}),
+            "m_mean_se": (dims3, m_se, {"units": "1", "long_name": "standard error of E[M] (runs independent)"}),
+            "x_gh_mean_se": (dims3, x_se_mean, {"units": "1", "long_name": "bootstrap SE of E[X_gh] (NaN: undefined)"}),
+            "x_gh_std_se": (dims3, x_se_std, {"units": "1", "long_name": "bootstrap SE of sigma(X_gh)"}),
+            "x_gh_mean": (dims3, xmean, {"units": "1",
+                                         "long_name": "E[X_gh] in the window, 0 where no stick (thesis)"}),
+            "x_gh_std": (dims3, xstd, {"units": "1", "long_name": "sigma(X_gh) in the window, 0 where none"}),
+            "x_gh_mean_nan": (dims3, xmean_nan, {"units": "1", "long_name": "E[X_gh] in the window, NaN where none"}),
+            "x_gh_std_nan": (dims3, xstd_nan, {"units": "1", "long_name": "sigma(X_gh), NaN where undefined"}),
+            "sigma_zeta": (("model", "normal_force"), sig, {"units": "1", "long_name": "white-noise intensity"}),
+            "d_max": (("model", "normal_force"), dmax, {"units": "1", "long_name": "D_max^d / D_max^s"}),
+            "d_max_low": (("model", "normal_force"), dlo, {"units": "1"}),
+            "d_max_high": (("model", "normal_force"), dhi, {"units": "1",
+                                                             "long_name": "det: next grid D; stoch: D_hi"}),
+            "d_hopf": (("normal_force",), d_hopf, {"units": "1", "long_name": "D_H = -n mu'(v0) v0/(2 gamma0)"}),
+        }
+        if "deterministic" in models:
+            di = models.index("deterministic")
+            md = m_mean[di]
+            stoch = [m for m in models if m != "deterministic"]
+            if stoch:
+                ms = np.stack([m_mean[models.index(m)] for m in stoch])
+                with np.errstate(invalid="ignore", divide="ignore"):
+                    quot = np.where(md > 0, ms / np.where(md > 0, md, 1.0), np.nan)
+                coords["stochastic_model"] = stoch
+                data["m_diff"] = (("stochastic_model", "normal_force", "damping_ratio"), md[None] - ms,
+                                  {"units": "1", "long_name": "M_diff = M_d - E[M_s] (4.41)"})
+                data["m_quot"] = (("stochastic_model", "normal_force", "damping_ratio"), quot,
+                                  {"units": "1", "long_name": "M_quot = E[M_s]/M_d (4.42), NaN where M_d = 0"})
+                safe = np.stack([np.fmax(dmax[di], dmax[models.index(m)]) for m in stoch])
+                data["d_safe"] = (("stochastic_model", "normal_force"), safe,
+                                  {"units": "1", "long_name": "safe limit max(D_max^d, D_max^s)"})
+        phase_rule = "none"
+        if n_phase:
+            if config.phase_damping is not None:
+                phase_d, phase_rule = tuple(config.phase_damping), "given"
+            else:
+                fi = int(np.argmin(np.abs(np.asarray(forces, float) - phase_force)))
+                phase_d, phase_rule = auto_phase_damping(dgrid, dmax[:, fi]), "auto"
+            ptasks = self.phase_tasks(phase_d, first_index=len(tasks))
+
+            def phase_progress(done: int, _n: int) -> None:
+                if progress is not None:
+                    progress(len(tasks) + done, total)
+
+            presults, pstats, _ = sweep("damping", config, ptasks, executor, checkpoint,
+                                        phase_progress if progress is not None else None)
+            stats = SweepStats(computed=stats.computed + pstats.computed, loaded=stats.loaded + pstats.loaded)
+            _add_phase(data, coords, models, ptasks, presults, phase_force, phase_d, setup.tau_end,
+                       config.stick_window, max(1, config.phase_runs))
+            warns += self.warnings(ptasks, presults)
+        ds = self.dataset(data, coords, executor, chash, stick_window=config.stick_window)
+        ds.attrs["phase_damping_rule"] = phase_rule
+        summary = _summary(self, ds, warns)
+        return StudyResult(self.kind, ds, summary, stats)
 
 
 def damping_tasks(config: DampingConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
-    """One task per (model, N): all D of that N batched into one simulate call (the grid; the
-    phase-diagram tasks follow in :func:`damping_study`, their D may depend on the grid)."""
-    setup = setup_for(config)
-    forces = config.normal_forces or (float(setup.preset.study_parameters["damping_study_force"]),)
-    tasks = []
-    idx = 0
-    for model in config.models:
-        for nf in forces:
-            params = tuple(setup.parameters(nf, d) for d in config.damping)
-            tasks.append(task_for(
-                config, setup, index=idx, label=f"{model} N={nf:g}", model=model, params=params,
-                common_random_numbers=config.common_random_numbers,
-            ))
-            idx += 1
-    pf = config.phase_force if config.phase_force is not None else default_phase_force(
-        float(setup.preset.study_parameters["damping_study_force"]), tuple(forces))
-    return tasks, {"setup": setup, "forces": forces, "phase_force": float(pf)}
+    """The grid tasks of :class:`DampingStudy` and its setup, forces and phase force."""
+    study = DampingStudy(config)
+    return study.tasks(), {"setup": study.setup, "forces": study.forces, "phase_force": study.phase_force}
 
 
-def damping_study(
-    config: DampingConfig,
-    *,
-    executor: Executor | None = None,
-    checkpoint: str | None = None,
-    progress: Callable[[int, int], None] | None = None,
-) -> StudyResult:
-    """Run the damping study and analyse it (see the module docstring)."""
-    tasks, info = damping_tasks(config)
-    setup, forces, phase_force = info["setup"], info["forces"], info["phase_force"]
-    n_phase = len(config.models) if config.phase_runs > 0 else 0
-    total = len(tasks) + n_phase
-
-    def grid_progress(done: int, _n: int) -> None:
-        if progress is not None:
-            progress(done, total)
-
-    results, stats, chash = sweep("damping", config, tasks, executor, checkpoint,
-                                  grid_progress if progress is not None else None)
-    models: list[str] = list(config.models)
-    dgrid = np.asarray(config.damping)
-    nm, nn, nd, nr = len(models), len(forces), len(dgrid), config.runs
-    tiles_x, tiles_t = [], []
-    sc = np.full((nm, nn, nd, nr), np.nan)
-    nbs = np.full((nm, nn, nd, nr), np.nan)
-    sig = np.full((nm, nn), np.nan)
-    warns: list[dict[str, str]] = []
-    for t in tasks:
-        r = results[t.index]
-        warns += warnings_of(r)
-    for mi, _model in enumerate(models):
-        xs, ts = [], []
-        for ni in range(nn):
-            t = tasks[mi * nn + ni]
-            r = results[t.index]
-            xs.append(r["x_gh"])
-            ts.append(r["t_gh"])
-            sc[mi, ni, :, : t.runs] = r["stick_count"]
-            nbs[mi, ni, :, : t.runs] = r["n_belt_speed_without_stick"]
-            sig[mi, ni] = float(r["sigma_zeta"][0])
-        tiles_x.append(xs)
-        tiles_t.append(ts)
-    flat_x = pad_events([a for row in tiles_x for a in row])
-    flat_t = pad_events([a for row in tiles_t for a in row])
-    nev = flat_x[0].shape[-1]
-    x_gh = np.full((nm, nn, nd, nr, nev), np.nan)
-    t_gh = np.full((nm, nn, nd, nr, nev), np.nan)
-    for mi in range(nm):
-        for ni in range(nn):
-            a, b = flat_x[mi * nn + ni], flat_t[mi * nn + ni]
-            x_gh[mi, ni, :, : a.shape[1]] = a
-            t_gh[mi, ni, :, : b.shape[1]] = b
-    valid = np.isfinite(sc)  # which runs exist (deterministic: run 0 only)
-    inwin = window_mask(t_gh, setup.tau_end, config.stick_window)
-    late = np.where(valid, inwin.any(axis=-1), np.nan)
-    m_late = np.where(valid, inwin.sum(axis=-1), np.nan)
-    n_runs = valid.sum(axis=-1)
-    k = np.nansum(late, axis=-1)
-    prob = k / n_runs
-    lo, hi = clopper_pearson(k, n_runs, config.confidence)
-    xw = np.where(inwin, x_gh, np.nan)
-    with np.errstate(invalid="ignore"), warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        xmean_nan = np.nanmean(xw, axis=(-2, -1))
-        xstd_nan = np.nanstd(xw, axis=(-2, -1), ddof=1)
-        m_mean = np.nanmean(sc, axis=-1)
-    # Monte Carlo uncertainty: E[M] over independent runs (s/√R); E[X_gh], σ(X_gh) by a bootstrap over runs
-    with np.errstate(invalid="ignore"), warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        m_se = np.nanstd(sc, axis=-1, ddof=1) / np.sqrt(n_runs)
-    x_se_mean, x_se_std = pooled_bootstrap_se(
-        xw, n_boot=200, rng=child_generator(config.seed, BOOTSTRAP_KEY))
-    xmean = np.where(np.isfinite(xmean_nan), xmean_nan, 0.0)
-    xstd = np.where(np.isfinite(xstd_nan), xstd_nan, 0.0)
-    # D_max per model and force
-    dmax = np.full((nm, nn), np.nan)
-    dlo = np.full((nm, nn), np.nan)
-    dhi = np.full((nm, nn), np.nan)
-    for mi, model in enumerate(models):
-        for ni in range(nn):
-            if model == "deterministic":
-                v = d_max_deterministic(dgrid, k[mi, ni] > 0)
-                dmax[mi, ni] = v
-                dlo[mi, ni] = v
-                above = dgrid[dgrid > v] if math.isfinite(v) else dgrid
-                dhi[mi, ni] = float(above.min()) if above.size else math.nan
-            else:
-                dmax[mi, ni], dlo[mi, ni], dhi[mi, ni] = d_max_stochastic(
-                    dgrid, k[mi, ni], int(n_runs[mi, ni, 0]), confidence=config.confidence,
-                    p_detect=config.p_detect)
-    d_hopf = np.array([hopf_damping(c.params, c.law) for c in (setup.case(nf, float(dgrid[0])) for nf in forces)])
-    coords: dict[str, Any] = {
-        "model": models,
-        "normal_force": ("normal_force", np.asarray(forces, float), {"units": "N", "long_name": "normal force N"}),
-        "damping_ratio": ("damping_ratio", dgrid, {"units": "1", "long_name": "damping ratio D"}),
-        "run": np.arange(nr),
-        "event": np.arange(nev),
-    }
-    dims5 = ("model", "normal_force", "damping_ratio", "run", "event")
-    dims4 = dims5[:4]
-    dims3 = dims5[:3]
-    data: dict[str, Any] = {
-        "x_gh": (dims5, x_gh, {"units": "1", "long_name": "slip->stick position X_gh = y/L"}),
-        "t_gh": (dims5, t_gh, {"units": "1", "long_name": "tau of slip->stick"}),
-        "stick_count": (dims4, sc, {"units": "1", "long_name": "M: slip->stick transitions in (0, tau_end]"}),
-        "stick_count_window": (dims4, m_late, {"units": "1", "long_name": "transitions in the stick window"}),
-        "n_belt_speed_without_stick": (dims4, nbs, {"units": "1"}),
-        "has_cycle": (dims4, late, {"units": "1", "long_name": "1 if a slip->stick transition in the stick window"}),
-        "n_runs": (dims3, n_runs, {"units": "1"}),
-        "stick_probability": (dims3, prob, {"units": "1", "long_name": "fraction of runs with a cycle"}),
-        "stick_probability_low": (dims3, lo, {"units": "1", "long_name": "Clopper-Pearson lower bound"}),
-        "stick_probability_high": (dims3, hi, {"units": "1", "long_name": "Clopper-Pearson upper bound"}),
-        "m_mean": (dims3, m_mean, {"units": "1", "long_name": "E[M] (deterministic: M_d)"}),
-        "m_mean_se": (dims3, m_se, {"units": "1", "long_name": "standard error of E[M] (runs independent)"}),
-        "x_gh_mean_se": (dims3, x_se_mean, {"units": "1", "long_name": "bootstrap SE of E[X_gh] (NaN: undefined)"}),
-        "x_gh_std_se": (dims3, x_se_std, {"units": "1", "long_name": "bootstrap SE of sigma(X_gh)"}),
-        "x_gh_mean": (dims3, xmean, {"units": "1", "long_name": "E[X_gh] in the window, 0 where no stick (thesis)"}),
-        "x_gh_std": (dims3, xstd, {"units": "1", "long_name": "sigma(X_gh) in the window, 0 where none"}),
-        "x_gh_mean_nan": (dims3, xmean_nan, {"units": "1", "long_name": "E[X_gh] in the window, NaN where none"}),
-        "x_gh_std_nan": (dims3, xstd_nan, {"units": "1", "long_name": "sigma(X_gh), NaN where undefined"}),
-        "sigma_zeta": (("model", "normal_force"), sig, {"units": "1", "long_name": "white-noise intensity"}),
-        "d_max": (("model", "normal_force"), dmax, {"units": "1", "long_name": "D_max^d / D_max^s"}),
-        "d_max_low": (("model", "normal_force"), dlo, {"units": "1"}),
-        "d_max_high": (("model", "normal_force"), dhi, {"units": "1",
-                                                         "long_name": "det: next grid D; stoch: D_hi"}),
-        "d_hopf": (("normal_force",), d_hopf, {"units": "1", "long_name": "D_H = -n mu'(v0) v0/(2 gamma0)"}),
-    }
-    if "deterministic" in models:
-        di = models.index("deterministic")
-        md = m_mean[di]
-        stoch = [m for m in models if m != "deterministic"]
-        if stoch:
-            ms = np.stack([m_mean[models.index(m)] for m in stoch])
-            with np.errstate(invalid="ignore", divide="ignore"):
-                quot = np.where(md > 0, ms / np.where(md > 0, md, 1.0), np.nan)
-            coords["stochastic_model"] = stoch
-            data["m_diff"] = (("stochastic_model", "normal_force", "damping_ratio"), md[None] - ms,
-                              {"units": "1", "long_name": "M_diff = M_d - E[M_s] (4.41)"})
-            data["m_quot"] = (("stochastic_model", "normal_force", "damping_ratio"), quot,
-                              {"units": "1", "long_name": "M_quot = E[M_s]/M_d (4.42), NaN where M_d = 0"})
-            safe = np.stack([np.fmax(dmax[di], dmax[models.index(m)]) for m in stoch])
-            data["d_safe"] = (("stochastic_model", "normal_force"), safe,
-                              {"units": "1", "long_name": "safe limit max(D_max^d, D_max^s)"})
-    phase_rule = "none"
-    if n_phase:
-        if config.phase_damping is not None:
-            phase_d, phase_rule = tuple(config.phase_damping), "given"
-        else:
-            fi = int(np.argmin(np.abs(np.asarray(forces, float) - phase_force)))
-            phase_d, phase_rule = auto_phase_damping(dgrid, dmax[:, fi]), "auto"
-        ptasks = phase_tasks(config, setup, phase_force, phase_d, first_index=len(tasks))
-
-        def phase_progress(done: int, _n: int) -> None:
-            if progress is not None:
-                progress(len(tasks) + done, total)
-
-        presults, pstats, _ = sweep("damping", config, ptasks, executor, checkpoint,
-                                    phase_progress if progress is not None else None)
-        stats = SweepStats(computed=stats.computed + pstats.computed, loaded=stats.loaded + pstats.loaded)
-        _add_phase(data, coords, models, ptasks, presults, phase_force, phase_d, setup.tau_end,
-                   config.stick_window, max(1, config.phase_runs))
-        for t in ptasks:
-            warns += warnings_of(presults[t.index])
-    ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(provenance_attrs("damping", config, setup, config.seed, executor))
-    ds.attrs["stick_window"] = config.stick_window
-    ds.attrs["checkpoint_hash"] = chash or ""
-    ds.attrs["phase_damping_rule"] = phase_rule
-    summary = _summary(config, setup, ds, models, forces, warns)
-    return StudyResult("damping", ds, summary, stats)
+#: Run the damping study (module docstring); ``executor``, ``checkpoint``, ``progress`` as :meth:`Study.run`.
+damping_study = DampingStudy.study
 
 
 def _add_phase(data: dict[str, Any], coords: dict[str, Any], models: list[str], ptasks: list[TaskSpec],
@@ -372,26 +343,13 @@ def _none(v: float) -> float | None:
     return float(v) if math.isfinite(v) else None
 
 
-def _summary(config: DampingConfig, setup: Any, ds: xr.Dataset, models: list[str], forces: tuple[float, ...],
-             warns: list[dict[str, str]]) -> dict[str, Any]:
-    from ..io_utils import package_versions
-
-    out: dict[str, Any] = {
-        "study": "damping",
-        "preset": setup.preset.name,
-        "process_source": setup.process_source,
-        "normal_force": list(forces),
-        "damping": list(config.damping),
-        "d_hopf": [float(v) for v in ds["d_hopf"].values],
-        "runs": config.runs,
-        "seed": config.seed,
-        "tau_end": setup.tau_end,
-        "dt": setup.dt,
-        "stick_window": [config.stick_window * setup.tau_end, setup.tau_end],
-        "confidence": config.confidence,
-        "p_detect": config.p_detect,
-        "models": models,
-    }
+def _summary(study: DampingStudy, ds: xr.Dataset, warns: list[dict[str, str]]) -> dict[str, Any]:
+    config, setup, models, forces = study.config, study.setup, list(study.config.models), study.forces
+    out = study.summary_head(
+        forces, {"normal_force": list(forces), "damping": list(config.damping),
+                 "d_hopf": [float(v) for v in ds["d_hopf"].values]},
+        stick_window=[config.stick_window * setup.tau_end, setup.tau_end], confidence=config.confidence,
+        p_detect=config.p_detect)
     if "deterministic" in models:
         out["d_max_deterministic"] = [_none(v) for v in ds["d_max"].sel(model="deterministic").values]
         out["d_max_deterministic_next_grid"] = [_none(v) for v in ds["d_max_high"].sel(model="deterministic").values]
@@ -420,7 +378,6 @@ def _summary(config: DampingConfig, setup: Any, ds: xr.Dataset, models: list[str
     if "m_diff" in ds:
         out["m_diff"] = {m: ds["m_diff"].sel(stochastic_model=m).values.tolist()
                          for m in ds["stochastic_model"].values.tolist()}
-    out.update(model_choices(config, setup, forces))  # path coordinate, σ_ζ rule, σ_ζ of the white model per N
     if "phase_trajectory" in ds:
         out["phase"] = {
             "normal_force": float(ds["phase_normal_force"].values),
@@ -431,8 +388,7 @@ def _summary(config: DampingConfig, setup: Any, ds: xr.Dataset, models: list[str
             "has_cycle_fraction": {m: [float(np.nanmean(v)) for v in ds["phase_has_cycle"].sel(model=m).values]
                                    for m in models},
         }
-    codes = sorted({w["code"] for w in warns})
-    out["warnings"] = [{"code": c, "count": sum(w["code"] == c for w in warns)} for c in codes]
+    out["warnings"] = warning_counts(warns)
     out["versions"] = package_versions()
     out["checkpoint_hash"] = ds.attrs.get("checkpoint_hash") or None
     return out

@@ -11,142 +11,110 @@ sheet).  One task per (model, q): all η in one simulate call.
 from __future__ import annotations
 
 import warnings
-from collections.abc import Callable
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
-import xarray as xr
 
 from ..io_utils import package_versions
 from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
-from .base import StudyResult, provenance_attrs, sweep
-from .common import (
-    TaskSpec,
-    model_choices,
-    pad_events,
-    setup_for,
-    task_for,
-    warnings_of,
-    window_mask,
-)
+from .base import Study, StudyResult, warning_counts
+from .common import TaskSpec, window_mask
 from .config import ForcingConfig
-from .executors import Executor
+from .executors import Executor, SweepStats
 from .stats import sample_summary, std_ratio_over_cells
 
 
-def forcing_tasks(config: ForcingConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
-    """One task per (model, q)."""
-    setup = setup_for(config)
-    sp = setup.preset.study_parameters
-    nf = config.normal_force if config.normal_force is not None else float(sp["forcing_study_force"])
-    d = config.damping if config.damping is not None else float(sp["damping_undamped"])
-    tasks = []
-    idx = 0
-    for model in config.models:
-        for q in config.forcing_q:
-            params = tuple(setup.parameters(nf, d, q * setup.preset.stiffness, eta) for eta in config.eta)
-            tasks.append(task_for(config, setup, index=idx, label=f"{model} q={q:g}", model=model, params=params))
-            idx += 1
-    return tasks, {"setup": setup, "normal_force": nf, "damping": d}
+class ForcingStudy(Study):
+    """One task per (model, q); all η in one simulate call."""
+
+    kind = "forcing"
+
+    def __init__(self, config: ForcingConfig) -> None:
+        super().__init__(config)
+        sp = self.setup.preset.study_parameters
+        self.normal_force = config.normal_force if config.normal_force is not None else float(
+            sp["forcing_study_force"])
+        self.damping = config.damping if config.damping is not None else float(sp["damping_undamped"])
+
+    def axes(self) -> dict[str, Sequence[Any]]:
+        return {"model": self.config.models, "forcing_q": self.config.forcing_q}
+
+    def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
+        st, q = self.setup, point["forcing_q"]
+        return self.task_for(index, point, [st.parameters(self.normal_force, self.damping, q * st.preset.stiffness,
+                                                          eta) for eta in self.config.eta])
+
+    def assemble(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]], stats: SweepStats,
+                 chash: str | None, executor: Executor | None) -> StudyResult:
+        config, setup, nf = self.config, self.setup, self.normal_force
+        models, qs, etas = list(config.models), list(config.forcing_q), np.asarray(config.eta)
+        nm, nq, ne, nr = len(models), len(qs), len(etas), config.runs
+        x_gh = self.stack(tasks, results, "x_gh")
+        t_gh = self.stack(tasks, results, "t_gh")
+        inwin = window_mask(t_gh, setup.tau_end, config.stick_window)
+        xw = np.where(inwin, x_gh, np.nan)
+        n_ev = inwin.sum(axis=(-2, -1))
+        with np.errstate(invalid="ignore"), warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            mean = np.nanmean(xw, axis=(-2, -1))
+            std = np.nanstd(xw, axis=(-2, -1), ddof=1)
+        coords, data, dims5 = self.event_variables({
+            "forcing_q": ("forcing_q", np.asarray(qs), {"units": "1", "long_name": "q = Q/(cL)"}),
+            "eta": ("eta", etas, {"units": "1", "long_name": "eta = Omega/omega0"})}, x_gh, t_gh, inwin)
+        data.update({
+            "x_gh_mean": (dims5[:3], mean, {"units": "1", "long_name": "E[X_gh] after the transient"}),
+            "x_gh_std": (dims5[:3], std, {"units": "1", "long_name": "sigma(X_gh) after the transient (ddof 1)"}),
+            "n_events": (dims5[:3], n_ev, {"units": "1"}),
+        })
+        summary: dict[str, Any] = {
+            **self.summary_head([nf], {
+                "normal_force": nf, "damping": self.damping, "forcing_q": qs,
+                "forcing_amplitude_n": [q * setup.preset.stiffness for q in qs], "eta": etas.tolist()}),
+            "x_gh_mean": {m: mean[i].tolist() for i, m in enumerate(models)},
+            "x_gh_std": {m: std[i].tolist() for i, m in enumerate(models)},
+        }
+        summary["sigma_zeta"] = summary["sigma_zeta"][0]  # one normal force
+        summary["sigma_zeta_effective"] = summary["sigma_zeta_effective"][0]
+        # Monte Carlo uncertainty of E and σ per cell: bootstrap over runs (the run is the unit)
+        se = np.full((nm, nq, ne, 2), np.nan)
+        for mi, qi, ei in np.ndindex(nm, nq, ne):
+            runs = 1 if models[mi] == "deterministic" else nr
+            g = child_generator(config.seed, BOOTSTRAP_KEY, mi, qi, ei)
+            sm = sample_summary([xw[mi, qi, ei, r] for r in range(runs)], n_boot=200, rng=g)
+            se[mi, qi, ei] = [sm.se_mean_boot, sm.se_std_boot]
+        data["x_gh_mean_se"] = (dims5[:3], se[..., 0], {"units": "1", "long_name": "bootstrap SE of E[X_gh]"})
+        data["x_gh_std_se"] = (dims5[:3], se[..., 1], {"units": "1", "long_name": "bootstrap SE of sigma(X_gh)"})
+        summary["x_gh_mean_se"] = {m: se[i, ..., 0].tolist() for i, m in enumerate(models)}
+        summary["x_gh_std_se"] = {m: se[i, ..., 1].tolist() for i, m in enumerate(models)}
+        if "white" in models and "contact" in models:
+            with np.errstate(invalid="ignore", divide="ignore"):
+                ratio = std[models.index("contact")] / std[models.index("white")]
+            data["sigma_ratio"] = (("forcing_q", "eta"), ratio,
+                                   {"units": "1", "long_name": "sigma_contact / sigma_white"})
+            summary["sigma_ratio"] = {f"{q:g}": ratio[i].tolist() for i, q in enumerate(qs)}
+            summary["sigma_ratio_median"] = {f"{q:g}": float(np.nanmedian(ratio[i])) if np.isfinite(ratio[i]).any()
+                                             else None for i, q in enumerate(qs)}
+            ci, cw = models.index("contact"), models.index("white")
+            lo_hi = np.full((nq, ne, 2), np.nan)
+            med_ci: dict[str, dict[str, Any]] = {}
+            for qi, q in enumerate(qs):
+                g = child_generator(config.seed, INTERVAL_KEY, qi)
+                per, med = std_ratio_over_cells([[xw[ci, qi, e, r] for r in range(nr)] for e in range(ne)],
+                                                [[xw[cw, qi, e, r] for r in range(nr)] for e in range(ne)], rng=g)
+                lo_hi[qi] = [[p.low, p.high] for p in per]
+                med_ci[f"{q:g}"] = med.to_dict()
+            boot = {"units": "1", "long_name": "95 % bootstrap"}
+            data["sigma_ratio_low"] = (("forcing_q", "eta"), lo_hi[..., 0], boot)
+            data["sigma_ratio_high"] = (("forcing_q", "eta"), lo_hi[..., 1], dict(boot))
+            summary["sigma_ratio_interval"] = {f"{q:g}": lo_hi[i].tolist() for i, q in enumerate(qs)}
+            # the median over η with its bootstrap SE and 95 % interval (all η resampled together)
+            summary["sigma_ratio_median_ci"] = med_ci
+        ds = self.dataset(data, coords, executor, chash, stick_window=config.stick_window)
+        summary["warnings"] = warning_counts(self.warnings(tasks, results))
+        summary["versions"] = package_versions()
+        return StudyResult(self.kind, ds, summary, stats)
 
 
-def forcing_study(
-    config: ForcingConfig,
-    *,
-    executor: Executor | None = None,
-    checkpoint: str | None = None,
-    progress: Callable[[int, int], None] | None = None,
-) -> StudyResult:
-    """Run the forcing study (see the module docstring)."""
-    tasks, info = forcing_tasks(config)
-    setup = info["setup"]
-    results, stats, chash = sweep("forcing", config, tasks, executor, checkpoint, progress)
-    models, qs, etas = list(config.models), list(config.forcing_q), np.asarray(config.eta)
-    nm, nq, ne, nr = len(models), len(qs), len(etas), config.runs
-    flat_x = pad_events([results[t.index]["x_gh"] for t in tasks])
-    flat_t = pad_events([results[t.index]["t_gh"] for t in tasks])
-    nev = flat_x[0].shape[-1]
-    x_gh = np.full((nm, nq, ne, nr, nev), np.nan)
-    t_gh = np.full((nm, nq, ne, nr, nev), np.nan)
-    warns: list[dict[str, str]] = []
-    for t, a, b in zip(tasks, flat_x, flat_t, strict=True):
-        mi, qi = divmod(t.index, nq)
-        x_gh[mi, qi, :, : t.runs] = a
-        t_gh[mi, qi, :, : t.runs] = b
-        warns += warnings_of(results[t.index])
-    inwin = window_mask(t_gh, setup.tau_end, config.stick_window)
-    xw = np.where(inwin, x_gh, np.nan)
-    n_ev = inwin.sum(axis=(-2, -1))
-    with np.errstate(invalid="ignore"), warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        mean = np.nanmean(xw, axis=(-2, -1))
-        std = np.nanstd(xw, axis=(-2, -1), ddof=1)
-    coords: dict[str, Any] = {
-        "model": models,
-        "forcing_q": ("forcing_q", np.asarray(qs), {"units": "1", "long_name": "q = Q/(cL)"}),
-        "eta": ("eta", etas, {"units": "1", "long_name": "eta = Omega/omega0"}),
-        "run": np.arange(nr),
-        "event": np.arange(nev),
-    }
-    dims5 = ("model", "forcing_q", "eta", "run", "event")
-    data: dict[str, Any] = {
-        "x_gh": (dims5, x_gh, {"units": "1", "long_name": "slip->stick position X_gh"}),
-        "t_gh": (dims5, t_gh, {"units": "1"}),
-        "in_window": (dims5, inwin.astype(np.int8), {"units": "1", "long_name": "event after the transient"}),
-        "x_gh_mean": (dims5[:3], mean, {"units": "1", "long_name": "E[X_gh] after the transient"}),
-        "x_gh_std": (dims5[:3], std, {"units": "1", "long_name": "sigma(X_gh) after the transient (ddof 1)"}),
-        "n_events": (dims5[:3], n_ev, {"units": "1"}),
-    }
-    summary: dict[str, Any] = {
-        "study": "forcing", "preset": setup.preset.name, "process_source": setup.process_source,
-        "normal_force": info["normal_force"], "damping": info["damping"], "forcing_q": qs,
-        "forcing_amplitude_n": [q * setup.preset.stiffness for q in qs], "eta": etas.tolist(),
-        "runs": config.runs, "seed": config.seed, "tau_end": setup.tau_end, "dt": setup.dt,
-        "models": models,
-        **model_choices(config, setup, [info["normal_force"]]),
-        "x_gh_mean": {m: mean[i].tolist() for i, m in enumerate(models)},
-        "x_gh_std": {m: std[i].tolist() for i, m in enumerate(models)},
-    }
-    summary["sigma_zeta"] = summary["sigma_zeta"][0]  # one normal force
-    summary["sigma_zeta_effective"] = summary["sigma_zeta_effective"][0]
-    # Monte Carlo uncertainty of E and σ per cell: bootstrap over runs (the run is the unit)
-    se = np.full((nm, nq, ne, 2), np.nan)
-    for mi, qi, ei in np.ndindex(nm, nq, ne):
-        runs = 1 if models[mi] == "deterministic" else nr
-        g = child_generator(config.seed, BOOTSTRAP_KEY, mi, qi, ei)
-        sm = sample_summary([xw[mi, qi, ei, r] for r in range(runs)], n_boot=200, rng=g)
-        se[mi, qi, ei] = [sm.se_mean_boot, sm.se_std_boot]
-    data["x_gh_mean_se"] = (dims5[:3], se[..., 0], {"units": "1", "long_name": "bootstrap SE of E[X_gh]"})
-    data["x_gh_std_se"] = (dims5[:3], se[..., 1], {"units": "1", "long_name": "bootstrap SE of sigma(X_gh)"})
-    summary["x_gh_mean_se"] = {m: se[i, ..., 0].tolist() for i, m in enumerate(models)}
-    summary["x_gh_std_se"] = {m: se[i, ..., 1].tolist() for i, m in enumerate(models)}
-    if "white" in models and "contact" in models:
-        with np.errstate(invalid="ignore", divide="ignore"):
-            ratio = std[models.index("contact")] / std[models.index("white")]
-        data["sigma_ratio"] = (("forcing_q", "eta"), ratio,
-                               {"units": "1", "long_name": "sigma_contact / sigma_white"})
-        summary["sigma_ratio"] = {f"{q:g}": ratio[i].tolist() for i, q in enumerate(qs)}
-        summary["sigma_ratio_median"] = {f"{q:g}": float(np.nanmedian(ratio[i])) if np.isfinite(ratio[i]).any()
-                                         else None for i, q in enumerate(qs)}
-        ci, cw = models.index("contact"), models.index("white")
-        lo_hi = np.full((nq, ne, 2), np.nan)
-        med_ci: dict[str, dict[str, Any]] = {}
-        for qi, q in enumerate(qs):
-            g = child_generator(config.seed, INTERVAL_KEY, qi)
-            per, med = std_ratio_over_cells([[xw[ci, qi, e, r] for r in range(nr)] for e in range(ne)],
-                                            [[xw[cw, qi, e, r] for r in range(nr)] for e in range(ne)], rng=g)
-            lo_hi[qi] = [[p.low, p.high] for p in per]
-            med_ci[f"{q:g}"] = med.to_dict()
-        data["sigma_ratio_low"] = (("forcing_q", "eta"), lo_hi[..., 0], {"units": "1", "long_name": "95 % bootstrap"})
-        data["sigma_ratio_high"] = (("forcing_q", "eta"), lo_hi[..., 1], {"units": "1", "long_name": "95 % bootstrap"})
-        summary["sigma_ratio_interval"] = {f"{q:g}": lo_hi[i].tolist() for i, q in enumerate(qs)}
-        # the median over η with its bootstrap SE and 95 % interval (all η resampled together)
-        summary["sigma_ratio_median_ci"] = med_ci
-    ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(provenance_attrs("forcing", config, setup, config.seed, executor))
-    ds.attrs["stick_window"] = config.stick_window
-    ds.attrs["checkpoint_hash"] = chash or ""
-    codes = sorted({w["code"] for w in warns})
-    summary["warnings"] = [{"code": c, "count": sum(w["code"] == c for w in warns)} for c in codes]
-    summary["versions"] = package_versions()
-    return StudyResult("forcing", ds, summary, stats)
+#: Run the forcing study (module docstring); ``executor``, ``checkpoint``, ``progress`` as :meth:`Study.run`.
+forcing_study = ForcingStudy.study

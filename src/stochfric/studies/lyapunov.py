@@ -48,25 +48,17 @@ run, and a positive finite-time value alone is no evidence of chaos (docs/studie
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
-import xarray as xr
 
 from ..io_utils import package_versions
-from .base import StudyResult, provenance_attrs, sweep
-from .common import (
-    TaskSpec,
-    model_choices,
-    pad_events,
-    setup_for,
-    task_for,
-    warnings_of,
-)
+from .base import Study, StudyResult, warning_counts
+from .common import TaskSpec
 from .config import LyapunovConfig
-from .executors import Executor
+from .executors import Executor, SweepStats
 
 STATUS = ("ok", "merged", "too-few-transitions", "nonlinear")
 #: Fewest transitions in the linear regime for a growth rate.
@@ -145,152 +137,134 @@ def is_linear(d: npt.ArrayLike, d_twin: npt.ArrayLike, tolerance: float) -> bool
     return bool(np.all(np.abs(b - 2.0 * a) <= tolerance * scale))
 
 
-def lyapunov_tasks(config: LyapunovConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
+class LyapunovStudy(Study):
     """One task per (model, q, N): parameter sets (η0, η0, η0, η1, …) = (ref, pert δ, twin 2δ)."""
-    setup = setup_for(config, tau_end=200.0)
-    sp = setup.preset.study_parameters
-    forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
-    d = config.damping if config.damping is not None else float(sp["damping_undamped"])
-    tasks = []
-    idx = 0
-    for model in config.models:
-        for q in config.forcing_q:
-            for nf in forces:
-                params = []
-                x0s = []
-                for eta in config.eta:
-                    p = setup.parameters(nf, d, q * setup.preset.stiffness, eta)
-                    base = config.x0 if config.x0 is not None else (0.0, p.gamma0)
-                    params += [p, p, p]
-                    x0s += [(float(base[0]) + k * config.perturbation, float(base[1])) for k in (0, 1, 2)]
-                tasks.append(task_for(
-                    config, setup, index=idx, label=f"{model} q={q:g} N={nf:g}", model=model, params=params,
-                    x0=tuple(x0s), common_random_numbers=True,
-                ))
-                idx += 1
-    return tasks, {"setup": setup, "forces": forces, "damping": d}
 
+    kind = "lyapunov"
+    default_tau_end = 200.0
 
-def lyapunov_study(
-    config: LyapunovConfig,
-    *,
-    executor: Executor | None = None,
-    checkpoint: str | None = None,
-    progress: Callable[[int, int], None] | None = None,
-) -> StudyResult:
-    """Run the Lyapunov study (see the module docstring)."""
-    tasks, info = lyapunov_tasks(config)
-    setup, forces = info["setup"], info["forces"]
-    results, stats, chash = sweep("lyapunov", config, tasks, executor, checkpoint, progress)
-    models, qs, etas = list(config.models), list(config.forcing_q), np.asarray(config.eta)
-    nm, nq, nn, ne, nr = len(models), len(qs), len(forces), len(etas), config.runs
-    flat = pad_events([results[t.index]["x_gh"] for t in tasks])
-    nev = flat[0].shape[-1]
-    w = np.full((nm, nq, nn, ne, nr, nev), np.nan)
-    dd = np.full_like(w, np.nan)  # signed differences of the pair and of the twin
-    dd2 = np.full_like(w, np.nan)
-    warns: list[dict[str, str]] = []
-    for t, a in zip(tasks, flat, strict=True):
-        mi, rest = divmod(t.index, nq * nn)
-        qi, ni = divmod(rest, nn)
-        ref, pert, twin = a[0::3], a[1::3], a[2::3]  # [eta, run, event]
-        w[mi, qi, ni, :, : t.runs] = np.abs(ref - pert)
-        dd[mi, qi, ni, :, : t.runs] = pert - ref
-        dd2[mi, qi, ni, :, : t.runs] = twin - ref
-        warns += warnings_of(results[t.index])
-    shape = (nm, nq, nn, ne)
-    sep443 = np.full(shape, np.nan)  # (4.43)/(4.44) as printed, whether linear or not
-    status = np.full(shape, "", dtype=object)
-    kk = np.zeros(shape, dtype=np.int64)
-    lam_runs = np.full((*shape, nr), np.nan)
-    rate = np.full(shape, np.nan)
-    rate_se = np.full(shape, np.nan)
-    rate_status = np.full(shape, "", dtype=object)
-    n_lin = np.zeros(shape, dtype=np.int64)
-    rate_runs = np.full((*shape, nr), np.nan)
-    rate_status_runs = np.full((*shape, nr), "", dtype=object)
-    tol = config.linearity_tolerance
-    for idx in np.ndindex(*shape):
-        mi = idx[0]
-        runs = 1 if models[mi] == "deterministic" else nr
-        ww = w[idx][:runs]
-        linear = np.array([is_linear(dd[idx][r], dd2[idx][r], tol) for r in range(runs)])
-        for r in range(runs):
-            lam_runs[(*idx, r)], _, _ = lyapunov_exponent(ww[r])
-            rate_runs[(*idx, r)], se_r, rate_status_runs[(*idx, r)], k_fit = lyapunov_rate(ww[r], bool(linear[r]))
+    def __init__(self, config: LyapunovConfig) -> None:
+        super().__init__(config)
+        sp = self.setup.preset.study_parameters
+        self.forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
+        self.damping = config.damping if config.damping is not None else float(sp["damping_undamped"])
+
+    def axes(self) -> dict[str, Sequence[Any]]:
+        return {"model": self.config.models, "forcing_q": self.config.forcing_q, "normal_force": self.forces}
+
+    def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
+        config, st = self.config, self.setup
+        params = []
+        x0s = []
+        for eta in config.eta:
+            p = st.parameters(point["normal_force"], self.damping, point["forcing_q"] * st.preset.stiffness, eta)
+            base = config.x0 if config.x0 is not None else (0.0, p.gamma0)
+            params += [p, p, p]
+            x0s += [(float(base[0]) + k * config.perturbation, float(base[1])) for k in (0, 1, 2)]
+        return self.task_for(index, point, params, x0=tuple(x0s), common_random_numbers=True)
+
+    def assemble(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]], stats: SweepStats,
+                 chash: str | None, executor: Executor | None) -> StudyResult:
+        config, forces = self.config, self.forces
+        models, qs, etas = list(config.models), list(config.forcing_q), np.asarray(config.eta)
+        nm, nq, nn, ne, nr = len(models), len(qs), len(forces), len(etas), config.runs
+        x = self.stack(tasks, results, "x_gh")  # [model, q, N, 3 eta, run, event]
+        ref, pert, twin = x[:, :, :, 0::3], x[:, :, :, 1::3], x[:, :, :, 2::3]
+        w = np.abs(ref - pert)
+        dd = pert - ref  # signed differences of the pair and of the twin
+        dd2 = twin - ref
+        nev = x.shape[-1]
+        warns = self.warnings(tasks, results)
+        shape = (nm, nq, nn, ne)
+        sep443 = np.full(shape, np.nan)  # (4.43)/(4.44) as printed, whether linear or not
+        status = np.full(shape, "", dtype=object)
+        kk = np.zeros(shape, dtype=np.int64)
+        lam_runs = np.full((*shape, nr), np.nan)
+        rate = np.full(shape, np.nan)
+        rate_se = np.full(shape, np.nan)
+        rate_status = np.full(shape, "", dtype=object)
+        n_lin = np.zeros(shape, dtype=np.int64)
+        rate_runs = np.full((*shape, nr), np.nan)
+        rate_status_runs = np.full((*shape, nr), "", dtype=object)
+        tol = config.linearity_tolerance
+        for idx in np.ndindex(*shape):
+            mi = idx[0]
+            runs = 1 if models[mi] == "deterministic" else nr
+            ww = w[idx][:runs]
+            linear = np.array([is_linear(dd[idx][r], dd2[idx][r], tol) for r in range(runs)])
+            for r in range(runs):
+                lam_runs[(*idx, r)], _, _ = lyapunov_exponent(ww[r])
+                rate_runs[(*idx, r)], se_r, rate_status_runs[(*idx, r)], k_fit = lyapunov_rate(ww[r], bool(linear[r]))
+                if runs == 1:
+                    rate_se[idx], n_lin[idx] = se_r, k_fit
+            # E[W(i)] over the runs, up to the smallest number of transitions
+            counts = np.sum(np.isfinite(ww), axis=-1)
+            kmin = int(counts.min()) if counts.size else 0
+            ew = ww[:, :kmin].mean(axis=0) if kmin else np.zeros(0)
+            sep443[idx], status[idx], kk[idx] = lyapunov_exponent(ew)
+            if status[idx] == "ok" and not linear.all():
+                status[idx] = "nonlinear"  # w not ∝ δ: the printed value is a function of δ here
+            rs = rate_status_runs[idx][:runs]
             if runs == 1:
-                rate_se[idx], n_lin[idx] = se_r, k_fit
-        # E[W(i)] over the runs, up to the smallest number of transitions
-        counts = np.sum(np.isfinite(ww), axis=-1)
-        kmin = int(counts.min()) if counts.size else 0
-        ew = ww[:, :kmin].mean(axis=0) if kmin else np.zeros(0)
-        sep443[idx], status[idx], kk[idx] = lyapunov_exponent(ew)
-        if status[idx] == "ok" and not linear.all():
-            status[idx] = "nonlinear"  # w not ∝ δ: the printed value is a function of δ here
-        rs = rate_status_runs[idx][:runs]
-        if runs == 1:
-            rate[idx], rate_status[idx] = rate_runs[(*idx, 0)], rs[0]
-        elif np.all(rs == "ok"):
-            vals = rate_runs[idx][:runs]
-            rate[idx], rate_status[idx] = float(np.mean(vals)), "ok"
-            rate_se[idx] = float(np.std(vals, ddof=1) / math.sqrt(runs))
-            n_lin[idx] = runs
-        else:  # one undefined pair makes the ensemble mean undefined (no selection bias)
-            bad = [s_ for s_ in ("merged", "nonlinear", "too-few-transitions") if np.any(rs == s_)]
-            rate_status[idx] = bad[0]
-            n_lin[idx] = int(np.sum(rs == "ok"))
-    coords: dict[str, Any] = {
-        "model": models,
-        "forcing_q": ("forcing_q", np.asarray(qs), {"units": "1"}),
-        "normal_force": ("normal_force", np.asarray(forces, float), {"units": "N"}),
-        "eta": ("eta", etas, {"units": "1"}),
-        "run": np.arange(nr),
-        "event": np.arange(nev),
-    }
-    d4 = ("model", "forcing_q", "normal_force", "eta")
-    ds = xr.Dataset({
-        "w": ((*d4, "run", "event"), w, {"units": "1", "long_name": "w(i) = |X_gh,ref(i) - X_gh,pert(i)|"}),
-        "d_pair": ((*d4, "run", "event"), dd, {"units": "1", "long_name": "X_gh,pert - X_gh,ref (delta)"}),
-        "d_twin": ((*d4, "run", "event"), dd2, {"units": "1", "long_name": "X_gh,twin - X_gh,ref (2 delta)"}),
-        "lyapunov": (d4, rate, {"units": "1", "long_name": "largest Lyapunov exponent per slip->stick transition: "
-                                "slope of ln w(i), i = 1..K (mean over run pairs); NaN unless status ok"}),
-        "lyapunov_se": (d4, rate_se, {"units": "1", "long_name": "standard error of lyapunov"}),
-        "status": (d4, rate_status.astype(str), {"long_name": "ok | merged | too-few-transitions | nonlinear"}),
-        "n_transitions": (d4, kk, {"units": "1", "long_name": "K used in (4.43)/(4.44)"}),
-        "n_ok_pairs": (d4, n_lin, {"units": "1", "long_name": "deterministic: K of the fit; stochastic: pairs ok"}),
-        "lyapunov_runs": ((*d4, "run"), rate_runs, {"units": "1", "long_name": "exponent of each run pair"}),
-        "status_runs": ((*d4, "run"), rate_status_runs.astype(str), {}),
-        "separation_index_443": (d4, sep443, {"units": "1", "long_name": "(4.43)/(4.44) evaluated as printed at "
-                                              "this delta, also where the pair is nonlinear (then delta-dependent; "
-                                              "not a Lyapunov exponent)"}),
-        "separation_index_status": (d4, status.astype(str), {"long_name": "ok | merged | too-few-transitions | "
-                                                            "nonlinear (twin check failed)"}),
-        "separation_index_443_runs": ((*d4, "run"), lam_runs, {"units": "1"}),
-    }, coords=coords)
-    ds.attrs.update(provenance_attrs("lyapunov", config, setup, config.seed, executor))
-    ds.attrs["perturbation"] = config.perturbation
-    ds.attrs["linearity_tolerance"] = tol
-    ds.attrs["checkpoint_hash"] = chash or ""
-    codes = sorted({x["code"] for x in warns})
-    sig = {m: _significant(rate[i], rate_se[i]) for i, m in enumerate(models)}
-    summary: dict[str, Any] = {
-        "study": "lyapunov", "preset": setup.preset.name, "process_source": setup.process_source,
-        "normal_force": list(forces), "forcing_q": qs, "eta": etas.tolist(), "damping": info["damping"],
-        "runs": config.runs, "seed": config.seed, "tau_end": setup.tau_end, "dt": setup.dt,
-        "perturbation": config.perturbation, "linearity_tolerance": tol, "models": models,
-        **model_choices(config, setup, forces),
-        "lyapunov": {m: rate[i].tolist() for i, m in enumerate(models)},
-        "lyapunov_se": {m: rate_se[i].tolist() for i, m in enumerate(models)},
-        "status": {m: rate_status[i].tolist() for i, m in enumerate(models)},
-        "n_transitions": {m: kk[i].tolist() for i, m in enumerate(models)},
-        "counts": {m: {s_: int(np.sum(rate_status[i] == s_)) for s_ in STATUS} for i, m in enumerate(models)},
-        # cells whose exponent is positive (negative) by more than 2 standard errors, of the defined ones
-        "significance": sig,
-        "positive_fraction": {m: (sig[m]["positive"] / sig[m]["defined"]) if sig[m]["defined"] else None
-                              for m in models},
-        "separation_index_443": {m: sep443[i].tolist() for i, m in enumerate(models)},
-        "separation_index_status": {m: status[i].tolist() for i, m in enumerate(models)},
-        "warnings": [{"code": c, "count": sum(x["code"] == c for x in warns)} for c in codes],
-        "versions": package_versions(),
-    }
-    return StudyResult("lyapunov", ds, summary, stats)
+                rate[idx], rate_status[idx] = rate_runs[(*idx, 0)], rs[0]
+            elif np.all(rs == "ok"):
+                vals = rate_runs[idx][:runs]
+                rate[idx], rate_status[idx] = float(np.mean(vals)), "ok"
+                rate_se[idx] = float(np.std(vals, ddof=1) / math.sqrt(runs))
+                n_lin[idx] = runs
+            else:  # one undefined pair makes the ensemble mean undefined (no selection bias)
+                bad = [s_ for s_ in ("merged", "nonlinear", "too-few-transitions") if np.any(rs == s_)]
+                rate_status[idx] = bad[0]
+                n_lin[idx] = int(np.sum(rs == "ok"))
+        coords: dict[str, Any] = {
+            "model": models,
+            "forcing_q": ("forcing_q", np.asarray(qs), {"units": "1"}),
+            "normal_force": ("normal_force", np.asarray(forces, float), {"units": "N"}),
+            "eta": ("eta", etas, {"units": "1"}),
+            "run": np.arange(nr),
+            "event": np.arange(nev),
+        }
+        d4 = ("model", "forcing_q", "normal_force", "eta")
+        ds = self.dataset({
+            "w": ((*d4, "run", "event"), w, {"units": "1", "long_name": "w(i) = |X_gh,ref(i) - X_gh,pert(i)|"}),
+            "d_pair": ((*d4, "run", "event"), dd, {"units": "1", "long_name": "X_gh,pert - X_gh,ref (delta)"}),
+            "d_twin": ((*d4, "run", "event"), dd2, {"units": "1", "long_name": "X_gh,twin - X_gh,ref (2 delta)"}),
+            "lyapunov": (d4, rate, {"units": "1", "long_name": "largest Lyapunov exponent per slip->stick transition: "
+                                    "slope of ln w(i), i = 1..K (mean over run pairs); NaN unless status ok"}),
+            "lyapunov_se": (d4, rate_se, {"units": "1", "long_name": "standard error of lyapunov"}),
+            "status": (d4, rate_status.astype(str), {"long_name": "ok | merged | too-few-transitions | nonlinear"}),
+            "n_transitions": (d4, kk, {"units": "1", "long_name": "K used in (4.43)/(4.44)"}),
+            "n_ok_pairs": (d4, n_lin, {"units": "1", "long_name": "deterministic: K of the fit; stochastic: pairs ok"}),
+            "lyapunov_runs": ((*d4, "run"), rate_runs, {"units": "1", "long_name": "exponent of each run pair"}),
+            "status_runs": ((*d4, "run"), rate_status_runs.astype(str), {}),
+            "separation_index_443": (d4, sep443, {"units": "1", "long_name": "(4.43)/(4.44) evaluated as printed at "
+                                                  "this delta, also where the pair is nonlinear (then delta-dependent; "
+                                                  "not a Lyapunov exponent)"}),
+            "separation_index_status": (d4, status.astype(str), {"long_name": "ok | merged | too-few-transitions | "
+                                                                "nonlinear (twin check failed)"}),
+            "separation_index_443_runs": ((*d4, "run"), lam_runs, {"units": "1"}),
+        }, coords, executor, chash, perturbation=config.perturbation, linearity_tolerance=tol)
+        sig = {m: _significant(rate[i], rate_se[i]) for i, m in enumerate(models)}
+        summary: dict[str, Any] = {
+            **self.summary_head(forces, {"normal_force": list(forces), "forcing_q": qs, "eta": etas.tolist(),
+                                         "damping": self.damping},
+                                perturbation=config.perturbation, linearity_tolerance=tol),
+            "lyapunov": {m: rate[i].tolist() for i, m in enumerate(models)},
+            "lyapunov_se": {m: rate_se[i].tolist() for i, m in enumerate(models)},
+            "status": {m: rate_status[i].tolist() for i, m in enumerate(models)},
+            "n_transitions": {m: kk[i].tolist() for i, m in enumerate(models)},
+            "counts": {m: {s_: int(np.sum(rate_status[i] == s_)) for s_ in STATUS} for i, m in enumerate(models)},
+            # cells whose exponent is positive (negative) by more than 2 standard errors, of the defined ones
+            "significance": sig,
+            "positive_fraction": {m: (sig[m]["positive"] / sig[m]["defined"]) if sig[m]["defined"] else None
+                                  for m in models},
+            "separation_index_443": {m: sep443[i].tolist() for i, m in enumerate(models)},
+            "separation_index_status": {m: status[i].tolist() for i, m in enumerate(models)},
+            "warnings": warning_counts(warns),
+            "versions": package_versions(),
+        }
+        return StudyResult(self.kind, ds, summary, stats)
+
+
+#: Run the lyapunov study (module docstring); ``executor``, ``checkpoint``, ``progress`` as :meth:`Study.run`.
+lyapunov_study = LyapunovStudy.study

@@ -11,145 +11,107 @@ are correlated).  One task per (model, D): all forces in one simulate call.
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
-import xarray as xr
 
 from ..io_utils import package_versions
 from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
-from .base import StudyResult, provenance_attrs, sweep
-from .common import (
-    TaskSpec,
-    model_choices,
-    pad_events,
-    runs_for,
-    setup_for,
-    task_for,
-    warnings_of,
-    window_mask,
-)
+from .base import Study, StudyResult, warning_counts
+from .common import TaskSpec, runs_for, window_mask
 from .config import NormalForceConfig
-from .executors import Executor
+from .executors import Executor, SweepStats
 from .stats import sample_summary, std_ratio
 
 _SE_FIELDS = ("mean", "std", "vark", "se_mean_iid", "se_std_iid", "se_vark_iid", "se_mean_boot", "se_std_boot",
               "se_vark_boot", "n", "n_runs")
 
 
-def normal_force_tasks(config: NormalForceConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
-    """One task per (model, D)."""
-    setup = setup_for(config)
-    sp = setup.preset.study_parameters
-    forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
-    dampings = config.dampings or (float(sp["damping_undamped"]), float(sp["damping_damped"]))
-    tasks = []
-    idx = 0
-    for model in config.models:
-        for d in dampings:
-            params = tuple(setup.parameters(nf, d) for nf in forces)
-            runs = runs_for(model, config.runs)
-            tasks.append(task_for(
-                config, setup, index=idx, label=f"{model} D={d:g}", model=model, params=params, runs=runs,
-                keep_trajectory_runs=min(config.phase_runs, runs), save_every=config.save_every,
-            ))
-            idx += 1
-    return tasks, {"setup": setup, "forces": forces, "dampings": dampings}
+class NormalForceStudy(Study):
+    """One task per (model, D); all normal forces N in one simulate call."""
+
+    kind = "normal-force"
+
+    def __init__(self, config: NormalForceConfig) -> None:
+        super().__init__(config)
+        sp = self.setup.preset.study_parameters
+        self.forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
+        self.dampings = config.dampings or (float(sp["damping_undamped"]), float(sp["damping_damped"]))
+
+    def axes(self) -> dict[str, Sequence[Any]]:
+        return {"model": self.config.models, "damping_ratio": self.dampings}
+
+    def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
+        runs = runs_for(point["model"], self.config.runs)
+        return self.task_for(index, point, [self.setup.parameters(nf, point["damping_ratio"]) for nf in self.forces],
+                             runs=runs, keep_trajectory_runs=min(self.config.phase_runs, runs),
+                             save_every=self.config.save_every)
+
+    def assemble(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]], stats: SweepStats,
+                 checkpoint_hash: str | None, executor: Executor | None) -> StudyResult:
+        config, setup, forces, dampings = self.config, self.setup, self.forces, self.dampings
+        models = list(config.models)
+        nm, nd, nn, nr = len(models), len(dampings), len(forces), config.runs
+        x_gh = self.stack(tasks, results, "x_gh")
+        t_gh = self.stack(tasks, results, "t_gh")
+        sc = self.stack(tasks, results, "stick_count")
+        npr = max(1, config.phase_runs)
+        traj = None
+        for t in tasks:
+            r = results[t.index]
+            if "trajectory" in r:
+                tr = r["trajectory"]
+                if traj is None:
+                    traj = np.full((nm, nd, nn, npr, tr.shape[2], 3), np.nan)
+                traj[divmod(t.index, nd)][:, : tr.shape[1]] = tr
+        inwin = window_mask(t_gh, setup.tau_end, config.stick_window)
+        xw = np.where(inwin, x_gh, np.nan)
+        table = np.full((nm, nd, nn, len(_SE_FIELDS)), np.nan)
+        for mi, di, ni in np.ndindex(nm, nd, nn):
+            runs = 1 if models[mi] == "deterministic" else nr
+            rng = child_generator(config.seed, BOOTSTRAP_KEY, mi, di, ni)
+            s = sample_summary([xw[mi, di, ni, r] for r in range(runs)], rng=rng)
+            table[mi, di, ni] = [float(getattr(s, f)) for f in _SE_FIELDS]
+        coords, data, d5 = self.event_variables({
+            "damping_ratio": ("damping_ratio", np.asarray(dampings), {"units": "1"}),
+            "normal_force": ("normal_force", np.asarray(forces, float), {"units": "N"})}, x_gh, t_gh, inwin)
+        data["stick_count"] = (d5[:4], sc, {"units": "1"})
+        names = {"mean": "x_gh_mean", "std": "x_gh_std", "vark": "vark", "n": "n_events",
+                 "n_runs": "n_runs_with_events"}
+        for j, f in enumerate(_SE_FIELDS):
+            name = names.get(f) or f.replace("se_mean", "x_gh_mean_se").replace("se_std", "x_gh_std_se").replace(
+                "se_vark", "vark_se")
+            data[name] = (d5[:3], table[..., j], {"units": "1"})
+        if traj is not None:
+            coords["phase_run"] = np.arange(npr)
+            coords["sample"] = np.arange(traj.shape[4])
+            data["trajectory"] = ((*d5[:3], "phase_run", "sample", "component"), traj,
+                                  {"units": "1", "long_name": "decimated (tau, x1, x2)"})
+            coords["component"] = ["tau", "x1", "x2"]
+        ds = self.dataset(data, coords, executor, checkpoint_hash, stick_window=config.stick_window)
+
+        def tab(field: str) -> dict[str, list[list[float]]]:
+            j = _SE_FIELDS.index(field)
+            return {m: table[i, ..., j].tolist() for i, m in enumerate(models)}
+
+        summary: dict[str, Any] = {
+            **self.summary_head(forces, {"normal_force": list(forces), "damping": list(dampings)}),
+            "stick_window": [config.stick_window * setup.tau_end, setup.tau_end],
+            "x_gh_mean": tab("mean"), "x_gh_std": tab("std"), "varK": tab("vark"),
+            "x_gh_mean_se": tab("se_mean_boot"), "x_gh_std_se": tab("se_std_boot"), "varK_se": tab("se_vark_boot"),
+            "x_gh_mean_se_iid": tab("se_mean_iid"), "x_gh_std_se_iid": tab("se_std_iid"),
+            "varK_se_iid": tab("se_vark_iid"), "n_events": tab("n"),
+            "layout": "model -> [damping][normal_force]",
+            **_sigma_ratio(models, xw, nd, nn, nr, config.seed),
+            "warnings": warning_counts(self.warnings(tasks, results)),
+            "versions": package_versions(),
+        }
+        return StudyResult(self.kind, ds, summary, stats)
 
 
-def normal_force_study(
-    config: NormalForceConfig,
-    *,
-    executor: Executor | None = None,
-    checkpoint: str | None = None,
-    progress: Callable[[int, int], None] | None = None,
-) -> StudyResult:
-    """Run the normal-force study (see the module docstring)."""
-    tasks, info = normal_force_tasks(config)
-    setup, forces, dampings = info["setup"], info["forces"], info["dampings"]
-    results, stats, chash = sweep("normal-force", config, tasks, executor, checkpoint, progress)
-    models = list(config.models)
-    nm, nd, nn, nr = len(models), len(dampings), len(forces), config.runs
-    flat_x = pad_events([results[t.index]["x_gh"] for t in tasks])
-    flat_t = pad_events([results[t.index]["t_gh"] for t in tasks])
-    nev = flat_x[0].shape[-1]
-    x_gh = np.full((nm, nd, nn, nr, nev), np.nan)
-    t_gh = np.full((nm, nd, nn, nr, nev), np.nan)
-    sc = np.full((nm, nd, nn, nr), np.nan)
-    npr = max(1, config.phase_runs)
-    traj = None
-    warns: list[dict[str, str]] = []
-    for t, a, b in zip(tasks, flat_x, flat_t, strict=True):
-        mi, di = divmod(t.index, nd)
-        r = results[t.index]
-        x_gh[mi, di, :, : t.runs] = a
-        t_gh[mi, di, :, : t.runs] = b
-        sc[mi, di, :, : t.runs] = r["stick_count"]
-        warns += warnings_of(r)
-        if "trajectory" in r:
-            tr = r["trajectory"]
-            if traj is None:
-                traj = np.full((nm, nd, nn, npr, tr.shape[2], 3), np.nan)
-            traj[mi, di, :, : tr.shape[1]] = tr
-    inwin = window_mask(t_gh, setup.tau_end, config.stick_window)
-    xw = np.where(inwin, x_gh, np.nan)
-    table = np.full((nm, nd, nn, len(_SE_FIELDS)), np.nan)
-    for mi, di, ni in np.ndindex(nm, nd, nn):
-        runs = 1 if models[mi] == "deterministic" else nr
-        rng = child_generator(config.seed, BOOTSTRAP_KEY, mi, di, ni)
-        s = sample_summary([xw[mi, di, ni, r] for r in range(runs)], rng=rng)
-        table[mi, di, ni] = [float(getattr(s, f)) for f in _SE_FIELDS]
-    coords: dict[str, Any] = {
-        "model": models,
-        "damping_ratio": ("damping_ratio", np.asarray(dampings), {"units": "1"}),
-        "normal_force": ("normal_force", np.asarray(forces, float), {"units": "N"}),
-        "run": np.arange(nr),
-        "event": np.arange(nev),
-    }
-    d5 = ("model", "damping_ratio", "normal_force", "run", "event")
-    data: dict[str, Any] = {
-        "x_gh": (d5, x_gh, {"units": "1", "long_name": "slip->stick position X_gh"}),
-        "t_gh": (d5, t_gh, {"units": "1"}),
-        "in_window": (d5, inwin.astype(np.int8), {"units": "1"}),
-        "stick_count": (d5[:4], sc, {"units": "1"}),
-    }
-    names = {"mean": "x_gh_mean", "std": "x_gh_std", "vark": "vark", "n": "n_events", "n_runs": "n_runs_with_events"}
-    for j, f in enumerate(_SE_FIELDS):
-        name = names.get(f) or f.replace("se_mean", "x_gh_mean_se").replace("se_std", "x_gh_std_se").replace(
-            "se_vark", "vark_se")
-        data[name] = (d5[:3], table[..., j], {"units": "1"})
-    if traj is not None:
-        coords["phase_run"] = np.arange(npr)
-        coords["sample"] = np.arange(traj.shape[4])
-        data["trajectory"] = ((*d5[:3], "phase_run", "sample", "component"), traj,
-                              {"units": "1", "long_name": "decimated (tau, x1, x2)"})
-        coords["component"] = ["tau", "x1", "x2"]
-    ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update(provenance_attrs("normal-force", config, setup, config.seed, executor))
-    ds.attrs["stick_window"] = config.stick_window
-    ds.attrs["checkpoint_hash"] = chash or ""
-
-    def tab(field: str) -> dict[str, list[list[float]]]:
-        j = _SE_FIELDS.index(field)
-        return {m: table[i, ..., j].tolist() for i, m in enumerate(models)}
-
-    codes = sorted({w["code"] for w in warns})
-    summary: dict[str, Any] = {
-        "study": "normal-force", "preset": setup.preset.name, "process_source": setup.process_source,
-        "normal_force": list(forces), "damping": list(dampings), "runs": config.runs, "seed": config.seed,
-        "tau_end": setup.tau_end, "dt": setup.dt, "models": models, **model_choices(config, setup, forces),
-        "stick_window": [config.stick_window * setup.tau_end, setup.tau_end],
-        "x_gh_mean": tab("mean"), "x_gh_std": tab("std"), "varK": tab("vark"),
-        "x_gh_mean_se": tab("se_mean_boot"), "x_gh_std_se": tab("se_std_boot"), "varK_se": tab("se_vark_boot"),
-        "x_gh_mean_se_iid": tab("se_mean_iid"), "x_gh_std_se_iid": tab("se_std_iid"),
-        "varK_se_iid": tab("se_vark_iid"), "n_events": tab("n"),
-        "layout": "model -> [damping][normal_force]",
-        **_sigma_ratio(models, xw, nd, nn, nr, config.seed),
-        "warnings": [{"code": c, "count": sum(w["code"] == c for w in warns)} for c in codes],
-        "versions": package_versions(),
-    }
-    return StudyResult("normal-force", ds, summary, stats)
+#: Run the normal-force study (module docstring); ``executor``, ``checkpoint``, ``progress`` as :meth:`Study.run`.
+normal_force_study = NormalForceStudy.study
 
 
 def _sigma_ratio(models: Sequence[str], xw: Any, nd: int, nn: int, nr: int, seed: int) -> dict[str, Any]:
