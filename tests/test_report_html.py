@@ -53,6 +53,7 @@ class _Imgs(HTMLParser):
 
 
 FIGURES: dict[str, dict[str, Any]] = {}  # figure file name → what the figure showed before it was closed
+RESULTS: list[Any] = []  # the study results the report fixture rendered
 
 
 def _inspect(fig: Any) -> dict[str, Any]:
@@ -85,6 +86,7 @@ def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
         forcing_study(ForcingConfig(eta="0.5:2:3", runs=3, seed=1)),
         lyapunov_study(LyapunovConfig(normal_forces=(4000.0,), eta=(1.2, 2.0), runs=2, tau_end=60.0, seed=1)),
     ]
+    RESULTS[:] = results
     save = study_figures._save
 
     def inspecting_save(fig: Any, path: Path) -> Path:
@@ -95,7 +97,9 @@ def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
     try:
         with pytest.MonkeyPatch.context() as mp:
             mp.setattr(study_figures, "_save", inspecting_save)
-            return write_report(results, d, title="test report", chapter3=chapter3_analysis(d, quick=True))
+            # one process: the figures are inspected in this process (the forked path is compared below)
+            return write_report(results, d, title="test report", chapter3=chapter3_analysis(d, quick=True),
+                                workers=1)
     finally:
         os.umask(old)
 
@@ -217,3 +221,14 @@ def test_reading_answers_first_and_explains_warnings(report: Path) -> None:
     for code in codes:
         assert code in WARNING_HELP
         assert WARNING_HELP[code][1].split()[0] in reading and "What to do" in reading
+
+
+def test_figures_drawn_on_two_processes_give_the_same_report(report: Path, tmp_path: Path) -> None:
+    """render_jobs on 2 forked workers: the same HTML and byte-identical PNGs as one process."""
+    one, two = tmp_path / "one", tmp_path / "two"
+    write_report(RESULTS, one, title="t", workers=1)
+    write_report(RESULTS, two, title="t", workers=2)
+    assert (one / "index.html").read_text(encoding="utf-8") == (two / "index.html").read_text(encoding="utf-8")
+    pngs = sorted(p.name for p in one.glob("*.png"))
+    assert len(pngs) >= 8 and pngs == sorted(p.name for p in two.glob("*.png"))
+    assert all((one / n).read_bytes() == (two / n).read_bytes() for n in pngs)
