@@ -9,7 +9,7 @@ diffrax rows; without it they are skipped with a note, and the ``solve_ivp`` row
 
 The problem is the brake preset of ``bench_oscillator.py`` (N = 5600 N, D = 5·10⁻⁶, pressure law
 4.13, start sticking at x1 = 0), τ = 50 at Δτ = 0.005 (10,000 steps per trajectory), on one
-core.  Per model (METHOD §5):
+core.  Per model (method §5):
 
 * **stochfric** — :func:`stochfric.oscillator.integrate.simulate` with ``workers=1``:
   ``deterministic``/``contact`` with the thesis's Euler method and exact stick events,
@@ -125,7 +125,7 @@ def _process_rows(case: Case, runs: int, seed: int = 1) -> npt.NDArray[np.float6
 
 def solve_ivp_contact(case: Case, proc: npt.NDArray[np.float64], tau_end: float, *,
                       method: str = "DOP853", rtol: float = 1e-12, atol: float = 1e-14) -> list[float]:
-    """Contact model (METHOD §5.2, mass path) by ``solve_ivp`` with events, one trajectory.
+    """Contact model (method §5.2, mass path) by ``solve_ivp`` with events, one trajectory.
 
     As ``reference.simulate_solve_ivp`` with μ = μ_k(|v|) + μ̂(path) in slip, the path
     (dimensionless, |dx1| accumulated) as a third state, μ̂ interpolated linearly and

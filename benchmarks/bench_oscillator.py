@@ -1,4 +1,4 @@
-"""Performance suite of the friction oscillator (METHOD.md §5; not a pytest test).
+"""Performance suite of the friction oscillator (method §5, docs/method.md; not a pytest test).
 
 Usage::
 

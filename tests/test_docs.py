@@ -65,3 +65,16 @@ def test_time_figures_name_the_machine() -> None:
     assert timed, "the README gives no measured time at all"
     for sec in timed:
         assert re.search(r"\d+ cores", sec) and re.search(r"\d{4}-\d{2}-\d{2}", sec), sec[:200]
+
+
+def test_no_file_of_the_product_cites_the_outside_spec() -> None:
+    """Code, help, docs, examples and benchmarks point at docs/method.md ("method §…"), never at a
+    METHOD.md or a ../shared path that a user of the package does not have."""
+    bad = []
+    for folder in ("src", "docs", "examples", "benchmarks"):
+        for p in (ROOT / folder).rglob("*"):
+            if p.is_file() and p.suffix in {".py", ".md", ".toml", ".txt", ".html"}:
+                text = p.read_text(encoding="utf-8", errors="replace")
+                bad += [f"{p.relative_to(ROOT)}: {w}" for w in ("METHOD.md", "METHOD §", "METHOD erratum",
+                                                                "shared/spec", "../seed") if w in text]
+    assert bad == []

@@ -1,4 +1,4 @@
-"""Reference tier: measured strong orders of the SDE schemes (METHOD §5.1).
+"""Reference tier: measured strong orders of the SDE schemes (method §5.1).
 
 1. Geometric Brownian motion dX = aX dτ + bX dW (closed-form solution) through the
    package's own step functions :func:`em_step` / :func:`milstein_step`.

@@ -1,4 +1,4 @@
-"""``simulate``: ensembles of friction-oscillator trajectories (METHOD.md §5, thesis 4.1).
+"""``simulate``: ensembles of friction-oscillator trajectories (method §5, docs/method.md, thesis 4.1).
 
 One call runs ``runs`` trajectories for each of many parameter sets (normal forces,
 damping ratios, forcing frequencies …) in compiled kernels on all cores.  Trajectory
@@ -13,7 +13,7 @@ PCG64 (``"pcg64"``, the numbers of earlier versions).  Contact process: the chil
 numpy's PCG64 for the phases of the spectral representation (computed in compiled code for
 the package's process models, bit for bit).
 
-Models (METHOD §5): ``deterministic`` (friction law only), ``white`` (law + Gaussian
+Models (method §5): ``deterministic`` (friction law only), ``white`` (law + Gaussian
 white noise of intensity σ_ζ in the relative path, §5.1; integrators ``euler`` =
 Euler–Maruyama, ``milstein``), ``contact`` (law + a band-limited process μ̂ generated
 once per run from a friction-process model, §5.2; integrators ``euler``, ``accurate``).
@@ -44,7 +44,7 @@ from .parameters import OscillatorParameters, ParameterError
 from .result import SimulationResult, SimulationWarning
 
 MODELS = ("deterministic", "white", "contact")
-#: White-noise increment rules (docs/oscillator.md, METHOD erratum 4 and 10): ``ito`` is the
+#: White-noise increment rules (docs/oscillator.md, method §7 errata 4 and 10): ``ito`` is the
 #: consistent Itô model (ΔW = R_k √Δτ, intensity σ_ζ per unit dimensionless relative path);
 #: ``thesis`` reads the printed eq. (4.31), ΔW = Δτ R_k with the dimensional relative
 #: velocity L ω0 (γ0 − X2) under the root, i.e. σ_ζ,eff = σ_ζ · L ω0 · Δτ with a correct
@@ -316,7 +316,7 @@ def simulate(
     params:
         One or several :class:`OscillatorParameters` (dimensionless, eq. 4.6/4.7).
     model:
-        ``deterministic`` | ``white`` | ``contact`` (METHOD §5, §5.1, §5.2).
+        ``deterministic`` | ``white`` | ``contact`` (method §5, §5.1, §5.2).
     law:
         A :class:`FrictionLaw` or a function of the parameter set returning one (e.g. the
         pressure law of eq. 4.13, whose ``μ_fit`` depends on ``p = N/A``).  Default: law III.
@@ -337,7 +337,7 @@ def simulate(
         Monte Carlo runs per set; the root seed; see the module docstring.
     path_coordinate:
         Where the contact process is read: ``mass`` (thesis text §4.1.3: the mass's own path
-        |Δx1| in slip), ``relative`` (relative sliding distance |γ0 − x2|Δτ) (METHOD §7.7) or
+        |Δx1| in slip), ``relative`` (relative sliding distance |γ0 − x2|Δτ) (method §7.7) or
         ``position`` (reproduction mode: μ̂ at the mass position x1, μ̂_SD(X_1, ξ) as printed in
         eq. 4.36/4.38; ``euler`` only; docs/friction_process.md).
     save_trajectory, save_every:
@@ -353,7 +353,7 @@ def simulate(
     progress:
         Called as ``progress(done, total)`` after every batch.
     white_increment:
-        ``ito`` (default: ΔW = R_k √Δτ, METHOD erratum 4) or ``thesis`` (printed eq. 4.31
+        ``ito`` (default: ΔW = R_k √Δτ, method §7 erratum 4) or ``thesis`` (printed eq. 4.31
         with the dimensional relative velocity: σ_ζ,eff = σ_ζ · L ω0 · Δτ, see
         :func:`thesis_sigma_zeta`; a Δτ-dependent reproduction mode, white model only).
     white_stream:

@@ -1,4 +1,4 @@
-"""Compiled fixed-step kernels of the friction oscillator (METHOD.md §5, thesis 4.1).
+"""Compiled fixed-step kernels of the friction oscillator (method §5, docs/method.md, thesis 4.1).
 
 Pure numerical code: arrays in, arrays out; no I/O, no global random state.  The
 random input comes from the trajectory's own stream, so a trajectory's numbers never
@@ -21,7 +21,7 @@ Schemes (``scheme``):
 
 * ``EULER`` — the thesis's explicit Euler (4.11/4.12, 4.37/4.38); with white noise
   (``noise == NOISE_WHITE``) the Euler–Maruyama scheme (4.30/4.31) on the Itô form
-  of (4.23): drift ``a − s n² σ_ζ/4`` (METHOD §5.1, erratum 3), diffusion
+  of (4.23): drift ``a − s n² σ_ζ/4`` (method §5.1, erratum 3), diffusion
   ``b = n s √(σ_ζ |γ0 − X2|)``, ``ΔW = R_k √Δτ`` (erratum 4).
 * ``MILSTEIN`` — strong order 1 for the white-noise model: adds
   ``½ b b' (ΔW² − Δτ)`` with the analytic ``b b' = −s n² σ_ζ/2``.
@@ -313,7 +313,7 @@ _C_VSCALE = 7
 _C_LIM = 8  # n μ_s
 _C_SIGMA = 9
 _C_PDX = 10
-_C_ITO = 11  # ½ b b' / s = −n² σ_ζ / 4 (METHOD §5.1)
+_C_ITO = 11  # ½ b b' / s = −n² σ_ζ / 4 (method §5.1)
 _C_MUK0 = 12  # μ_k(0), contact model only
 _C_FORCED = 13  # 1.0 when q ≠ 0 (q = 0: q cos x3 is ±0 and the cosine is skipped)
 _C_P0 = 14  # law in rational form p0/(1 + p1 v) + p2 + p3 v² (constant law: p1 = p2 = p3 = 0)

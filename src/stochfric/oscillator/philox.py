@@ -15,7 +15,7 @@ by ``(key, counter)`` and needs no state, no buffer and no sequential draw — t
 step ``k`` of trajectory ``j`` are the same whichever thread, batch or machine computes them
 (the scheme of JAX's ``threefry``/``philox`` keys and of GPU SDE solvers).
 
-Stream layout used by the oscillator kernels (METHOD §5.1, docs/performance.md):
+Stream layout used by the oscillator kernels (method §5.1, docs/performance.md):
 
 * key: the 64 bits ``SeedSequence.generate_state(1, uint64)`` of the trajectory's own spawned
   seed sequence (spawn key ``(param_set, run)``), split into ``k0`` (low) and ``k1`` (high)
@@ -312,7 +312,7 @@ def elementary_array(x: npt.NDArray[np.float64], which: int) -> npt.NDArray[np.f
 
 def trajectory_key(seed: np.random.SeedSequence) -> np.uint64:
     """The 64-bit Philox key of a trajectory: ``seed.generate_state(1, uint64)[0]`` of its own
-    spawned :class:`numpy.random.SeedSequence` (METHOD §0: one child stream per trajectory)."""
+    spawned :class:`numpy.random.SeedSequence` (method §0: one child stream per trajectory)."""
     return np.uint64(seed.generate_state(1, np.uint64)[0])
 
 
@@ -437,7 +437,7 @@ def trajectory_keys(
 
 # --- numpy's PCG64 in compiled code ---------------------------------------------------------------
 # The contact model draws each trajectory's K phases with numpy's Generator(PCG64(seed)).uniform
-# (METHOD §0); creating that generator costs ~10 µs per trajectory in Python.  The same 128-bit
+# (method §0); creating that generator costs ~10 µs per trajectory in Python.  The same 128-bit
 # LCG with the XSL-RR output (O'Neill 2014; numpy's pcg64.h), seeded the way numpy seeds it from
 # SeedSequence.generate_state(4, uint64), gives the same numbers (tested bit for bit).
 _PCG_MULT_HI = np.uint64(0x2360ED051FC65DA4)

@@ -1,6 +1,6 @@
 """One-sided PSD estimate and the spectral representation of a path-dependent process.
 
-Conventions (METHOD.md §0, the package-wide power spectral density convention)
+Conventions (method §0, docs/method.md, the package-wide power spectral density convention)
 -------------------------------------------------------------------------------
 A real, zero-mean process μ̂(x) along the path x [m] has a *one-sided* PSD S(f) in
 units of m (variance per unit of path frequency f [1/m]) with σ² = ∫₀^∞ S(f) df.
@@ -68,7 +68,7 @@ def _at_or_above_nyquist(frequencies: NDArray[np.float64], dx: float) -> NDArray
 
 
 def one_sided_psd(values: ArrayLike, dx: float) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """One-sided periodogram of a sampled path-dependent process (METHOD §0, eq. 3.20).
+    """One-sided periodogram of a sampled path-dependent process (method §0, eq. 3.20).
 
     Parameters
     ----------
@@ -152,7 +152,7 @@ def spectral_representation(
     *,
     df: float | None = None,
 ) -> NDArray[np.float64]:
-    """Evaluate the spectral representation μ̂(x) (thesis eq. 2.48 / 4.32, METHOD §0).
+    """Evaluate the spectral representation μ̂(x) (thesis eq. 2.48 / 4.32, method §0).
 
     μ̂(x) = √2 Σ_i √(S(f_i) Δf) cos(2π f_i x + ψ_i).
 
@@ -161,7 +161,7 @@ def spectral_representation(
     frequencies:
         Path frequencies f_i [1/m], 1-D, > 0, uniformly spaced.
     psd:
-        One-sided PSD S(f_i) [m] at those frequencies (METHOD §0), same shape.
+        One-sided PSD S(f_i) [m] at those frequencies (method §0), same shape.
     x:
         Positions [m], any shape.
     phases:
@@ -226,13 +226,13 @@ def generate_process(
     length: float,
     rng: np.random.Generator | SeedLike,
 ) -> NDArray[np.float64]:
-    """One random realisation of μ̂ on the grid x_j = j Δx (eq. 2.48, METHOD §4e).
+    """One random realisation of μ̂ on the grid x_j = j Δx (eq. 2.48, method §4e).
 
     Parameters
     ----------
     frequencies, psd:
         Path frequencies f_i [1/m] (uniform grid, all strictly below the Nyquist
-        frequency 1/(2Δx)) and the one-sided PSD S(f_i) [m] (METHOD §0).
+        frequency 1/(2Δx)) and the one-sided PSD S(f_i) [m] (method §0).
     dx:
         Grid spacing Δx [m].
     length:

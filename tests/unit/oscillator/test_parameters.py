@@ -31,7 +31,7 @@ def test_brake_dimensionless_values_match_method_section_6() -> None:
     assert d.omega0 == pytest.approx(707.1068, rel=1e-6)
     assert d.gamma0 == pytest.approx(1.4142e-3, rel=1e-4)
     assert d.n == pytest.approx(5.6e-3)
-    assert d.q == pytest.approx(5e-5)  # METHOD §6: brake Q = 50 N ↔ q = 5e-5
+    assert d.q == pytest.approx(5e-5)  # method §6: brake Q = 50 N ↔ q = 5e-5
     assert d.eta == pytest.approx(1.2)
     assert d.damping_ratio == 0.15
     assert d.normal_force == pytest.approx(5600.0)
