@@ -84,6 +84,17 @@ def mu_kinetic(shape: int, v_abs: float, p: npt.NDArray[np.float64]) -> float:  
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
+def mu_kinetic_array(shape: int, v_abs: npt.NDArray[np.float64], p: npt.NDArray[np.float64]) -> npt.NDArray[
+        np.float64]:  # pragma: no cover
+    """:func:`mu_kinetic` at every element of the 1-D ``v_abs`` (the same scalar code, compiled loop)."""
+    p2 = p.reshape((1, p.shape[0]))
+    out = np.empty(v_abs.shape[0])
+    for i in range(v_abs.shape[0]):
+        out[i] = mu_kinetic_row(shape, v_abs[i], p2, 0)
+    return out
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
 def dmu_kinetic(shape: int, v_abs: float, p: npt.NDArray[np.float64]) -> float:  # pragma: no cover
     """Derivative dμ/d|v| of :func:`mu_kinetic` [s/m] (one-sided at table nodes)."""
     if shape == 0:
@@ -134,9 +145,9 @@ class FrictionLaw:
 
     def kinetic(self, v_abs: npt.ArrayLike) -> npt.NDArray[np.float64]:
         """Kinetic coefficient at ``|v_rel|`` [m/s] (vectorised)."""
-        p = self.param_array
         v = np.abs(np.asarray(v_abs, dtype=np.float64))
-        return np.vectorize(lambda x: mu_kinetic(self.shape, float(x), p), otypes=[float])(v)
+        flat = mu_kinetic_array(self.shape, np.ascontiguousarray(v.ravel()), self.param_array)
+        return flat.reshape(v.shape)
 
     def derivative(self, v_abs: float) -> float:
         """dμ/d|v| at ``|v_rel| = v_abs`` [s/m]."""
