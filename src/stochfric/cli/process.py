@@ -10,13 +10,21 @@ from __future__ import annotations
 
 import json
 import math
-from enum import StrEnum
 from pathlib import Path
 from typing import Annotated, Any
 
 import numpy as np
 import typer
 
+from stochfric.cli.options import (
+    AmplitudeChoice,
+    PressureRuleChoice,
+    SigmaZetaChoice,
+    SummitRuleChoice,
+    SurrogateChoice,
+    VarianceRuleChoice,
+    fail,
+)
 from stochfric.cli.surface import (
     DetrendOpt,
     FileArg,
@@ -25,7 +33,6 @@ from stochfric.cli.surface import (
     RuleOpt,
     SizeOpt,
     StepOpt,
-    SummitRuleChoice,
     UnitOpt,
     _echo_warnings,
     _load_and_prepare,
@@ -48,47 +55,6 @@ _INPUT_ERRORS = (SurfaceError, ContactError, MaterialError)
 
 MODEL_FILE = "friction_process.json"
 STATISTICS_FILE = "friction_process_statistics.nc"
-
-
-class SurrogateChoice(StrEnum):
-    """Surrogate methods offered on the command line."""
-
-    phase = "phase"
-    iaaft = "iaaft"
-
-
-class AmplitudeChoice(StrEnum):
-    """Amplitude estimates of the measured map (:func:`stochfric.surface.synthesis.amplitude_spectrum`)."""
-
-    tukey = "tukey"
-    hann = "hann"
-    raw = "raw"
-
-
-class PressureRuleChoice(StrEnum):
-    """How the spectrum at a pressure between the analysed ones is chosen."""
-
-    nearest = "nearest"
-    interpolate = "interpolate"
-
-
-class VarianceRuleChoice(StrEnum):
-    """How the process variance is set."""
-
-    sigma_mu = "sigma_mu"
-    tabulated = "tabulated"
-
-
-class SigmaZetaChoice(StrEnum):
-    """White-noise intensity rules."""
-
-    sigma_mu = "sigma_mu"
-    spectral_level = "spectral_level"
-
-
-def _fail(message: str) -> typer.Exit:
-    typer.echo(f"error: {message}", err=True)
-    return typer.Exit(code=2)
 
 
 def friction_process_command(
@@ -202,9 +168,9 @@ def friction_process_command(
         if plot and out is not None:
             payload["figures"] = [str(p) for p in _figures(analysis, coarse.heights_m, out / "figures", seed)]
     except _INPUT_ERRORS as exc:
-        raise _fail(str(exc)) from None
+        raise fail(str(exc)) from None
     except ValueError as exc:  # e.g. a fit without enough points
-        raise _fail(str(exc)) from None
+        raise fail(str(exc)) from None
     _echo_warnings(payload["warnings"])
     if as_json:
         typer.echo(json.dumps(_clean(payload), indent=1, allow_nan=False))

@@ -10,64 +10,26 @@ import math
 import os
 import sys
 import warnings
-from enum import StrEnum
 from pathlib import Path
 from typing import Annotated, Any
 
 import typer
 from rich.console import Console
-from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
+from .options import (
+    IntegratorChoice,
+    LawChoice,
+    ModelChoice,
+    PathChoice,
+    PresetChoice,
+    ProcessLevelChoice,
+    WhiteIntensityChoice,
+    fail,
+)
+
 err_console = Console(stderr=True)
-
-
-class ModelChoice(StrEnum):
-    deterministic = "deterministic"
-    white = "white"
-    contact = "contact"
-
-
-class LawChoice(StrEnum):
-    I = "I"
-    II = "II"
-    III = "III"
-    pressure = "pressure"
-
-
-class IntegratorChoice(StrEnum):
-    euler = "euler"
-    accurate = "accurate"
-    milstein = "milstein"
-
-
-class PresetChoice(StrEnum):
-    brake = "brake"
-    sheet = "sheet"
-
-
-class WhiteIntensityChoice(StrEnum):
-    sigma_mu = "sigma_mu"
-    spectral_level = "spectral_level"
-    thesis = "thesis"
-
-
-class ProcessLevelChoice(StrEnum):
-    sigma_mu = "sigma_mu"
-    psd_level = "psd_level"
-
-
-class PathChoice(StrEnum):
-    mass = "mass"
-    relative = "relative"
-    position = "position"
-
-
-def fail(message: str) -> typer.Exit:
-    """Print ``message`` as a one-line error and return the exit to raise (code 2)."""
-    err_console.print(f"[bold red]error:[/] {escape(message)}", soft_wrap=True, highlight=False)
-    return typer.Exit(code=2)
 
 
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")

@@ -17,6 +17,7 @@ import typer
 from pydantic import ValidationError
 
 from ..studies.common import StudyError
+from .options import fail
 
 ModelsOpt = Annotated[str | None, typer.Option("--models", help="Comma-separated: deterministic,white,contact.")]
 PresetOpt = Annotated[str, typer.Option("--preset", help="Thesis case: brake | sheet.")]
@@ -45,11 +46,6 @@ WhiteOpt = Annotated[str, typer.Option(
     "--white-intensity", help="σ_ζ of the white-noise model: sigma_mu (thesis, σ_ζ = σ_μ(p)) | spectral_level "
                               "(the process's low-frequency spectral level) | thesis (reproduction mode: printed "
                               "eq. 4.31, σ_ζ,eff = σ_μ(p)·Lω0·Δτ, depends on Δτ).")]
-
-
-def _fail(message: str) -> typer.Exit:
-    typer.echo(f"error: {message}", err=True)
-    return typer.Exit(code=2)
 
 
 class _StudyProgress:
@@ -192,11 +188,17 @@ def _validate(kind: str, fields: dict[str, Any]) -> Any:
         raise StudyError(_format_errors(exc)) from None
 
 
-def _execute(cfg: Any, executor: str, workers: int | None, scheduler: str | None, checkpoint: Path | None,
-             out: Path | None, report: Path | None, json_out: bool) -> None:
+def _execute(kind: str, fields: dict[str, Any], executor: str, workers: int | None, scheduler: str | None,
+             checkpoint: Path | None, out: Path | None, report: Path | None, json_out: bool) -> None:
+    """Validate a study command's options (``fields``: :func:`_common` and the study's own) into its
+    config, run it and print or write the results."""
     from ..studies.executors import make_executor
     from ..studies.reproduce import run_study
 
+    try:
+        cfg = _validate(kind, fields)
+    except StudyError as exc:
+        raise fail(str(exc)) from None
     try:
         _check_dirs(out=out, report=report, checkpoint=checkpoint)
         ex = make_executor(executor, workers=workers, scheduler=scheduler)
@@ -215,7 +217,7 @@ def _execute(cfg: Any, executor: str, workers: int | None, scheduler: str | None
 
             files.append(str(write_report([res], report)))
     except (StudyError, ValueError, OSError) as exc:
-        raise _fail(str(exc)) from None
+        raise fail(str(exc)) from None
     except KeyboardInterrupt as exc:
         raise _interrupted(exc, f"{cfg.kind} ({cfg.preset})", checkpoint) from None
     payload = res.to_json_dict()
@@ -284,15 +286,12 @@ def damping_command(
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
     """Damping study: D_max^d, D_max^s (with interval), D_H, M_diff, M_quot, phase diagrams over D (method §6.2)."""
-    try:
-        cfg = _validate("damping", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
-                                              models, path_coordinate, white_intensity, process_level),
-                                    "normal_forces": normal_force, "damping": damping, "confidence": confidence,
-                                    "p_detect": p_detect, "x0": x0, "phase_force": phase_force,
-                                    "phase_damping": phase_damping, "phase_runs": phase_runs})
-    except StudyError as exc:
-        raise _fail(str(exc)) from None
-    _execute(cfg, executor, workers, scheduler, checkpoint, out, report, json_out)
+    _execute("damping", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
+                                   models, path_coordinate, white_intensity, process_level),
+                         "normal_forces": normal_force, "damping": damping, "confidence": confidence,
+                         "p_detect": p_detect, "x0": x0, "phase_force": phase_force,
+                         "phase_damping": phase_damping, "phase_runs": phase_runs},
+             executor, workers, scheduler, checkpoint, out, report, json_out)
 
 
 def forcing_command(
@@ -308,13 +307,10 @@ def forcing_command(
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
     """Forcing study: bifurcation data, E[X_gh] ± σ over η, σ_contact/σ_white (method §6.3)."""
-    try:
-        cfg = _validate("forcing", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
-                                              models, path_coordinate, white_intensity, process_level),
-                                    "normal_force": normal_force, "forcing_q": q, "eta": eta, "damping": damping})
-    except StudyError as exc:
-        raise _fail(str(exc)) from None
-    _execute(cfg, executor, workers, scheduler, checkpoint, out, report, json_out)
+    _execute("forcing", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
+                                   models, path_coordinate, white_intensity, process_level),
+                         "normal_force": normal_force, "forcing_q": q, "eta": eta, "damping": damping},
+             executor, workers, scheduler, checkpoint, out, report, json_out)
 
 
 def lyapunov_command(
@@ -332,14 +328,11 @@ def lyapunov_command(
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
     """Largest Lyapunov exponent λ (4.43) / E[Λ] (4.44) over η and N (method §6.4)."""
-    try:
-        cfg = _validate("lyapunov", {**_common(preset, process, runs, seed, tau_end, dt, integrator, 0.5, models,
-                                               path_coordinate, white_intensity, process_level),
-                                     "normal_forces": normal_force, "forcing_q": q, "eta": eta,
-                                     "perturbation": perturbation, "damping": damping})
-    except StudyError as exc:
-        raise _fail(str(exc)) from None
-    _execute(cfg, executor, workers, scheduler, checkpoint, out, report, json_out)
+    _execute("lyapunov", {**_common(preset, process, runs, seed, tau_end, dt, integrator, 0.5, models,
+                                    path_coordinate, white_intensity, process_level),
+                          "normal_forces": normal_force, "forcing_q": q, "eta": eta,
+                          "perturbation": perturbation, "damping": damping},
+             executor, workers, scheduler, checkpoint, out, report, json_out)
 
 
 def normal_force_command(
@@ -354,15 +347,12 @@ def normal_force_command(
     out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> None:
     """Normal-force study: phase diagrams, PDFs, E[X_gh] ± σ, VarK with SEs (method §6.1)."""
-    try:
-        cfg = _validate("normal-force", {**_common(preset, process, runs, seed, tau_end, dt, integrator,
-                                                   stick_window, models, path_coordinate, white_intensity,
-                                                   process_level),
-                                         "normal_forces": normal_force, "dampings": damping,
-                                         "phase_runs": phase_runs})
-    except StudyError as exc:
-        raise _fail(str(exc)) from None
-    _execute(cfg, executor, workers, scheduler, checkpoint, out, report, json_out)
+    _execute("normal-force", {**_common(preset, process, runs, seed, tau_end, dt, integrator,
+                                        stick_window, models, path_coordinate, white_intensity,
+                                        process_level),
+                              "normal_forces": normal_force, "dampings": damping,
+                              "phase_runs": phase_runs},
+             executor, workers, scheduler, checkpoint, out, report, json_out)
 
 
 def run_command(
@@ -395,7 +385,7 @@ def run_command(
                 results.append(res)
         index = write_report(results, out) if rf.output.report else None
     except (StudyError, ValueError, OSError) as exc:
-        raise _fail(str(exc)) from None
+        raise fail(str(exc)) from None
     except KeyboardInterrupt as exc:
         raise _interrupted(exc, what, ckpt) from None
     tasks = [{"computed": r.stats.computed, "loaded_from_checkpoint": r.stats.loaded} for r in results]
@@ -441,7 +431,7 @@ def reproduce_command(
                                          study_done=lambda res: prog.end(res.stats.computed, res.stats.loaded),
                                          report=write_report)
     except (StudyError, ValueError, OSError) as exc:
-        raise _fail(str(exc)) from None
+        raise fail(str(exc)) from None
     except KeyboardInterrupt as exc:
         raise _interrupted(exc, what, out / "checkpoints") from None
     payload = {"out": str(out), "report": str(out / "index.html"), "timings_s": timings,

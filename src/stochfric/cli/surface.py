@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import json
 import math
-from enum import StrEnum
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -17,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 import typer
 
+from stochfric.cli.options import MethodChoice, SummitRuleChoice, fail
 from stochfric.contact.asperity import ContactError, ContactResult, asperity_contact
 from stochfric.contact.materials import Material, MaterialError, load_material, material_names
 from stochfric.contact.validity import plasticity_validity, result_validity
@@ -35,20 +35,6 @@ from stochfric.units import MICROMETRE
 __all__ = ["parse_approach_um", "parse_size_um", "register"]
 
 _INPUT_ERRORS = (SurfaceError, ContactError, MaterialError)
-
-
-class SummitRuleChoice(StrEnum):
-    """Summit rules offered on the command line."""
-
-    thesis = "thesis"
-    eight = "8-neighbour"
-
-
-class MethodChoice(StrEnum):
-    """Contact methods offered on the command line."""
-
-    asperity = "asperity"
-    halfspace = "halfspace"
 
 
 # ------------------------------------------------------------------ parsing helpers
@@ -86,11 +72,6 @@ def parse_size_um(spec: str) -> tuple[float, float]:
 
 
 # ------------------------------------------------------------------ shared pipeline
-
-
-def _fail(message: str) -> typer.Exit:
-    typer.echo(f"error: {message}", err=True)
-    return typer.Exit(code=2)
 
 
 def _load_and_prepare(
@@ -221,7 +202,7 @@ def surface_command(
         if plot is not None:
             check_output_path(plot, option="--plot")
     except OutputPathError as exc:
-        raise _fail(str(exc)) from None
+        raise fail(str(exc)) from None
     try:
         prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
         mat = load_material(material) if material is not None else None
@@ -272,7 +253,7 @@ def surface_command(
             ]
             payload["figures"] = figures
     except _INPUT_ERRORS as exc:
-        raise _fail(str(exc)) from None
+        raise fail(str(exc)) from None
     _echo_warnings(payload["warnings"])
     if as_json:
         _echo_json(payload)
@@ -361,7 +342,7 @@ def contact_command(
         if plot is not None:
             check_output_path(plot, option="--plot")
     except OutputPathError as exc:
-        raise _fail(str(exc)) from None
+        raise fail(str(exc)) from None
     try:
         mat = load_material(material)
         prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
@@ -412,7 +393,7 @@ def contact_command(
 
             payload["figures"] = [str(p) for p in write_contact_figures(plot, results)]
     except _INPUT_ERRORS as exc:
-        raise _fail(str(exc)) from None
+        raise fail(str(exc)) from None
     _echo_warnings(payload["warnings"])
     if as_json:
         _echo_json(payload)
