@@ -95,18 +95,23 @@ def sample_summary(
     nonempty = [r for r in runs if r.size]
     if len(nonempty) > 1 and n_boot > 1:
         g = rng if rng is not None else np.random.default_rng(0)
-        ms, ss, vs = [], [], []
-        for _ in range(n_boot):
-            pick = g.integers(0, len(nonempty), len(nonempty))
-            x = np.concatenate([nonempty[i] for i in pick])
-            a, b, c = _stats(x)
-            ms.append(a)
-            ss.append(b)
-            vs.append(c)
+        # replicate b picks runs idx[b] (the same draws, in the same order, as one `integers`
+        # call per replicate); pooled moments from per-run sums, vectorised over replicates
+        k = len(nonempty)
+        idx = g.integers(0, k, size=(n_boot, k))
+        s0 = np.array([r.size for r in nonempty], dtype=float)[idx].sum(axis=1)
+        s1 = np.array([r.sum() for r in nonempty])[idx].sum(axis=1)
+        shift = m  # moments about the pooled mean: no cancellation in the variance
+        s2 = np.array([((r - shift) ** 2).sum() for r in nonempty])[idx].sum(axis=1)
+        d1 = s1 / s0 - shift
+        with np.errstate(invalid="ignore", divide="ignore"):
+            ms = s1 / s0
+            var = (s2 - s0 * d1 * d1) / (s0 - 1)
+            ss = np.where(s0 > 1, np.sqrt(np.maximum(var, 0.0)), np.nan)
+            vs = np.where(ms != 0, np.abs(ss) / np.abs(ms), np.nan)
         bm = float(np.nanstd(ms, ddof=1))
         bs = float(np.nanstd(ss, ddof=1))
-        vv = np.asarray(vs)
-        bv = float(np.nanstd(vv, ddof=1)) if np.sum(np.isfinite(vv)) > 1 else math.nan
+        bv = float(np.nanstd(vs, ddof=1)) if np.sum(np.isfinite(vs)) > 1 else math.nan
     return SampleSummary(n=n, n_runs=len(nonempty), mean=m, std=s, vark=v, se_mean_iid=se_m, se_std_iid=se_s,
                          se_vark_iid=se_v, se_mean_boot=bm, se_std_boot=bs, se_vark_boot=bv)
 
