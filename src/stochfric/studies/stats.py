@@ -162,13 +162,24 @@ def ratio_interval(
 
 
 def _boot_std(runs: list[npt.NDArray[np.float64]], n_boot: int, g: np.random.Generator) -> npt.NDArray[np.float64]:
+    """σ (ddof 1) of the pooled values of ``len(runs)`` runs drawn with replacement, per replicate.
+
+    The same run draws, in the same order, as one ``integers`` call per replicate; moments from
+    per-run sums about the pooled mean (vectorised over the replicates)."""
     out = np.full(n_boot, math.nan)
     if len(runs) < 2:
         return out
-    for i in range(n_boot):
-        pick = g.integers(0, len(runs), len(runs))
-        x = np.concatenate([runs[j] for j in pick])
-        out[i] = float(np.std(x, ddof=1)) if x.size > 1 else math.nan
+    k = len(runs)
+    idx = g.integers(0, k, size=(n_boot, k))
+    pooled = np.concatenate(runs)
+    shift = float(pooled.mean()) if pooled.size else 0.0
+    s0 = np.array([r.size for r in runs], dtype=float)[idx].sum(axis=1)
+    s1 = np.array([(r - shift).sum() for r in runs])[idx].sum(axis=1)
+    s2 = np.array([((r - shift) ** 2).sum() for r in runs])[idx].sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        var = (s2 - s1 * s1 / s0) / (s0 - 1)
+    ok = s0 > 1
+    out[ok] = np.sqrt(np.maximum(var[ok], 0.0))
     return out
 
 
