@@ -175,17 +175,21 @@ def asperity_sums(
     return area, force, k
 
 
+@dataclass(frozen=True, kw_only=True, eq=False)
 class BowdenTabor:
-    """Quantities derived from GW sums (A_c, N) by eq. (3.14)–(3.16), for any array shape.
+    """Contact sums over the approach u and the quantities derived from them by eq. (3.14)–(3.16).
 
-    Mixed into every container of contact sums (:class:`ContactResult` over the approach,
-    :class:`stochfric.process.ensemble.ContactSamples` over samples × approach), which define
-    ``contact_area_m2`` [m²], ``normal_force_n`` [N], ``nominal_area_m2`` [m²] and
-    ``shear_strength_pa`` [Pa].
+    The base of every container of contact sums (:class:`ContactResult` over the approach,
+    :class:`stochfric.process.ensemble.ContactSamples` over samples × approach): the approach
+    ``approach_m`` [m] (last axis), ``contact_area_m2`` A_c [m²], ``normal_force_n`` N [N] and
+    ``n_contacts`` of any array shape, the nominal area ``nominal_area_m2`` [m²] and the shear
+    strength ``shear_strength_pa`` τ_max [Pa].
     """
 
+    approach_m: FloatArray
     contact_area_m2: FloatArray
     normal_force_n: FloatArray
+    n_contacts: IntArray
     nominal_area_m2: float
     shear_strength_pa: float
 
@@ -221,15 +225,19 @@ class ContactResult(BowdenTabor):
     """
 
     method: str
-    approach_m: FloatArray
-    contact_area_m2: FloatArray
-    normal_force_n: FloatArray
-    n_contacts: IntArray
-    nominal_area_m2: float
-    shear_strength_pa: float
     e_star_pa: float
     material: dict[str, Any] = field(default_factory=dict)
     preparation: dict[str, Any] = field(default_factory=dict)
+
+    @classmethod
+    def of(cls, method: str, surface: Surface, material: Material, approach_m: FloatArray, area_m2: FloatArray,
+           force_n: FloatArray, n_contacts: IntArray, preparation: dict[str, Any]) -> ContactResult:
+        """The result of ``method`` on ``surface`` in the pairing ``material`` (nominal area, E*, τ_max
+        and the material record taken from them) from its A_c, N and contact counts over the approach."""
+        return cls(method=method, approach_m=approach_m, contact_area_m2=area_m2, normal_force_n=force_n,
+                   n_contacts=n_contacts, nominal_area_m2=surface.nominal_area_m2,
+                   shear_strength_pa=material.shear_strength_pa, e_star_pa=material.e_star_pa,
+                   material=material.to_dict(), preparation=preparation)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary: arrays as lists (NaN as ``None``), SI units in the keys."""
@@ -358,15 +366,4 @@ def asperity_contact(
     prep.setdefault("summit_rule", summits.rule)
     prep.setdefault("n_summits", summits.count)
     prep.setdefault("reference", "highest summit")
-    return ContactResult(
-        method="asperity",
-        approach_m=u,
-        contact_area_m2=area,
-        normal_force_n=force,
-        n_contacts=k,
-        nominal_area_m2=surface.nominal_area_m2,
-        shear_strength_pa=material.shear_strength_pa,
-        e_star_pa=material.e_star_pa,
-        material=material.to_dict(),
-        preparation=prep,
-    )
+    return ContactResult.of("asperity", surface, material, u, area, force, k, prep)

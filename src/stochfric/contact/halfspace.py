@@ -206,18 +206,7 @@ def halfspace_contact(
         "refine": int(refine),
         "grid": list(nb),
     }
-    return ContactResult(
-        method="halfspace",
-        approach_m=approach,
-        contact_area_m2=area,
-        normal_force_n=force,
-        n_contacts=patches,
-        nominal_area_m2=surface.nominal_area_m2,
-        shear_strength_pa=material.shear_strength_pa,
-        e_star_pa=material.e_star_pa,
-        material=material.to_dict(),
-        preparation=prep,
-    )
+    return ContactResult.of("halfspace", surface, material, approach, area, force, patches, prep)
 
 
 def default_frame_points(summits: Summits | None) -> int:

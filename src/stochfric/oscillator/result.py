@@ -79,17 +79,16 @@ class SimulationResult:
             out.append([float(v) for v in row[np.isfinite(row)]])
         return out
 
+    def _run_record(self) -> dict[str, Any]:
+        """How the runs were made: model, integrator, time grid, runs, seed, path coordinate."""
+        return {"model": self.model, "integrator": self.integrator, "dt": self.dt, "tau_end": self.tau_end,
+                "runs": self.runs, "seed_entropy": str(self.seed_entropy), "path_coordinate": self.path_coordinate}
+
     def metadata(self) -> dict[str, Any]:
         """Everything needed to reproduce the result (JSON-serialisable)."""
         return {
             "schema": SCHEMA,
-            "model": self.model,
-            "integrator": self.integrator,
-            "dt": self.dt,
-            "tau_end": self.tau_end,
-            "runs": self.runs,
-            "seed_entropy": str(self.seed_entropy),
-            "path_coordinate": self.path_coordinate,
+            **self._run_record(),
             "x0": [list(x) for x in self.x0],
             "parameters": [p.to_dict() for p in self.params],
             "friction_law": self.laws,
@@ -165,13 +164,7 @@ class SimulationResult:
             ],
             "stick_count": [int(v) for v in self.stick_count[param_set]],
             "parameters": p.to_dict(),
-            "model": self.model,
-            "integrator": self.integrator,
-            "dt": self.dt,
-            "tau_end": self.tau_end,
-            "runs": self.runs,
-            "seed_entropy": str(self.seed_entropy),
-            "path_coordinate": self.path_coordinate,
+            **self._run_record(),
             "x0": list(self.x0[param_set]),
             "friction_law": self.laws[param_set],
             "sigma_zeta": self.sigma_zeta[param_set],

@@ -43,7 +43,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from stochfric.contact.asperity import BowdenTabor, ContactError, asperity_sums
+from stochfric.contact.asperity import BowdenTabor, ContactError, FloatArray, IntArray, asperity_sums
 from stochfric.contact.materials import Material
 from stochfric.random import SeedLike, spawn_generators
 from stochfric.surface.io import Surface
@@ -64,8 +64,6 @@ __all__ = [
     "window_starts",
 ]
 
-FloatArray = npt.NDArray[np.float64]
-IntArray = npt.NDArray[np.int64]
 Progress = Callable[[int, int], None]
 
 #: The thesis's window shift relative to the window length: a_y = 0.3 mm of ℓ_Fl = 5.3 mm (§3.2.4).
@@ -83,12 +81,6 @@ class ContactSamples(BowdenTabor):
     (3.14–3.16) come from :class:`~stochfric.contact.asperity.BowdenTabor`.
     """
 
-    approach_m: FloatArray
-    contact_area_m2: FloatArray
-    normal_force_n: FloatArray
-    n_contacts: IntArray
-    nominal_area_m2: float
-    shear_strength_pa: float
     info: dict[str, Any] = field(default_factory=dict)
     #: Per sample (leading axes): summit count, mean summit radius β̄ [m], summit-height
     #: standard deviation σ_S [m] — shape (..., 3); recorded by :func:`ensemble_contact`.

@@ -24,7 +24,7 @@ import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Literal, Protocol, overload
+from typing import Any, Literal, Protocol, Self, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -310,6 +310,31 @@ class _ProcessModelBase:
 
     # --- files -------------------------------------------------------------------------
 
+    def _dict_head(self, kind: str) -> dict[str, Any]:
+        """The leading entries of :meth:`to_dict` every model kind shares (kind, schema, μ fits, grid)."""
+        return {"kind": kind, "schema_version": _SCHEMA_VERSION, "name": self.name, "mu_mean": self.mu_mean.to_dict(),
+                "mu_std": self.mu_std.to_dict(), "dx": self.dx, "length": self.length}
+
+    @staticmethod
+    def _head_fields(data: dict[str, Any]) -> dict[str, Any]:
+        """Constructor arguments from the entries of :meth:`_dict_head` (inverse of it)."""
+        return {"name": data["name"], "mu_mean": ModelFunction.from_dict(data["mu_mean"]),
+                "mu_std": ModelFunction.from_dict(data["mu_std"]), "dx": data["dx"], "length": data["length"]}
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Self:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> Self:
+        """Read a model written by :meth:`save`."""
+        with open(path, encoding="utf-8") as fh:
+            return cls.from_dict(json.load(fh))
+
+    def _dict_tail(self) -> dict[str, Any]:
+        """The derived entries at the end of :meth:`to_dict` (ignored by ``from_dict``)."""
+        return {"units": dict(_UNITS), "nyquist_frequency": nyquist_frequency(self.dx)}
+
     def to_dict(self) -> dict[str, Any]:  # pragma: no cover - abstract
         """JSON-compatible dict with ``kind`` and SI units."""
         raise NotImplementedError
@@ -426,18 +451,11 @@ class BandLimitedProcessModel(_ProcessModelBase):
     def to_dict(self) -> dict[str, Any]:
         """JSON-compatible dict (``kind = "band_limited"``, SI units recorded)."""
         return {
-            "kind": "band_limited",
-            "schema_version": _SCHEMA_VERSION,
-            "name": self.name,
-            "mu_mean": self.mu_mean.to_dict(),
-            "mu_std": self.mu_std.to_dict(),
-            "dx": self.dx,
-            "length": self.length,
+            **self._dict_head("band_limited"),
             "spectrum_shape": self.spectrum_shape,
             "falling_ratio": self.falling_ratio,
             "sigma_zeta_rule": self.sigma_zeta_rule,
-            "units": dict(_UNITS),
-            "nyquist_frequency": nyquist_frequency(self.dx),
+            **self._dict_tail(),
         }
 
     @classmethod
@@ -445,21 +463,11 @@ class BandLimitedProcessModel(_ProcessModelBase):
         """Inverse of :meth:`to_dict` (derived entries such as ``units`` are ignored)."""
         cls._check_kind(data, "band_limited")
         return cls(
-            name=data["name"],
-            mu_mean=ModelFunction.from_dict(data["mu_mean"]),
-            mu_std=ModelFunction.from_dict(data["mu_std"]),
-            dx=data["dx"],
-            length=data["length"],
+            **cls._head_fields(data),
             spectrum_shape=data.get("spectrum_shape", "flat"),
             falling_ratio=data.get("falling_ratio", 0.5),
             sigma_zeta_rule=data.get("sigma_zeta_rule", "sigma_mu"),
         )
-
-    @classmethod
-    def load(cls, path: str | os.PathLike[str]) -> BandLimitedProcessModel:
-        """Read a model written by :meth:`save`."""
-        with open(path, encoding="utf-8") as fh:
-            return cls.from_dict(json.load(fh))
 
 
 def _float_tuple(name: str, values: Any) -> tuple[float, ...]:
@@ -636,13 +644,7 @@ class TabulatedProcessModel(_ProcessModelBase):
     def to_dict(self) -> dict[str, Any]:
         """JSON-compatible dict (``kind = "tabulated"``, SI units recorded)."""
         return {
-            "kind": "tabulated",
-            "schema_version": _SCHEMA_VERSION,
-            "name": self.name,
-            "mu_mean": self.mu_mean.to_dict(),
-            "mu_std": self.mu_std.to_dict(),
-            "dx": self.dx,
-            "length": self.length,
+            **self._dict_head("tabulated"),
             "pressures_pa": list(self.pressures_pa),
             "table_frequencies": list(self.table_frequencies),
             "table_psd": [list(row) for row in self.table_psd],
@@ -651,8 +653,7 @@ class TabulatedProcessModel(_ProcessModelBase):
             "sigma_zeta_rule": self.sigma_zeta_rule,
             "psd_level": None if self.psd_level is None else self.psd_level.to_dict(),
             "window_length_m": self.window_length_m,
-            "units": dict(_UNITS),
-            "nyquist_frequency": nyquist_frequency(self.dx),
+            **self._dict_tail(),
         }
 
     @classmethod
@@ -665,11 +666,7 @@ class TabulatedProcessModel(_ProcessModelBase):
             raise ValueError(f"a process model of kind 'tabulated' needs the field(s) {', '.join(missing)}")
         level = data.get("psd_level")
         return cls(
-            name=data["name"],
-            mu_mean=ModelFunction.from_dict(data["mu_mean"]),
-            mu_std=ModelFunction.from_dict(data["mu_std"]),
-            dx=data["dx"],
-            length=data["length"],
+            **cls._head_fields(data),
             pressures_pa=tuple(data["pressures_pa"]),
             table_frequencies=tuple(data["table_frequencies"]),
             table_psd=tuple(tuple(row) for row in data["table_psd"]),
@@ -679,12 +676,6 @@ class TabulatedProcessModel(_ProcessModelBase):
             psd_level=None if level is None else ModelFunction.from_dict(level),
             window_length_m=data.get("window_length_m"),
         )
-
-    @classmethod
-    def load(cls, path: str | os.PathLike[str]) -> TabulatedProcessModel:
-        """Read a model written by :meth:`save`."""
-        with open(path, encoding="utf-8") as fh:
-            return cls.from_dict(json.load(fh))
 
 
 def process_model_from_dict(data: dict[str, Any]) -> FrictionProcessModel:

@@ -128,11 +128,9 @@ class DampingConfig(StudyConfig):
         return tuple(sorted(v))
 
 
-class ForcingConfig(StudyConfig):
-    """Forcing study (method §6.3, thesis 4.2.3/4.3.3): bifurcation data over η."""
+class _ForcedConfig(StudyConfig):
+    """Fields of the studies of the forced oscillator: q = Q/(cL), η = Ω/ω0 (grids, >= 0), one D."""
 
-    kind: Literal["forcing"] = "forcing"
-    normal_force: float | None = Field(default=None, gt=0)
     forcing_q: Grid = (5e-5, 5e-4)
     eta: Grid = Field(default_factory=lambda: parse_grid("0:3:61"))
     damping: float | None = Field(default=None, ge=0, lt=1)
@@ -145,25 +143,23 @@ class ForcingConfig(StudyConfig):
         return v
 
 
-class LyapunovConfig(StudyConfig):
+class ForcingConfig(_ForcedConfig):
+    """Forcing study (method §6.3, thesis 4.2.3/4.3.3): bifurcation data over η."""
+
+    kind: Literal["forcing"] = "forcing"
+    normal_force: float | None = Field(default=None, gt=0)
+
+
+class LyapunovConfig(_ForcedConfig):
     """Largest Lyapunov exponent (method §6.4, eq. 4.43/4.44) over η and N."""
 
     kind: Literal["lyapunov"] = "lyapunov"
     normal_forces: Grid | None = None
-    forcing_q: Grid = (5e-5, 5e-4)
     eta: Grid = Field(default_factory=lambda: parse_grid("0.1:3:30"))
-    damping: float | None = Field(default=None, ge=0, lt=1)
     perturbation: float = Field(default=1e-6, gt=0, description="shift of the initial x1 of the comparison run")
     linearity_tolerance: float = Field(
         default=0.1, gt=0, lt=1,
         description="a pair is linear when the twin run (2δ) separates by 2w within this relative tolerance")
-
-    @field_validator("eta", "forcing_q")
-    @classmethod
-    def _non_negative(cls, v: tuple[float, ...]) -> tuple[float, ...]:
-        if any(x < 0 for x in v):
-            raise ValueError("values must be >= 0")
-        return v
 
 
 class NormalForceConfig(StudyConfig):
