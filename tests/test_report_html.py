@@ -136,11 +136,9 @@ def test_friction_process_section(tmp_path: Path) -> None:
     model = load_process_model(tmp_path / "friction_process" / "friction_process.json")
     params = PhysicalParameters(mass=2.0, stiffness=1e6, belt_speed=1.0, normal_force=5600.0,
                                 contact_area=0.016).to_dimensionless()
-    from stochfric.oscillator.integrate import SimulationWarningCategory
-
     # the measured surface is 1.2 mm long: a brake-like cycle exhausts it, and says so
-    with pytest.warns(SimulationWarningCategory, match="process exhausted"):
-        res = simulate(params, model="contact", process=model, runs=2, seed=1, tau_end=5.0)
+    res = simulate(params, model="contact", process=model, runs=2, seed=1, tau_end=5.0)
+    assert any("process exhausted" in w.message for w in res.warnings)
     assert res.process is not None and res.stick_count.shape == (1, 2)
 
 

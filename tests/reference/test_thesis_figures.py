@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from stochfric.oscillator.friction_laws import law_II, law_III, pressure_law
-from stochfric.oscillator.integrate import SimulationWarningCategory, simulate
+from stochfric.oscillator.integrate import simulate
 from stochfric.oscillator.parameters import OscillatorParameters, PhysicalParameters
 from stochfric.process.presets import brake
 
@@ -39,8 +39,8 @@ def test_fig_4_7_unforced_euler_keeps_the_character_at_coarse_steps() -> None:
     ref = simulate(DEMO, law=law_III(), integrator="accurate", tau_end=50.0).x_gh[0, 0, 0]
     errs = []
     for dt in (0.001, 0.01, 0.05):
-        with pytest.warns(SimulationWarningCategory) if dt > 0.02 else _nullcontext():
-            r = simulate(DEMO, law=law_III(), dt=dt, tau_end=50.0)
+        r = simulate(DEMO, law=law_III(), dt=dt, tau_end=50.0)
+        assert bool(r.warnings) == (dt > 0.02)  # the coarse-step warning, in the result
         m = int(r.stick_count[0, 0])
         xg = r.x_gh[0, 0, :m]
         assert m >= 5
@@ -48,14 +48,6 @@ def test_fig_4_7_unforced_euler_keeps_the_character_at_coarse_steps() -> None:
         errs.append(abs(xg[-1] - ref))
     assert errs[0] < 0.005 < errs[2]
     assert errs[0] < errs[1] < errs[2]
-
-
-class _nullcontext:
-    def __enter__(self) -> None:
-        return None
-
-    def __exit__(self, *a: object) -> None:
-        return None
 
 
 def _period2_defect(xg: np.ndarray) -> float:
@@ -75,8 +67,8 @@ def test_fig_4_8_forced_two_periodic_solution_and_dt_effects() -> None:
     x1 = e1.x_gh[0, 0, : int(e1.stick_count[0, 0])]
     assert _period2_defect(x1) < 1e-3
     assert sorted(x1[-2:]) == pytest.approx(sorted(xa[-2:]), abs=0.03)
-    with pytest.warns(SimulationWarningCategory, match="apparent chaos"):
-        e3 = simulate(p, law=law_III(), x0=(3.2, 1.0), dt=0.1, tau_end=300.0)
+    e3 = simulate(p, law=law_III(), x0=(3.2, 1.0), dt=0.1, tau_end=300.0)
+    assert any("apparent chaos" in w.message for w in e3.warnings)
     x3 = e3.x_gh[0, 0, : int(e3.stick_count[0, 0])]
     assert _period2_defect(x3) > 0.3
     assert len(np.unique(np.round(x3[len(x3) // 2:], 2))) > 6

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import math
 import os
-import warnings
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -70,7 +69,8 @@ DT_WARN_UNFORCED = 0.02
 
 
 class SimulationWarningCategory(UserWarning):
-    """Python warning category for :class:`SimulationWarning` messages."""
+    """Kept for code that filters it; :func:`simulate` no longer emits Python warnings — its
+    :class:`SimulationWarning` list is ``result.warnings``."""
 
 
 class ProcessModel(Protocol):
@@ -554,9 +554,9 @@ def simulate(
         "n_breakaway": _k.D_N_BREAKAWAY, "n_slip_phases": _k.D_N_SLIP_PHASES,
     }
     diagnostics = {k: diag[:, j].reshape(npar, runs).copy() for k, j in diag_names.items()}
+    # returned in the result only (``result.warnings``, also in its JSON and NetCDF); callers show
+    # them (the CLI prints each on stderr, the studies count them, the report explains them)
     warn_list += _post_warnings(counts, nev, diag, model, process, plist, path_mode)
-    for w in warn_list:
-        warnings.warn(w.message, SimulationWarningCategory, stacklevel=2)
     return SimulationResult(
         params=plist,
         x_gh=x_gh.reshape(npar, runs, nev),
