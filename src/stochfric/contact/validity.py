@@ -36,7 +36,7 @@ friction-process analysis); :func:`result_validity` on a
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -143,43 +143,29 @@ def contact_validity(
     pre = f"{name}: " if name else ""
     out: list[ValidityWarning] = []
 
-    idx = _where(m, m > 1.0)
-    if idx:
-        out.append(ValidityWarning(
-            "mu-above-one",
+    checks: list[tuple[str, npt.NDArray[np.float64], npt.NDArray[np.bool_], Callable[[tuple[int, ...]], str]]] = [
+        ("mu-above-one", m, m > 1.0, lambda idx: (
             f"{pre}mu > 1 {_u_text(u, idx)} (max {float(np.nanmax(m[list(idx)])):.3g}): the mean contact "
             "pressure N/A_c is below the shear strength tau_max, i.e. the asperities are too blunt or "
             "E* too low for this pairing (Hertz: N/A_c = 4E*/(3 pi) sqrt(d/beta)); use a material that "
-            "belongs to this surface (E*, tau_max) or larger approaches - Bowden-Tabor is not meant here",
-            idx,
-        ))  # fmt: skip
-    idx = _where(frac, frac > 1.0)
-    if idx:
-        out.append(ValidityWarning(
-            "area-fraction-above-one",
+            "belongs to this surface (E*, tau_max) or larger approaches - Bowden-Tabor is not meant here")),
+        ("area-fraction-above-one", frac, frac > 1.0, lambda idx: (
             f"{pre}A_c/A_nom > 1 {_u_text(u, idx)} (max {float(np.nanmax(frac[list(idx)])):.3g}): more "
             "contact than nominal area is impossible; the approach exceeds the surface's height range - "
-            "use smaller approaches (default range: sigma_S/4 ... 3 sigma_S)",
-            idx,
-        ))  # fmt: skip
-    idx = _where(frac, (frac > max_area_fraction) & (frac <= 1.0))
-    if idx:
-        out.append(ValidityWarning(
-            "beyond-non-interaction",
+            "use smaller approaches (default range: sigma_S/4 ... 3 sigma_S)")),
+        ("beyond-non-interaction", frac, (frac > max_area_fraction) & (frac <= 1.0), lambda idx: (
             f"{pre}A_c/A_nom > {max_area_fraction:g} {_u_text(u, idx)}: beyond the non-interaction range "
             "the asperities interact and the GW area departs from the elastic half-space solution "
-            "(docs/surface_contact.md); use smaller approaches, or check with --method halfspace",
-            idx,
-        ))  # fmt: skip
-    idx = _where(nc, nc < min_contacts)
-    if idx:
-        out.append(ValidityWarning(
-            "few-contacts",
+            "(docs/surface_contact.md); use smaller approaches, or check with --method halfspace")),
+        ("few-contacts", nc, nc < min_contacts, lambda idx: (
             f"{pre}fewer than {min_contacts} contacts {_u_text(u, idx)} (min {float(np.nanmin(nc[list(idx)])):.3g}): "
             "mu there belongs to one or a few asperities, not to the surface; use larger approaches or a "
-            "larger measured area",
-            idx,
-        ))  # fmt: skip
+            "larger measured area")),
+    ]  # fmt: skip
+    for code, values, mask, message in checks:
+        idx = _where(values, mask)
+        if idx:
+            out.append(ValidityWarning(code, message(idx), idx))
     if plasticity_index is not None:
         out.extend(plasticity_validity(plasticity_index, name=name))
     return out

@@ -34,6 +34,7 @@ work is split.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -85,6 +86,13 @@ class ContactSamples(BowdenTabor):
     #: Per sample (leading axes): summit count, mean summit radius β̄ [m], summit-height
     #: standard deviation σ_S [m] — shape (..., 3); recorded by :func:`ensemble_contact`.
     summit_stats: FloatArray | None = None
+
+    @classmethod
+    def of(cls, surface: Surface, material: Material, approach_m: FloatArray, area_m2: FloatArray,
+           force_n: FloatArray, n_contacts: IntArray, **extra: Any) -> ContactSamples:
+        """Samples of ``surface``'s size in the pairing ``material`` (nominal area and τ_max from them)."""
+        return cls(approach_m=approach_m, contact_area_m2=area_m2, normal_force_n=force_n, n_contacts=n_contacts,
+                   nominal_area_m2=surface.nominal_area_m2, shear_strength_pa=material.shear_strength_pa, **extra)
 
 
 
@@ -159,16 +167,10 @@ def ensemble_contact(
         )
         if progress is not None:
             progress(r + 1, r_count)
-    return ContactSamples(
-        approach_m=u,
-        contact_area_m2=area,
-        normal_force_n=force,
-        n_contacts=count,
-        nominal_area_m2=surface.nominal_area_m2,
-        shear_strength_pa=material.shear_strength_pa,
+    return ContactSamples.of(
+        surface, material, u, area, force, count, summit_stats=stats,
         info={"kind": "ensemble", "surrogate": method, "amplitude": amplitude, "realizations": r_count,
               "summit_rule": rule},
-        summit_stats=stats,
     )
 
 
@@ -241,19 +243,30 @@ def window_contact(
     window_points: int,
     shift_points: int,
     rule: str = "thesis",
+    crop: bool = False,
 ) -> tuple[FloatArray, FloatArray, IntArray]:
     """GW contact of every window of a long surface (windows along y, axis 1), fast path.
 
     Windows cover columns ``[s, s + window_points)`` for ``s`` in :func:`window_starts`; each is
-    referenced to its own highest summit.  Returns ``(A_c, N, n_contacts)`` of shape (W, U),
-    equal (to round-off) to :func:`naive_window_contact`.
+    referenced to its own highest summit.  Returns ``(A_c, N, n_contacts)`` of shape (W, U).
+    ``crop=True`` is the reference (:func:`naive_window_contact`): crop each window and analyse it
+    on its own; the fast path equals it to round-off.
     """
     z = np.asarray(heights_m, dtype=np.float64)
     u = _approach(approach_m)
     if rule not in SUMMIT_MARGIN:
         raise ContactError(f"unknown summit rule {rule!r}; use one of {', '.join(SUMMIT_MARGIN)}")
-    margin = SUMMIT_MARGIN[rule]
     starts = window_starts(z.shape[1], window_points, shift_points)
+    area = np.empty((starts.size, u.size))
+    force = np.empty((starts.size, u.size))
+    count = np.empty((starts.size, u.size), dtype=np.int64)
+    if crop:
+        for w, s in enumerate(starts):
+            area[w], force[w], count[w] = _one_surface(
+                np.ascontiguousarray(z[:, s : s + window_points]), grid_spacing_m, material, u, rule
+            )
+        return area, force, count
+    margin = SUMMIT_MARGIN[rule]
     summits = find_summits(z, grid_spacing_m, rule=rule)
     order = np.argsort(summits.j, kind="stable")
     col = summits.j[order]
@@ -265,36 +278,13 @@ def window_contact(
     if np.any(n_in == 0):
         bad = int(np.argmin(n_in))
         raise ContactError(f"window {bad} (columns {int(starts[bad])}…) has no summit; use larger windows")
-    area = np.empty((starts.size, u.size))
-    force = np.empty((starts.size, u.size))
-    count = np.empty((starts.size, u.size), dtype=np.int64)
     _window_sums(zs, beta, lo.astype(np.int64), hi.astype(np.int64), u, area, force, count)
     force *= (4.0 / 3.0) * material.e_star_pa
     return area, force, count
 
 
-def naive_window_contact(
-    heights_m: npt.ArrayLike,
-    grid_spacing_m: tuple[float, float],
-    material: Material,
-    approach_m: npt.ArrayLike,
-    *,
-    window_points: int,
-    shift_points: int,
-    rule: str = "thesis",
-) -> tuple[FloatArray, FloatArray, IntArray]:
-    """Reference for :func:`window_contact`: crop each window and analyse it on its own."""
-    z = np.asarray(heights_m, dtype=np.float64)
-    u = _approach(approach_m)
-    starts = window_starts(z.shape[1], window_points, shift_points)
-    area = np.empty((starts.size, u.size))
-    force = np.empty((starts.size, u.size))
-    count = np.empty((starts.size, u.size), dtype=np.int64)
-    for w, s in enumerate(starts):
-        area[w], force[w], count[w] = _one_surface(
-            np.ascontiguousarray(z[:, s : s + window_points]), grid_spacing_m, material, u, rule
-        )
-    return area, force, count
+#: Reference for :func:`window_contact`: crop each window and analyse it on its own.
+naive_window_contact = functools.partial(window_contact, crop=True)
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -389,15 +379,7 @@ def path_contact(
     info = {"surrogate": method, "amplitude": amplitude, "long_surfaces": k_count, "length_factor": factor}
 
     def samples(a: FloatArray, n: FloatArray, c: IntArray, kind: str) -> ContactSamples:
-        return ContactSamples(
-            approach_m=u,
-            contact_area_m2=a,
-            normal_force_n=n,
-            n_contacts=c,
-            nominal_area_m2=surface.nominal_area_m2,
-            shear_strength_pa=material.shear_strength_pa,
-            info={"kind": kind, **info},
-        )
+        return ContactSamples.of(surface, material, u, a, n, c, info={"kind": kind, **info})
 
     return PathContact(
         samples=samples(area, force, count, "path"),
