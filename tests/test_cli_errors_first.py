@@ -89,14 +89,13 @@ def test_study_run_reproduce_output_paths_checked_first(tmp_path: Path) -> None:
 def test_surface_contact_process_output_paths_checked_first(
     args: list[str], needle: str, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
 ) -> None:
-    import stochfric.cli.process as cli_process
     import stochfric.cli.surface as cli_surface
 
     def boom(*_a: Any, **_k: Any) -> Any:
         raise AssertionError("the surface was read before the output paths were checked")
 
+    # all three commands read through SurfaceOptions.load -> cli.surface._load_and_prepare
     monkeypatch.setattr(cli_surface, "_load_and_prepare", boom)
-    monkeypatch.setattr(cli_process, "_load_and_prepare", boom)
     afile = tmp_path / "afile"
     afile.write_text("x")
     _bad([a.format(file=afile) for a in args], needle)

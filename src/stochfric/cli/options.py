@@ -6,14 +6,24 @@ are the names the library uses (glossary: docs/glossary.md).
 
 from __future__ import annotations
 
+import functools
+import inspect
+import typing
+from collections.abc import Callable
 from enum import StrEnum
+from typing import Any, TypeVar
 
 import typer
 
+F = TypeVar("F", bound=Callable[..., Any])
+
+#: Default of a command parameter that :func:`option_group` fills (never seen by typer).
+GROUP: Any = None
+
 __all__ = [
-    "AmplitudeChoice", "IntegratorChoice", "LawChoice", "MethodChoice", "ModelChoice", "PathChoice",
+    "GROUP", "AmplitudeChoice", "IntegratorChoice", "LawChoice", "MethodChoice", "ModelChoice", "PathChoice",
     "PresetChoice", "PressureRuleChoice", "ProcessLevelChoice", "SigmaZetaChoice", "SummitRuleChoice",
-    "SurrogateChoice", "VarianceRuleChoice", "WhiteIntensityChoice", "fail",
+    "SurrogateChoice", "VarianceRuleChoice", "WhiteIntensityChoice", "fail", "option_group",
 ]  # fmt: skip
 
 # simulate (method §5)
@@ -39,3 +49,38 @@ def fail(message: str) -> typer.Exit:
     """Print ``error: message`` on stderr and return the exit to raise (status 2)."""
     typer.echo(f"error: {message}", err=True)
     return typer.Exit(code=2)
+
+
+def option_group(name: str, group: Callable[..., Any]) -> Callable[[F], F]:
+    """Give a command the options of ``group`` in place of its parameter ``name``.
+
+    ``group`` is a function whose parameters are typer options shared by several commands; the
+    command's parameter ``name`` receives ``group(**values of those options)``.  The options
+    appear in ``--help`` where ``name`` stands.  ``group`` must not raise (keep the raw values;
+    validate in the command, where errors become a one-line message).
+    """
+    gsig = inspect.signature(group)
+    ghints = typing.get_type_hints(group, include_extras=True)
+    gparams = [p.replace(annotation=ghints[p.name], kind=inspect.Parameter.KEYWORD_ONLY)
+               for p in gsig.parameters.values()]
+
+    def decorate(command: F) -> F:
+        hints = typing.get_type_hints(command, include_extras=True)
+        params: list[inspect.Parameter] = []
+        for p in inspect.signature(command).parameters.values():
+            if p.name == name:
+                params += gparams
+            else:
+                params.append(p.replace(annotation=hints.get(p.name, p.annotation),
+                                        kind=inspect.Parameter.KEYWORD_ONLY))
+
+        @functools.wraps(command)
+        def wrapper(**kwargs: Any) -> Any:
+            values = {k: kwargs.pop(k) for k in gsig.parameters}
+            return command(**kwargs, **{name: group(**values)})
+
+        wrapper.__signature__ = inspect.Signature(params, return_annotation=None)  # type: ignore[attr-defined]
+        wrapper.__annotations__ = {p.name: p.annotation for p in params} | {"return": None}
+        return typing.cast(F, wrapper)
+
+    return decorate

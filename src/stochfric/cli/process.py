@@ -17,27 +17,22 @@ import numpy as np
 import typer
 
 from stochfric.cli.options import (
+    GROUP,
     AmplitudeChoice,
     PressureRuleChoice,
     SigmaZetaChoice,
-    SummitRuleChoice,
     SurrogateChoice,
     VarianceRuleChoice,
     fail,
+    option_group,
 )
 from stochfric.cli.surface import (
-    DetrendOpt,
     FileArg,
-    FillOpt,
-    MedianOpt,
-    RuleOpt,
-    SizeOpt,
-    StepOpt,
-    UnitOpt,
+    SurfaceOptions,
     _echo_warnings,
-    _load_and_prepare,
     _surface_warnings,
     parse_approach_um,
+    surface_options,
 )
 from stochfric.contact.asperity import ContactError, default_approach_m
 from stochfric.contact.materials import MaterialError, load_material, material_names
@@ -45,7 +40,6 @@ from stochfric.io_utils import check_output_path
 from stochfric.process.ensemble import default_window_shift_points
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.surface.io import SurfaceError
-from stochfric.surface.preprocess import Preparation
 from stochfric.units import MICROMETRE
 
 __all__ = ["register"]
@@ -57,6 +51,7 @@ MODEL_FILE = "friction_process.json"
 STATISTICS_FILE = "friction_process_statistics.nc"
 
 
+@option_group("surf", surface_options)
 def friction_process_command(
     material: Annotated[
         str,
@@ -110,13 +105,7 @@ def friction_process_command(
     plot: Annotated[
         bool, typer.Option("--plot", help="Also write the figures into DIR/figures (needs --out).")
     ] = False,
-    median_radius: MedianOpt = 0,
-    step: StepOpt = 1,
-    detrend: DetrendOpt = "plane",
-    fill_undefined: FillOpt = False,
-    summit_rule: RuleOpt = SummitRuleChoice.thesis,
-    size_um: SizeOpt = None,
-    height_unit: UnitOpt = None,
+    surf: SurfaceOptions = GROUP,
     as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
 ) -> None:
     """Statistical contact analysis of similar surfaces → friction-process model (method §3–§4)."""
@@ -128,12 +117,8 @@ def friction_process_command(
         if out is not None:  # before any work: a file or an unwritable place ends the command now
             check_output_path(out, option="--out")
         mat = load_material(material)
-        prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
         approach = parse_approach_um(approach_um) if approach_um is not None else None
-        _raw, _fine, coarse, _fs, cs, record = _load_and_prepare(
-            file, size_um=size_um, height_unit=height_unit, fill_undefined=fill_undefined,
-            preparation=prep, summit_rule=summit_rule.value,
-        )  # fmt: skip
+        _raw, _fine, coarse, _fs, cs, record = surf.load(file)
         if cs.count < 2:
             raise ContactError(f"the prepared surface has {cs.count} summit(s); at least 2 are needed")
         u = default_approach_m(cs) if approach is None else approach
@@ -153,7 +138,7 @@ def friction_process_command(
         cfg = AnalysisConfig(
             realizations=realizations, long_surfaces=long_surfaces, length_factor=length_factor,
             window_shift_points=shift, surrogate=surrogate.value, amplitude=amplitude.value,
-            summit_rule=summit_rule.value, max_area_fraction=max_area_fraction,
+            summit_rule=surf.summit_rule, max_area_fraction=max_area_fraction,
             pressure_rule=pressure_rule.value, variance_rule=variance_rule.value,
             sigma_zeta_rule=sigma_zeta_rule.value, seed=seed,
         )  # fmt: skip

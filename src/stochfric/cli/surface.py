@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import json
 import math
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -16,7 +17,7 @@ import numpy as np
 import numpy.typing as npt
 import typer
 
-from stochfric.cli.options import MethodChoice, SummitRuleChoice, fail
+from stochfric.cli.options import GROUP, MethodChoice, SummitRuleChoice, fail, option_group
 from stochfric.contact.asperity import ContactError, ContactResult, asperity_contact
 from stochfric.contact.materials import Material, MaterialError, load_material, material_names
 from stochfric.contact.validity import plasticity_validity, result_validity
@@ -74,6 +75,31 @@ def parse_size_um(spec: str) -> tuple[float, float]:
 # ------------------------------------------------------------------ shared pipeline
 
 
+@dataclass(frozen=True)
+class SurfaceOptions:
+    """How a height map is read and prepared: the options shared by ``surface``, ``contact`` and
+    ``friction-process`` (:func:`surface_options`), validated when the map is loaded."""
+
+    median_radius: int
+    step: int
+    detrend: str
+    fill_undefined: bool
+    summit_rule: str
+    size_um: str | None
+    height_unit: str | None
+
+    def preparation(self) -> Preparation:
+        """Detrend, median filter and coarsening (SurfaceError for invalid values)."""
+        return Preparation(detrend=self.detrend, median_radius=self.median_radius, step=self.step)
+
+    def load(self, file: Path | None) -> tuple[Surface, Surface, Surface, Summits, Summits, dict[str, Any]]:
+        """Read ``file`` (default: the shipped surface), prepare it and find the summits: raw, fine and
+        coarse surface, fine and coarse summits, and the record of the preparation."""
+        return _load_and_prepare(file, size_um=self.size_um, height_unit=self.height_unit,
+                                 fill_undefined=self.fill_undefined, preparation=self.preparation(),
+                                 summit_rule=self.summit_rule)
+
+
 def _load_and_prepare(
     file: Path | None,
     *,
@@ -114,8 +140,12 @@ def _gamma(material: Material, stats: dict[str, Any]) -> float | None:
     )
 
 
-def _echo_json(payload: dict[str, Any]) -> None:
-    typer.echo(json.dumps(payload, indent=2, allow_nan=False))
+def _echo_result(payload: dict[str, Any], as_json: bool) -> bool:
+    """The warnings on stderr, then with ``as_json`` the payload as JSON; True when that was all."""
+    _echo_warnings(payload["warnings"])
+    if as_json:
+        typer.echo(json.dumps(payload, indent=2, allow_nan=False))
+    return as_json
 
 
 def _surface_warnings(raw: Surface) -> list[dict[str, Any]]:
@@ -170,6 +200,22 @@ UnitOpt = Annotated[
     str | None,
     typer.Option("--height-unit", help="Height unit (m, mm, um, nm) for files without one."),
 ]
+
+
+def surface_options(
+    median_radius: MedianOpt = 0,
+    step: StepOpt = 1,
+    detrend: DetrendOpt = "plane",
+    fill_undefined: FillOpt = False,
+    summit_rule: RuleOpt = SummitRuleChoice.thesis,
+    size_um: SizeOpt = None,
+    height_unit: UnitOpt = None,
+) -> SurfaceOptions:
+    """The reading and preparation options of a command (:func:`~stochfric.cli.options.option_group`)."""
+    return SurfaceOptions(median_radius=median_radius, step=step, detrend=detrend, fill_undefined=fill_undefined,
+                          summit_rule=SummitRuleChoice(summit_rule).value, size_um=size_um, height_unit=height_unit)
+
+
 PlotOpt = Annotated[Path | None, typer.Option("--plot", help="Write PNG figures into this directory.")]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print the result as JSON.")]
 
@@ -177,13 +223,10 @@ JsonOpt = Annotated[bool, typer.Option("--json", help="Print the result as JSON.
 # ------------------------------------------------------------------ commands
 
 
+@option_group("surf", surface_options)
 def surface_command(
     file: FileArg = None,
-    median_radius: MedianOpt = 0,
-    step: StepOpt = 1,
-    detrend: DetrendOpt = "plane",
-    fill_undefined: FillOpt = False,
-    summit_rule: RuleOpt = SummitRuleChoice.thesis,
+    surf: SurfaceOptions = GROUP,
     material: Annotated[
         str | None,
         typer.Option(
@@ -191,8 +234,6 @@ def surface_command(
             help=f"Pairing for the plasticity index (3.7): {', '.join(material_names())} or a JSON file.",
         ),
     ] = None,
-    size_um: SizeOpt = None,
-    height_unit: UnitOpt = None,
     plot: PlotOpt = None,
     as_json: JsonOpt = False,
 ) -> None:
@@ -204,20 +245,13 @@ def surface_command(
     except OutputPathError as exc:
         raise fail(str(exc)) from None
     try:
-        prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
+        prep = surf.preparation()
         mat = load_material(material) if material is not None else None
-        raw, fine, coarse, fs, cs, record = _load_and_prepare(
-            file,
-            size_um=size_um,
-            height_unit=height_unit,
-            fill_undefined=fill_undefined,
-            preparation=prep,
-            summit_rule=summit_rule.value,
-        )
+        raw, fine, coarse, fs, cs, record = surf.load(file)
         if cs.count == 0:
             raise SurfaceError(
                 f"no summit found on the {coarse.nb_grid_pts[0]}×{coarse.nb_grid_pts[1]} "
-                f"prepared surface (rule {summit_rule.value!r}); use a smaller step or "
+                f"prepared surface (rule {surf.summit_rule!r}); use a smaller step or "
                 "median radius"
             )
         fine_stats = surface_statistics(fine, fs).to_dict()
@@ -248,21 +282,19 @@ def surface_command(
             figures = [
                 str(p)
                 for p in write_surface_figures(
-                    plot, fine=fine, coarse=coarse, fine_summits=fs, coarse_summits=cs, step=step
+                    plot, fine=fine, coarse=coarse, fine_summits=fs, coarse_summits=cs, step=surf.step
                 )
             ]
             payload["figures"] = figures
     except _INPUT_ERRORS as exc:
         raise fail(str(exc)) from None
-    _echo_warnings(payload["warnings"])
-    if as_json:
-        _echo_json(payload)
+    if _echo_result(payload, as_json):
         return
     um = MICROMETRE
     typer.echo(f"surface   {record['file']}")
     typer.echo(
         f"prepared  detrend={prep.detrend} median_radius={prep.median_radius} step={prep.step} "
-        f"summit_rule={summit_rule.value} filled={raw.n_undefined_filled}"
+        f"summit_rule={surf.summit_rule} filled={raw.n_undefined_filled}"
     )
     for label, st in (("fine", fine_stats), ("coarse", coarse_stats)):
         typer.echo(
@@ -282,6 +314,7 @@ def surface_command(
         typer.echo(f"figure    {f}")
 
 
+@option_group("surf", surface_options)
 def contact_command(
     material: Annotated[
         str,
@@ -324,13 +357,7 @@ def contact_command(
             min=0,
         ),
     ] = None,
-    median_radius: MedianOpt = 0,
-    step: StepOpt = 1,
-    detrend: DetrendOpt = "plane",
-    fill_undefined: FillOpt = False,
-    summit_rule: RuleOpt = SummitRuleChoice.thesis,
-    size_um: SizeOpt = None,
-    height_unit: UnitOpt = None,
+    surf: SurfaceOptions = GROUP,
     output: Annotated[Path | None, typer.Option("--output", help="Write the result to this netCDF file.")] = None,
     plot: PlotOpt = None,
     as_json: JsonOpt = False,
@@ -345,16 +372,8 @@ def contact_command(
         raise fail(str(exc)) from None
     try:
         mat = load_material(material)
-        prep = Preparation(detrend=detrend, median_radius=median_radius, step=step)
         approach = parse_approach_um(approach_um) if approach_um is not None else None
-        raw, _fine, coarse, _fs, cs, record = _load_and_prepare(
-            file,
-            size_um=size_um,
-            height_unit=height_unit,
-            fill_undefined=fill_undefined,
-            preparation=prep,
-            summit_rule=summit_rule.value,
-        )
+        raw, _fine, coarse, _fs, cs, record = surf.load(file)
         record["approach"] = "given" if approach is not None else "default: sigma_S/4..3 sigma_S"
         gw = asperity_contact(coarse, cs, mat, approach, preparation=record)
         results: list[ContactResult] = [gw]
@@ -394,9 +413,7 @@ def contact_command(
             payload["figures"] = [str(p) for p in write_contact_figures(plot, results)]
     except _INPUT_ERRORS as exc:
         raise fail(str(exc)) from None
-    _echo_warnings(payload["warnings"])
-    if as_json:
-        _echo_json(payload)
+    if _echo_result(payload, as_json):
         return
     um = MICROMETRE
     typer.echo(f"surface   {record['file']}  ({coarse.nb_grid_pts[0]}x{coarse.nb_grid_pts[1]})")

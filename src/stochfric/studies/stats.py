@@ -47,8 +47,16 @@ def zero_count_upper_bound(n: int, confidence: float = 0.95) -> float:
     return 1.0 - (1.0 - confidence) ** (1.0 / n)
 
 
+class _JsonRecord:
+    """``to_dict`` of the result records below: their fields, NaN/inf as ``None``."""
+
+    def to_dict(self) -> dict[str, Any]:
+        return {k: (None if isinstance(v, float) and not math.isfinite(v) else v)
+                for k, v in asdict(self).items()}  # type: ignore[call-overload]
+
+
 @dataclass(frozen=True)
-class SampleSummary:
+class SampleSummary(_JsonRecord):
     """E, σ (ddof 1), VarK = |σ|/|E| with standard errors; NaN where undefined."""
 
     n: int
@@ -62,9 +70,6 @@ class SampleSummary:
     se_mean_boot: float
     se_std_boot: float
     se_vark_boot: float
-
-    def to_dict(self) -> dict[str, Any]:
-        return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in asdict(self).items()}
 
 
 def _stats(x: npt.NDArray[np.float64]) -> tuple[float, float, float]:
@@ -117,7 +122,7 @@ def sample_summary(
 
 
 @dataclass(frozen=True)
-class RatioEstimate:
+class RatioEstimate(_JsonRecord):
     """A ratio of two independent Monte Carlo estimates with its uncertainty.
 
     ``se_delta`` is the delta-method standard error r·√((SE_a/a)² + (SE_b/b)²) from the
@@ -131,9 +136,6 @@ class RatioEstimate:
     low: float
     high: float
     confidence: float
-
-    def to_dict(self) -> dict[str, Any]:
-        return {k: (None if isinstance(v, float) and not math.isfinite(v) else v) for k, v in asdict(self).items()}
 
 
 def ratio_interval(
