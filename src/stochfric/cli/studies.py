@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import time
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -17,7 +18,7 @@ import typer
 from pydantic import ValidationError
 
 from ..studies.common import StudyError
-from .options import fail
+from .options import GROUP, fail, option_group
 
 ModelsOpt = Annotated[str | None, typer.Option("--models", help="Comma-separated: deterministic,white,contact.")]
 PresetOpt = Annotated[str, typer.Option("--preset", help="Thesis case: brake | sheet.")]
@@ -158,13 +159,15 @@ def _models(spec: str | None) -> dict[str, Any]:
     return {"models": tuple(m.strip() for m in spec.split(",") if m.strip())}
 
 
-def _common(preset: str, process: Path | None, runs: int | None, seed: int, tau_end: float | None,
-            dt: float | None, integrator: str, stick_window: float, models: str | None,
-            path_coordinate: str = "mass", white_intensity: str = "sigma_mu",
-            process_level: str = "sigma_mu") -> dict[str, Any]:
-    d: dict[str, Any] = {"preset": preset, "seed": seed, "integrator": integrator, "stick_window": stick_window,
-                         "path_coordinate": path_coordinate, "white_intensity": white_intensity,
-                         "process_level": process_level, **_models(models)}
+def study_options(
+    preset: PresetOpt = "brake", runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None,
+    process: ProcessOpt = None, tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler",
+    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu", process_level: LevelOpt = "sigma_mu",
+) -> dict[str, Any]:
+    """The config fields every study command shares (case, Monte Carlo, modelling choices); options
+    left out take the config's defaults (:func:`~stochfric.cli.options.option_group`)."""
+    d: dict[str, Any] = {"preset": preset, "seed": seed, "integrator": integrator, "path_coordinate": path_coordinate,
+                         "white_intensity": white_intensity, "process_level": process_level, **_models(models)}
     if process is not None:
         d["process_file"] = str(process)
     if runs is not None:
@@ -174,6 +177,27 @@ def _common(preset: str, process: Path | None, runs: int | None, seed: int, tau_
     if dt is not None:
         d["dt"] = dt
     return d
+
+
+@dataclass(frozen=True)
+class ExecutionOptions:
+    """Where a study command runs and what it writes (never changes the numbers)."""
+
+    executor: str
+    workers: int | None
+    scheduler: str | None
+    checkpoint: Path | None
+    out: Path | None
+    report: Path | None
+    json_out: bool
+
+
+def execution_options(
+    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
+    out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
+) -> ExecutionOptions:
+    """The execution and output options of a study command."""
+    return ExecutionOptions(executor, workers, scheduler, checkpoint, out, report, json_out)
 
 
 def _validate(kind: str, fields: dict[str, Any]) -> Any:
@@ -188,13 +212,14 @@ def _validate(kind: str, fields: dict[str, Any]) -> Any:
         raise StudyError(_format_errors(exc)) from None
 
 
-def _execute(kind: str, fields: dict[str, Any], executor: str, workers: int | None, scheduler: str | None,
-             checkpoint: Path | None, out: Path | None, report: Path | None, json_out: bool) -> None:
-    """Validate a study command's options (``fields``: :func:`_common` and the study's own) into its
-    config, run it and print or write the results."""
+def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:
+    """Validate a study command's options (``fields``: :func:`study_options` and the study's own) into
+    its config, run it and print or write the results."""
     from ..studies.executors import make_executor
     from ..studies.reproduce import run_study
 
+    executor, workers, scheduler, checkpoint = run.executor, run.workers, run.scheduler, run.checkpoint
+    out, report, json_out = run.out, run.report, run.json_out
     try:
         cfg = _validate(kind, fields)
     except StudyError as exc:
@@ -264,12 +289,13 @@ def _print_summary(kind: str, s: dict[str, Any]) -> None:
         con.print(f"wrote {f}")
 
 
+@option_group("common", study_options)
+@option_group("run", execution_options)
 def damping_command(
-    preset: PresetOpt = "brake",
+    common: dict[str, Any] = GROUP,
     normal_force: Annotated[str | None, typer.Option("--normal-force", help="N [N]: value, list or A:B:NUM.")] = None,
     damping: Annotated[str, typer.Option("--damping", help="D grid START:STOP:NUM or list.")] = "0.05:0.25:41",
-    runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
-    tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler", stick_window: WinOpt = 0.5,
+    stick_window: WinOpt = 0.5,
     confidence: Annotated[float, typer.Option("--confidence", help="Clopper–Pearson level.")] = 0.95,
     p_detect: Annotated[float, typer.Option("--p-detect", help="Tolerated stick probability for D_hi.")] = 0.1,
     x0: Annotated[tuple[float, float] | None, typer.Option("--x0", help="Initial X1 X2 (default (0, γ0)).")] = None,
@@ -281,78 +307,63 @@ def damping_command(
                                 "lowest D to the first grid D above the largest D_max at the phase force).")] = None,
     phase_runs: Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for the phase diagrams "
                                                                         "(0: none).")] = 3,
-    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu", process_level: LevelOpt = "sigma_mu",
-    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
-    out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
+    run: ExecutionOptions = GROUP,
 ) -> None:
     """Damping study: D_max^d, D_max^s (with interval), D_H, M_diff, M_quot, phase diagrams over D (method §6.2)."""
-    _execute("damping", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
-                                   models, path_coordinate, white_intensity, process_level),
+    _execute("damping", {**common, "stick_window": stick_window,
                          "normal_forces": normal_force, "damping": damping, "confidence": confidence,
                          "p_detect": p_detect, "x0": x0, "phase_force": phase_force,
-                         "phase_damping": phase_damping, "phase_runs": phase_runs},
-             executor, workers, scheduler, checkpoint, out, report, json_out)
+                         "phase_damping": phase_damping, "phase_runs": phase_runs}, run)
 
 
+@option_group("common", study_options)
+@option_group("run", execution_options)
 def forcing_command(
-    preset: PresetOpt = "brake",
+    common: dict[str, Any] = GROUP,
     normal_force: Annotated[float | None, typer.Option("--normal-force", help="N [N] (default: preset).")] = None,
     q: Annotated[str, typer.Option("--q", help="Forcing amplitudes q = Q/(cL), list.")] = "5e-5,5e-4",
     eta: Annotated[str, typer.Option("--eta", help="η grid START:STOP:NUM or list.")] = "0:3:61",
     damping: Annotated[float | None, typer.Option("--damping", help="D (default 5e-6).")] = None,
-    runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
-    tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler", stick_window: WinOpt = 0.5,
-    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu", process_level: LevelOpt = "sigma_mu",
-    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
-    out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
+    stick_window: WinOpt = 0.5,
+    run: ExecutionOptions = GROUP,
 ) -> None:
     """Forcing study: bifurcation data, E[X_gh] ± σ over η, σ_contact/σ_white (method §6.3)."""
-    _execute("forcing", {**_common(preset, process, runs, seed, tau_end, dt, integrator, stick_window,
-                                   models, path_coordinate, white_intensity, process_level),
-                         "normal_force": normal_force, "forcing_q": q, "eta": eta, "damping": damping},
-             executor, workers, scheduler, checkpoint, out, report, json_out)
+    _execute("forcing", {**common, "stick_window": stick_window,
+                         "normal_force": normal_force, "forcing_q": q, "eta": eta, "damping": damping}, run)
 
 
+@option_group("common", study_options)
+@option_group("run", execution_options)
 def lyapunov_command(
-    preset: PresetOpt = "brake",
+    common: dict[str, Any] = GROUP,
     normal_force: Annotated[str | None, typer.Option("--normal-force", help="N [N] list (default: preset).")] = None,
     q: Annotated[str, typer.Option("--q", help="Forcing amplitudes q, list.")] = "5e-5,5e-4",
     eta: Annotated[str, typer.Option("--eta", help="η grid.")] = "0.1:3:30",
     perturbation: Annotated[float, typer.Option("--perturbation", help="δ added to x1(0) of the comparison run.")
                             ] = 1e-6,
     damping: Annotated[float | None, typer.Option("--damping", help="D (default 5e-6).")] = None,
-    runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
-    tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler",
-    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu", process_level: LevelOpt = "sigma_mu",
-    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
-    out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
+    run: ExecutionOptions = GROUP,
 ) -> None:
     """Largest Lyapunov exponent λ (4.43) / E[Λ] (4.44) over η and N (method §6.4)."""
-    _execute("lyapunov", {**_common(preset, process, runs, seed, tau_end, dt, integrator, 0.5, models,
-                                    path_coordinate, white_intensity, process_level),
+    _execute("lyapunov", {**common,
                           "normal_forces": normal_force, "forcing_q": q, "eta": eta,
-                          "perturbation": perturbation, "damping": damping},
-             executor, workers, scheduler, checkpoint, out, report, json_out)
+                          "perturbation": perturbation, "damping": damping}, run)
 
 
+@option_group("common", study_options)
+@option_group("run", execution_options)
 def normal_force_command(
-    preset: PresetOpt = "brake",
+    common: dict[str, Any] = GROUP,
     normal_force: Annotated[str | None, typer.Option("--normal-force", help="N [N] list (default: preset).")] = None,
     damping: Annotated[str | None, typer.Option("--damping", help="D list (default 5e-6 and the damped D).")] = None,
     phase_runs: Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for phase diagrams.")] = 5,
-    runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None, process: ProcessOpt = None,
-    tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler", stick_window: WinOpt = 0.5,
-    path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu", process_level: LevelOpt = "sigma_mu",
-    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
-    out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
+    stick_window: WinOpt = 0.5,
+    run: ExecutionOptions = GROUP,
 ) -> None:
     """Normal-force study: phase diagrams, PDFs, E[X_gh] ± σ, VarK with SEs (method §6.1)."""
-    _execute("normal-force", {**_common(preset, process, runs, seed, tau_end, dt, integrator,
-                                        stick_window, models, path_coordinate, white_intensity,
-                                        process_level),
+    _execute("normal-force", {**common, "stick_window": stick_window,
                               "normal_forces": normal_force, "dampings": damping,
-                              "phase_runs": phase_runs},
-             executor, workers, scheduler, checkpoint, out, report, json_out)
+                              "phase_runs": phase_runs}, run)
 
 
 def run_command(
