@@ -20,10 +20,11 @@ change the numbers) plus the content of a ``process_file``.
 from __future__ import annotations
 
 import json
+import warnings
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
 from .common import MODELS, STICK_WINDOW, parse_grid
 
@@ -67,6 +68,26 @@ class StudyConfig(BaseModel):
     stick_window: float = Field(default=STICK_WINDOW, ge=0.0, lt=1.0)
     x0: tuple[float, float] | None = None
 
+    #: Field names before the glossary (docs/glossary.md), still read with a DeprecationWarning:
+    #: old name → new name.  The checkpoint key keeps the old names, so checkpoints written
+    #: before the rename still resume.
+    renamed_fields: ClassVar[dict[str, str]] = {}
+
+    @model_validator(mode="before")
+    @classmethod
+    def _deprecated_names(cls, data: Any) -> Any:
+        if not isinstance(data, dict) or not any(old in data for old in cls.renamed_fields):
+            return data
+        out = dict(data)
+        for old, new in cls.renamed_fields.items():
+            if old in out:
+                if new in out:
+                    raise ValueError(f"give {new} only ({old} is its deprecated name)")
+                warnings.warn(f"study config field {old!r} is deprecated: use {new!r} (docs/glossary.md)",
+                              DeprecationWarning, stacklevel=2)
+                out[new] = out.pop(old)
+        return out
+
     @field_validator("models")
     @classmethod
     def _unique_models(cls, v: tuple[str, ...]) -> tuple[str, ...]:
@@ -79,6 +100,8 @@ class StudyConfig(BaseModel):
     def hash_config(self) -> dict[str, Any]:
         """Everything that changes the numbers (for the checkpoint key)."""
         d = self.model_dump(mode="json")
+        for old, new in self.renamed_fields.items():
+            d[old] = d.pop(new)
         if self.process_file is not None:
             try:
                 d["process_file_content"] = json.loads(Path(self.process_file).read_text(encoding="utf-8"))
@@ -92,7 +115,7 @@ class DampingConfig(StudyConfig):
 
     kind: Literal["damping"] = "damping"
     normal_forces: Grid | None = None
-    damping: Grid = Field(default_factory=lambda: parse_grid("0.05:0.25:41"))
+    damping_ratio: Grid = Field(default_factory=lambda: parse_grid("0.05:0.25:41"))
     common_random_numbers: bool = True
     confidence: float = Field(default=0.95, gt=0, lt=1)
     p_detect: float = Field(default=0.1, gt=0, lt=1)
@@ -107,7 +130,14 @@ class DampingConfig(StudyConfig):
     phase_runs: int = Field(default=3, ge=0, le=1000, description="runs kept per D (stochastic models); 0: none")
     save_every: int = Field(default=10, ge=1, description="keep every k-th step of the phase trajectories")
 
-    @field_validator("damping")
+    renamed_fields = {"damping": "damping_ratio"}
+
+    @property
+    def damping(self) -> tuple[float, ...]:
+        """Deprecated name of :attr:`damping_ratio`."""
+        return self.damping_ratio
+
+    @field_validator("damping_ratio")
     @classmethod
     def _damping_range(cls, v: tuple[float, ...]) -> tuple[float, ...]:
         if any(not 0 <= d < 1 for d in v):
@@ -133,7 +163,13 @@ class _ForcedConfig(StudyConfig):
 
     forcing_q: Grid = (5e-5, 5e-4)
     eta: Grid = Field(default_factory=lambda: parse_grid("0:3:61"))
-    damping: float | None = Field(default=None, ge=0, lt=1)
+    damping_ratio: float | None = Field(default=None, ge=0, lt=1)
+    renamed_fields = {"damping": "damping_ratio"}
+
+    @property
+    def damping(self) -> float | None:
+        """Deprecated name of :attr:`damping_ratio`."""
+        return self.damping_ratio
 
     @field_validator("eta", "forcing_q")
     @classmethod
@@ -167,10 +203,16 @@ class NormalForceConfig(StudyConfig):
 
     kind: Literal["normal-force"] = "normal-force"
     normal_forces: Grid | None = None
-    dampings: Grid | None = None
+    damping_ratio: Grid | None = None
     runs: int = Field(default=30, ge=1, le=100_000)
     phase_runs: int = Field(default=5, ge=0)
     save_every: int = Field(default=10, ge=1)
+    renamed_fields = {"dampings": "damping_ratio"}
+
+    @property
+    def dampings(self) -> tuple[float, ...] | None:
+        """Deprecated name of :attr:`damping_ratio`."""
+        return self.damping_ratio
 
 
 AnyStudyConfig = Annotated[

@@ -136,7 +136,7 @@ class DampingStudy(Study):
 
     def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
         return self.task_for(index, point, [self.setup.parameters(point["normal_force"], d)
-                                            for d in self.config.damping],
+                                            for d in self.config.damping_ratio],
                              common_random_numbers=self.config.common_random_numbers)
 
     def phase_tasks(self, dampings: tuple[float, ...], first_index: int) -> list[TaskSpec]:
@@ -168,7 +168,7 @@ class DampingStudy(Study):
         results, stats, chash = sweep(self.kind, config, tasks, executor, checkpoint,
                                       grid_progress if progress is not None else None)
         models: list[str] = list(config.models)
-        dgrid = np.asarray(config.damping)
+        dgrid = np.asarray(config.damping_ratio)
         nm, nn, nr = len(models), len(forces), config.runs
         sc = self.stack(tasks, results, "stick_count")
         nbs = self.stack(tasks, results, "n_belt_speed_without_stick")
@@ -346,7 +346,7 @@ def _none(v: float) -> float | None:
 def _summary(study: DampingStudy, ds: xr.Dataset, warns: list[dict[str, str]]) -> dict[str, Any]:
     config, setup, models, forces = study.config, study.setup, list(study.config.models), study.forces
     out = study.summary_head(
-        forces, {"normal_force": list(forces), "damping": list(config.damping),
+        forces, {"normal_force": list(forces), "damping": list(config.damping_ratio),
                  "d_hopf": [float(v) for v in ds["d_hopf"].values]},
         stick_window=[config.stick_window * setup.tau_end, setup.tau_end], confidence=config.confidence,
         p_detect=config.p_detect)

@@ -35,7 +35,7 @@ class ForcingStudy(Study):
         sp = self.setup.preset.study_parameters
         self.normal_force = config.normal_force if config.normal_force is not None else float(
             sp["forcing_study_force"])
-        self.damping = config.damping if config.damping is not None else float(sp["damping_undamped"])
+        self.damping = config.damping_ratio if config.damping_ratio is not None else float(sp["damping_undamped"])
 
     def axes(self) -> dict[str, Sequence[Any]]:
         return {"model": self.config.models, "forcing_q": self.config.forcing_q}

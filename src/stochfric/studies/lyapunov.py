@@ -147,7 +147,7 @@ class LyapunovStudy(Study):
         super().__init__(config)
         sp = self.setup.preset.study_parameters
         self.forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
-        self.damping = config.damping if config.damping is not None else float(sp["damping_undamped"])
+        self.damping = config.damping_ratio if config.damping_ratio is not None else float(sp["damping_undamped"])
 
     def axes(self) -> dict[str, Sequence[Any]]:
         return {"model": self.config.models, "forcing_q": self.config.forcing_q, "normal_force": self.forces}

@@ -37,7 +37,7 @@ class NormalForceStudy(Study):
         super().__init__(config)
         sp = self.setup.preset.study_parameters
         self.forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
-        self.dampings = config.dampings or (float(sp["damping_undamped"]), float(sp["damping_damped"]))
+        self.dampings = config.damping_ratio or (float(sp["damping_undamped"]), float(sp["damping_damped"]))
 
     def axes(self) -> dict[str, Sequence[Any]]:
         return {"model": self.config.models, "damping_ratio": self.dampings}
