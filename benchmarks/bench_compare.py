@@ -108,16 +108,16 @@ def _best(fn: Callable[[], object], repeats: int) -> tuple[float, float]:
 
 
 def _sigma(case: Case) -> float:
-    assert case.process is not None and case.params.pressure is not None
-    return case.process.sigma_zeta(case.params.pressure)
+    assert case.process is not None and case.params.pressure_pa is not None
+    return case.process.sigma_zeta(case.params.pressure_pa)
 
 
 def _process_rows(case: Case, runs: int, seed: int = 1) -> npt.NDArray[np.float64]:
     """The process realisations ``simulate`` uses for runs ``0..runs-1`` (set 0)."""
-    assert case.process is not None and case.params.pressure is not None
+    assert case.process is not None and case.params.pressure_pa is not None
     root = np.random.SeedSequence(seed)
     return np.stack([case.process.generate(
-        case.params.pressure, np.random.Generator(np.random.PCG64(trajectory_seed(root, 0, r))))
+        case.params.pressure_pa, np.random.Generator(np.random.PCG64(trajectory_seed(root, 0, r))))
         for r in range(runs)])
 
 

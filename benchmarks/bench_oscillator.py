@@ -155,8 +155,8 @@ def demo_case() -> Case:
 def _sigma(case: Case) -> float:
     if case.sigma_zeta is not None:
         return case.sigma_zeta
-    assert case.process is not None and case.params.pressure is not None
-    return case.process.sigma_zeta(case.params.pressure)
+    assert case.process is not None and case.params.pressure_pa is not None
+    return case.process.sigma_zeta(case.params.pressure_pa)
 
 
 # --- the pure-Python Euler–Maruyama baseline -------------------------------------------------

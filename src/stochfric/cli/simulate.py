@@ -245,8 +245,8 @@ def _print_summary(result: Any, summary: dict[str, Any], out: Path | None, plot:
     line = f"γ0={p.gamma0:.5g} n={p.n:.5g} D={p.damping_ratio:.3g} q={p.q:.3g} η={p.eta:.3g}"
     if p.normal_force is not None:
         line += f"  N={p.normal_force:.6g} N"
-    if p.pressure is not None:
-        line += f"  p={p.pressure / 1e6:.4g} MPa"
+    if p.pressure_pa is not None:
+        line += f"  p={p.pressure_pa / 1e6:.4g} MPa"
     if result.model != "deterministic":
         line += f"  σ_ζ={result.sigma_zeta[0]:.4g}" if result.model == "white" else ""
         if result.settings.get("white_increment") == "thesis":

@@ -163,7 +163,7 @@ def physical_parameters(
 
 def law_for(process: FrictionProcessModel, params: OscillatorParameters, mu0: float = MU0) -> FrictionLaw:
     """The pressure law (4.13/4.33) with μ_fit = E[μ](p) of the process model, p = N/A."""
-    p = params.pressure
+    p = params.pressure_pa
     if p is None:
         raise CaseError("the pressure law needs p = N/A: parameters without stiffness or contact area")
     mu_fit = process.mean(p)
@@ -406,9 +406,9 @@ def build_case(
         raise CaseError("give either --sigma-zeta or --white-intensity, not both")
     process, source = resolve_process(pre, process_file, white_intensity=white_intensity,
                                       process_level=process_level or "sigma_mu", process_length=process_length)
-    law_name = friction_law or ("pressure" if process is not None and params.pressure is not None else "III")
+    law_name = friction_law or ("pressure" if process is not None and params.pressure_pa is not None else "III")
     if law_name == "pressure":
-        if process is None or params.pressure is None:
+        if process is None or params.pressure_pa is None:
             raise CaseError(
                 "the pressure law (4.13) needs E[μ](p) from a friction-process model and the "
                 "pressure p = N/A: use --preset, or --process FILE with physical parameters and "

@@ -220,7 +220,7 @@ def _plan(
         raise ParameterError("x0 per parameter set must have one entry per set")
     for i, p in enumerate(params):
         laws.append(_resolve_law(law, p))
-        pressures.append(p.pressure)
+        pressures.append(p.pressure_pa)
         if model == "white":
             if sigma_zeta is None and process is None:
                 raise ParameterError(
@@ -273,7 +273,7 @@ def thesis_sigma_zeta(sigma_zeta: float, params: OscillatorParameters, dt: float
 
 
 def _need_pressure(p: OscillatorParameters, what: str) -> float:
-    pr = p.pressure
+    pr = p.pressure_pa
     if pr is None:
         raise ParameterError(
             f"the {what} depends on the contact pressure p = N/A; give the stiffness c and the "

@@ -113,12 +113,18 @@ class OscillatorParameters:
         return self.n * self.stiffness * self.length_scale
 
     @property
-    def pressure(self) -> float | None:
+    def pressure_pa(self) -> float | None:
         """Nominal contact pressure ``p = N/A`` [Pa] (eq. 4.13), or ``None``."""
         nf = self.normal_force
         if nf is None or self.contact_area is None:
             return None
         return nf / self.contact_area
+
+    @property
+    def pressure(self) -> float | None:
+        """Deprecated name of :attr:`pressure_pa` (docs/glossary.md); kept without a runtime warning,
+        since it is read inside friction-law callbacks that simulate runs with warnings as errors."""
+        return self.pressure_pa
 
     def replace(self, **changes: Any) -> OscillatorParameters:
         """A copy with ``changes`` applied (validated again)."""
@@ -142,7 +148,7 @@ class OscillatorParameters:
         d.update(
             belt_speed_m_s=self.belt_speed,
             normal_force_n=self.normal_force,
-            pressure_pa=self.pressure,
+            pressure_pa=self.pressure_pa,
         )
         return d
 

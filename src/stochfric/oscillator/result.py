@@ -117,7 +117,7 @@ class SimulationResult:
             "normal_force_n": [
                 np.nan if p.normal_force is None else p.normal_force for p in self.params
             ],
-            "pressure_pa": [np.nan if p.pressure is None else p.pressure for p in self.params],
+            "pressure_pa": [np.nan if p.pressure_pa is None else p.pressure_pa for p in self.params],
             "sigma_zeta": self.sigma_zeta,
         }
         for name, values in per_set.items():
