@@ -22,7 +22,7 @@ from stochfric.studies.executors import ProcessExecutor, SerialExecutor
 from stochfric.studies.reproduce import reproduce
 
 THESIS_MAP = DampingConfig(normal_forces=(1800.0, 2800.0, 3800.0, 4800.0, 5600.0, 6800.0, 8000.0),
-                           damping=parse_grid("0.05:0.25:41"), runs=10, seed=1)
+                           damping_ratio=parse_grid("0.05:0.25:41"), runs=10, seed=1)
 
 
 def bench_damping_map() -> dict[str, float]:
