@@ -34,7 +34,7 @@ import numpy.typing as npt
 from ..io_utils import package_versions
 from ..process.model import BandLimitedProcessModel, TabulatedProcessModel
 from ..process.spectral import generate_process_batch
-from ..random import SeedLike, as_seed_sequence
+from ..random import SeedLike, as_seed_sequence, child_seed
 from . import accurate as _acc
 from . import kernels as _k
 from . import philox as _ph
@@ -143,10 +143,9 @@ class _SpectralBatch:
 
 
 def trajectory_seed(root: np.random.SeedSequence, param_set: int, run: int) -> np.random.SeedSequence:
-    """The seed sequence of trajectory ``(param_set, run)``: spawn key ``(param_set, run)``."""
-    return np.random.SeedSequence(
-        entropy=root.entropy, spawn_key=(*root.spawn_key, param_set, run), pool_size=root.pool_size
-    )
+    """The seed sequence of trajectory ``(param_set, run)``: spawn key ``(param_set, run)`` of ``root``
+    (:func:`stochfric.random.child_seed`, the one place streams are derived)."""
+    return child_seed(root, param_set, run)
 
 
 def check_time_step(
