@@ -24,6 +24,7 @@ import numpy.typing as npt
 import xarray as xr
 
 from ..io_utils import package_versions, write_netcdf_atomic, write_text_atomic
+from . import common
 from .common import StudySetup, TaskSpec, model_choices, pad_events, setup_for, warnings_of
 from .executors import Executor, SweepStats, run_tasks
 from .store import CheckpointStore
@@ -161,10 +162,8 @@ class Study:
 
     def task_for(self, index: int, point: dict[str, Any], params: Sequence[Any], **fields: Any) -> TaskSpec:
         """:func:`~stochfric.studies.common.task_for` at ``point`` (label ``"model name=value …"``)."""
-        from .common import task_for
-
         label = " ".join([point["model"], *(f"{_LABELS.get(k, k)}={v:g}" for k, v in point.items() if k != "model")])
-        return task_for(self.config, self.setup, index=index, label=label, model=point["model"], params=params,
+        return common.task_for(self.config, self.setup, index=index, label=label, model=point["model"], params=params,
                         **fields)
 
     @classmethod
