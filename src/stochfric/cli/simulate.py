@@ -9,7 +9,6 @@ import json
 import math
 import os
 import sys
-import warnings
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -149,7 +148,6 @@ def simulate(
 ) -> None:
     """Run the friction oscillator (deterministic, white-noise or contact-process friction)."""
     from ..oscillator.case import build_case
-    from ..oscillator.integrate import SimulationWarningCategory
     from ..oscillator.integrate import simulate as run_sim
     from ..oscillator.parameters import ParameterError
 
@@ -196,19 +194,17 @@ def simulate(
             def cb(done: int, total: int) -> None:
                 prog.update(task, completed=done)
 
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", SimulationWarningCategory)
-            try:
-                result = run_sim(
-                    case.params, **case.simulate_kwargs(model.value),
-                    x0=(float(x0[0]), float(x0[1])) if x0 else None, integrator=integrator.value, runs=runs,
-                    seed=seed, path_coordinate=path_coordinate.value,
-                    save_trajectory=plot is not None or out is not None, save_every=save_every,
-                    workers=workers, progress=cb,
-                )
-            finally:
-                if prog is not None:
-                    prog.stop()
+        try:
+            result = run_sim(
+                case.params, **case.simulate_kwargs(model.value),
+                x0=(float(x0[0]), float(x0[1])) if x0 else None, integrator=integrator.value, runs=runs,
+                seed=seed, path_coordinate=path_coordinate.value,
+                save_trajectory=plot is not None or out is not None, save_every=save_every,
+                workers=workers, progress=cb,
+            )
+        finally:
+            if prog is not None:
+                prog.stop()
     except (ParameterError, ValueError) as exc:
         raise fail(str(exc)) from None
 

@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import json
 import math
-import warnings
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
@@ -37,6 +36,7 @@ from ..oscillator.case import process_rule_of as process_rule_of
 from ..oscillator.case import white_increment_of as white_increment_of
 from ..oscillator.case import with_white_intensity as with_white_intensity
 from ..oscillator.friction_laws import FrictionLaw
+from ..oscillator.integrate import simulate
 from ..oscillator.parameters import OscillatorParameters
 from ..random import child_seed
 
@@ -198,24 +198,20 @@ def execute_task(spec: TaskSpec, threads: int | None = None) -> dict[str, npt.ND
 
     ``threads`` only changes the speed of :func:`simulate`, never the numbers.
     """
-    from ..oscillator.integrate import SimulationWarningCategory, simulate
-
     process = spec.process
 
     def law(p: OscillatorParameters) -> FrictionLaw:
         return law_for(process, p)
 
     keep = spec.keep_trajectory_runs > 0
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", SimulationWarningCategory)
-        res = simulate(
-            list(spec.params), model=spec.model, law=law, process=process,
-            x0=list(spec.x0) if spec.x0 is not None else None, tau_end=spec.tau_end, dt=spec.dt,
-            integrator=spec.integrator, runs=spec.runs, seed=task_seed(spec.root_entropy, spec.index),
-            path_coordinate=spec.path_coordinate, save_trajectory=keep, save_every=spec.save_every,
-            workers=threads, common_random_numbers=spec.common_random_numbers,
-            white_increment=spec.white_increment if spec.model == "white" else "ito",
-        )
+    res = simulate(
+        list(spec.params), model=spec.model, law=law, process=process,
+        x0=list(spec.x0) if spec.x0 is not None else None, tau_end=spec.tau_end, dt=spec.dt,
+        integrator=spec.integrator, runs=spec.runs, seed=task_seed(spec.root_entropy, spec.index),
+        path_coordinate=spec.path_coordinate, save_trajectory=keep, save_every=spec.save_every,
+        workers=threads, common_random_numbers=spec.common_random_numbers,
+        white_increment=spec.white_increment if spec.model == "white" else "ito",
+    )
     nev = int(max(1, np.max(np.sum(np.isfinite(res.x_gh), axis=2))))
     out: dict[str, npt.NDArray[Any]] = {
         "x_gh": res.x_gh[:, :, :nev].copy(),
