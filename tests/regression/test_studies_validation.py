@@ -53,7 +53,7 @@ def test_dmax_independent_of_dt_with_accurate() -> None:
 
 
 def test_probability_is_one_below_and_zero_far_above() -> None:
-    cfg = DampingConfig(normal_forces=(5600.0,), damping=(0.06, 0.09, 0.3 * 0.99), runs=6, seed=3)
+    cfg = DampingConfig(normal_forces=(5600.0,), damping_ratio=(0.06, 0.09, 0.3 * 0.99), runs=6, seed=3)
     ds = damping_study(cfg).to_dataset()
     p = ds["stick_probability"].sel(normal_force=5600.0)
     for m in cfg.models:

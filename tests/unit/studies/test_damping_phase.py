@@ -17,7 +17,7 @@ from stochfric.studies.config import DampingConfig, ForcingConfig
 from stochfric.studies.damping import auto_phase_damping, damping_study, default_phase_force
 from stochfric.studies.forcing import forcing_study
 
-SMALL = DampingConfig(normal_forces=(4000.0, 5600.0), damping="0.05:0.25:9", runs=3, seed=3, tau_end=30.0)
+SMALL = DampingConfig(normal_forces=(4000.0, 5600.0), damping_ratio="0.05:0.25:9", runs=3, seed=3, tau_end=30.0)
 
 
 @pytest.fixture(scope="module")
@@ -101,7 +101,7 @@ def test_phase_given_damping_and_force() -> None:
 
 
 def test_white_intensity_rule_changes_sigma_zeta_only() -> None:
-    base = DampingConfig(normal_forces=(5600.0,), damping="0.1:0.2:5", runs=3, seed=1, tau_end=30.0, phase_runs=1)
+    base = DampingConfig(normal_forces=(5600.0,), damping_ratio="0.1:0.2:5", runs=3, seed=1, tau_end=30.0, phase_runs=1)
     a = damping_study(base)
     b = damping_study(base.model_copy(update={"white_intensity": "spectral_level"}))
     sa = float(a.dataset["sigma_zeta"].sel(model="white").values[0])

@@ -25,7 +25,7 @@ from stochfric.studies.executors import (
 from stochfric.studies.lyapunov import lyapunov_study
 from stochfric.studies.store import CheckpointStore, config_hash
 
-SMALL = DampingConfig(normal_forces=(4000.0, 6000.0), damping=(0.1, 0.14, 0.18), runs=3, seed=5, tau_end=12.0)
+SMALL = DampingConfig(normal_forces=(4000.0, 6000.0), damping_ratio=(0.1, 0.14, 0.18), runs=3, seed=5, tau_end=12.0)
 
 
 def _arrays(ds: xr.Dataset) -> dict[str, np.ndarray]:
