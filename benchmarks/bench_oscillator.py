@@ -497,6 +497,7 @@ warnings.simplefilter("ignore")
 from stochfric.oscillator.friction_laws import pressure_law
 from stochfric.oscillator.integrate import simulate
 from stochfric.oscillator.parameters import PhysicalParameters
+from stochfric.process.presets import brake
 runs, tau, reps, dt = int(sys.argv[1]), float(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4])
 pre = brake()
 p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
