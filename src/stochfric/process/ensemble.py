@@ -36,7 +36,6 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -46,6 +45,7 @@ import numpy.typing as npt
 
 from stochfric.contact.asperity import BowdenTabor, ContactError, FloatArray, IntArray, asperity_sums
 from stochfric.contact.materials import Material
+from stochfric.progress import Progress
 from stochfric.random import SeedLike, spawn_generators
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import find_summits
@@ -65,7 +65,6 @@ __all__ = [
     "window_starts",
 ]
 
-Progress = Callable[[int, int], None]
 
 #: The thesis's window shift relative to the window length: a_y = 0.3 mm of ℓ_Fl = 5.3 mm (§3.2.4).
 DEFAULT_SHIFT_FRACTION = 0.3 / 5.3

@@ -61,6 +61,7 @@ from stochfric.process.memory import check_memory
 from stochfric.process.model import TabulatedProcessModel
 from stochfric.process.spectra import autocorrelation, correlation_length, mean_psd, psd_level
 from stochfric.process.spectral import one_sided_psd
+from stochfric.progress import StagedProgress
 from stochfric.random import as_seed_sequence, seed_entropy, spawn_seed_sequences
 from stochfric.surface.io import Surface
 from stochfric.surface.statistics import plasticity_index
@@ -74,7 +75,6 @@ __all__ = [
 ]
 
 FloatArray = npt.NDArray[np.float64]
-Progress = Callable[[str, int, int], None]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -329,7 +329,7 @@ def analyse(
     config: AnalysisConfig | None = None,
     *,
     name: str | None = None,
-    progress: Progress | None = None,
+    progress: StagedProgress | None = None,
 ) -> StatisticalContactAnalysis:
     """Run the statistical contact analysis a)–e) of the module docstring on ``surface``.
 

@@ -24,13 +24,11 @@ import numpy.typing as npt
 import xarray as xr
 
 from ..io_utils import package_versions, write_netcdf_atomic, write_text_atomic
+from ..progress import Progress
 from . import common
 from .common import StudySetup, TaskSpec, model_choices, pad_events, setup_for, warnings_of
 from .executors import Executor, SweepStats, run_tasks
 from .store import CheckpointStore
-
-#: Progress callback of a study: ``(tasks done, tasks in all)``.
-Progress = Callable[[int, int], None]
 
 
 def jsonable(obj: Any) -> Any:

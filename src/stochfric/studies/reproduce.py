@@ -12,6 +12,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from ..progress import StagedProgress
 from .base import StudyResult
 from .chapter3 import chapter3_analysis
 from .common import parse_grid
@@ -71,7 +72,7 @@ def reproduce(
     seed: int = 2013,
     executor: Executor | None = None,
     checkpoint: str | Path | None = None,
-    progress: Callable[[str, int, int], None] | None = None,
+    progress: StagedProgress | None = None,
     report: Callable[..., Any] | None = None,
     study_done: Callable[[StudyResult], None] | None = None,
 ) -> tuple[list[StudyResult], dict[str, float]]:
