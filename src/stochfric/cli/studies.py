@@ -8,7 +8,10 @@ stderr and a short table is printed.
 
 from __future__ import annotations
 
+import importlib
 import json
+import shlex
+import sys
 import time
 from dataclasses import dataclass
 from pathlib import Path
@@ -16,9 +19,21 @@ from typing import Annotated, Any
 
 import typer
 from pydantic import ValidationError
+from rich.console import Console
+from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
+from rich.table import Table
 
+from ..io_utils import OutputPathError, check_output_path
+from ..report import html as report_html
+from ..studies import config as c
+from ..studies import executors, run_config
 from ..studies.common import StudyError
+from ..studies.executors import SweepInterrupted
 from .options import GROUP, fail, option_group
+
+#: the module (``stochfric.studies`` re-exports its function ``reproduce`` under the same name);
+#: called through the module so that tests can replace ``plan`` / ``run_study`` / ``reproduce``
+reproduce_mod = importlib.import_module("..studies.reproduce", __package__)
 
 ModelsOpt = Annotated[str | None, typer.Option("--models", help="Comma-separated: deterministic,white,contact.")]
 PresetOpt = Annotated[str, typer.Option("--preset", help="Thesis case: brake | sheet.")]
@@ -58,8 +73,6 @@ class _StudyProgress:
     """
 
     def __init__(self, enabled: bool, n_studies: int = 1) -> None:
-        import sys
-
         self.enabled = enabled
         self.n_studies = n_studies
         self.tty = enabled and sys.stderr.isatty()
@@ -74,9 +87,6 @@ class _StudyProgress:
 
     def __enter__(self) -> _StudyProgress:
         if self.tty:
-            from rich.console import Console
-            from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
-
             self._prog = Progress(TextColumn("{task.description}"), BarColumn(), TextColumn("{task.fields[count]}"),
                                   TimeElapsedColumn(), TextColumn("ETA"), TimeRemainingColumn(),
                                   console=Console(stderr=True), transient=True)
@@ -107,8 +117,6 @@ class _StudyProgress:
 
     def end(self, computed: int, loaded: int) -> None:
         """The running study has finished: advance the bar, or print its line."""
-        import sys
-
         self.finished += 1
         if self._prog is not None and self._all_task is not None:
             self._prog.update(self._all_task, completed=self.finished,
@@ -120,11 +128,6 @@ class _StudyProgress:
 
 def _interrupted(exc: KeyboardInterrupt, what: str, checkpoint: Path | None) -> typer.Exit:
     """Ctrl-C: say how many tasks are saved and how to resume; exit code 130."""
-    import shlex
-    import sys
-
-    from ..studies.executors import SweepInterrupted
-
     done = total = None
     if isinstance(exc, SweepInterrupted):
         done, total = exc.stats.loaded + exc.stats.computed, exc.total
@@ -143,8 +146,6 @@ def _interrupted(exc: KeyboardInterrupt, what: str, checkpoint: Path | None) -> 
 
 def _check_dirs(**dirs: Path | str | None) -> None:
     """Check every output directory before any work (``StudyError`` with the option name)."""
-    from ..io_utils import OutputPathError, check_output_path
-
     for name, d in dirs.items():
         if d is not None:
             try:
@@ -201,23 +202,17 @@ def execution_options(
 
 
 def _validate(kind: str, fields: dict[str, Any]) -> Any:
-    from ..studies import config as c
-    from ..studies.run_config import _format_errors
-
     cls = {"damping": c.DampingConfig, "forcing": c.ForcingConfig, "lyapunov": c.LyapunovConfig,
            "normal-force": c.NormalForceConfig}[kind]
     try:
         return cls(**{k: v for k, v in fields.items() if v is not None})
     except ValidationError as exc:
-        raise StudyError(_format_errors(exc)) from None
+        raise StudyError(run_config._format_errors(exc)) from None
 
 
 def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:
     """Validate a study command's options (``fields``: :func:`study_options` and the study's own) into
     its config, run it and print or write the results."""
-    from ..studies.executors import make_executor
-    from ..studies.reproduce import run_study
-
     executor, workers, scheduler, checkpoint = run.executor, run.workers, run.scheduler, run.checkpoint
     out, report, json_out = run.out, run.report, run.json_out
     try:
@@ -226,11 +221,11 @@ def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:
         raise fail(str(exc)) from None
     try:
         _check_dirs(out=out, report=report, checkpoint=checkpoint)
-        ex = make_executor(executor, workers=workers, scheduler=scheduler)
+        ex = executors.make_executor(executor, workers=workers, scheduler=scheduler)
         t0 = time.perf_counter()
         with _StudyProgress(not json_out) as prog:
             prog.start(f"{cfg.kind} ({cfg.preset})")
-            res = run_study(cfg, executor=ex, checkpoint=str(checkpoint) if checkpoint else None,
+            res = reproduce_mod.run_study(cfg, executor=ex, checkpoint=str(checkpoint) if checkpoint else None,
                             progress=prog.tasks)
             prog.end(res.stats.computed, res.stats.loaded)
         wall = time.perf_counter() - t0
@@ -238,9 +233,7 @@ def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:
         if out is not None:
             files += [str(p) for p in res.save(out)]
         if report is not None:
-            from ..report.html import write_report
-
-            files.append(str(write_report([res], report)))
+            files.append(str(report_html.write_report([res], report)))
     except (StudyError, ValueError, OSError) as exc:
         raise fail(str(exc)) from None
     except KeyboardInterrupt as exc:
@@ -256,11 +249,6 @@ def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:
 
 
 def _print_summary(kind: str, s: dict[str, Any]) -> None:
-    from rich.console import Console
-    from rich.table import Table
-
-    from ..report.html import READERS, dmax_text, model_choices_text
-
     con = Console()
     con.print(f"[bold]stochfric study {kind}[/] preset={s.get('preset')} runs={s.get('runs')} seed={s.get('seed')} "
               f"({s['wall_time_s']:.1f} s; tasks computed {s['tasks']['computed']}, "
@@ -271,16 +259,16 @@ def _print_summary(kind: str, s: dict[str, Any]) -> None:
             t.add_column(col, justify="right")
         for i, nf in enumerate(s["normal_force"]):
             det = s.get("d_max_deterministic")
-            row = [f"{nf:g}", f"{s['d_hopf'][i]:.4g}", dmax_text(det[i], s["damping"]) if det else "—"]
+            row = [f"{nf:g}", f"{s['d_hopf'][i]:.4g}", report_html.dmax_text(det[i], s["damping"]) if det else "—"]
             for m in s["d_max_stochastic"]:
                 e = s["d_max_stochastic"][m][i]
-                row.append(dmax_text(e["value"], s["damping"]) + (
+                row.append(report_html.dmax_text(e["value"], s["damping"]) + (
                     "" if e["value"] is None else f" [{e['interval'][0]}, {e['interval'][1] or '> grid'}]"))
             t.add_row(*row)
         con.print(t)
-    _, reading = READERS[kind](s)
+    _, reading = report_html.READERS[kind](s)
     con.print(reading)
-    choices = model_choices_text(s)
+    choices = report_html.model_choices_text(s)
     if choices:
         con.print(choices)
     for w in s.get("warnings", []):
@@ -371,18 +359,13 @@ def run_command(
     json_out: JsonOpt = False,
 ) -> None:
     """Run the studies of a TOML file (validated; results, checkpoints and report as configured)."""
-    from ..report.html import write_report
-    from ..studies.executors import make_executor
-    from ..studies.reproduce import run_study
-    from ..studies.run_config import load_run_file
-
     what = str(file)
     ckpt: Path | None = None
     try:
-        rf = load_run_file(file)
+        rf = run_config.load_run_file(file)
         ckpt = Path(rf.execution.checkpoint) if rf.execution.checkpoint else None
         _check_dirs(out=rf.output.dir, checkpoint=ckpt)
-        ex = make_executor(rf.execution.executor if rf.execution.scheduler is None else "dask",
+        ex = executors.make_executor(rf.execution.executor if rf.execution.scheduler is None else "dask",
                            workers=rf.execution.workers, scheduler=rf.execution.scheduler)
         results = []
         out = Path(rf.output.dir)
@@ -390,11 +373,12 @@ def run_command(
             for i, cfg in enumerate(rf.study):
                 what = f"study[{i}] {cfg.kind} ({cfg.preset})"
                 prog.start(what)
-                res = run_study(cfg, executor=ex, checkpoint=rf.execution.checkpoint, progress=prog.tasks)
+                res = reproduce_mod.run_study(cfg, executor=ex, checkpoint=rf.execution.checkpoint,
+                                              progress=prog.tasks)
                 res.save(out / f"{i:02d}_{cfg.kind}_{cfg.preset}")
                 prog.end(res.stats.computed, res.stats.loaded)
                 results.append(res)
-        index = write_report(results, out) if rf.output.report else None
+        index = report_html.write_report(results, out) if rf.output.report else None
     except (StudyError, ValueError, OSError) as exc:
         raise fail(str(exc)) from None
     except KeyboardInterrupt as exc:
@@ -407,9 +391,7 @@ def run_command(
         typer.echo(json.dumps(payload, allow_nan=False))
         return
     for r in results:
-        from ..report.html import READERS
-
-        typer.echo(f"{r.kind} ({r.summary.get('preset')}): {READERS[r.kind](r.summary)[1]}")
+        typer.echo(f"{r.kind} ({r.summary.get('preset')}): {report_html.READERS[r.kind](r.summary)[1]}")
     typer.echo(f"results in {out}" + (f", report {index}" if index else ""))
 
 
@@ -422,15 +404,11 @@ def reproduce_command(
     json_out: JsonOpt = False,
 ) -> None:
     """All studies of thesis chapter 4 for brake and sheet, results and DIR/index.html."""
-    from ..report.html import write_report
-    from ..studies.executors import make_executor
-    from ..studies.reproduce import plan, reproduce
-
     what = "reproduce"
     try:
         _check_dirs(out=out)
-        ex = make_executor(executor, workers=workers, scheduler=scheduler)
-        with _StudyProgress(not json_out, len(plan(quick, seed))) as prog:
+        ex = executors.make_executor(executor, workers=workers, scheduler=scheduler)
+        with _StudyProgress(not json_out, len(reproduce_mod.plan(quick, seed))) as prog:
             def on_tasks(label: str, d: int, n: int) -> None:
                 nonlocal what
                 if label != prog.label:
@@ -438,9 +416,9 @@ def reproduce_command(
                     prog.start(label)
                 prog.tasks(d, n)
 
-            results, timings = reproduce(out, quick=quick, seed=seed, executor=ex, progress=on_tasks,
+            results, timings = reproduce_mod.reproduce(out, quick=quick, seed=seed, executor=ex, progress=on_tasks,
                                          study_done=lambda res: prog.end(res.stats.computed, res.stats.loaded),
-                                         report=write_report)
+                                         report=report_html.write_report)
     except (StudyError, ValueError, OSError) as exc:
         raise fail(str(exc)) from None
     except KeyboardInterrupt as exc:
@@ -452,10 +430,8 @@ def reproduce_command(
     if json_out:
         typer.echo(json.dumps(payload))
         return
-    from ..report.html import READERS
-
     for r in results:
-        typer.echo(f"{r.kind} ({r.summary.get('preset')}): {READERS[r.kind](r.summary)[1]}")
+        typer.echo(f"{r.kind} ({r.summary.get('preset')}): {report_html.READERS[r.kind](r.summary)[1]}")
     split = ", ".join(f"{k} {v:.1f} s" for k, v in timings.items() if k not in ("studies_total", "total"))
     typer.echo(f"time per step: {split}")
     typer.echo(f"report {out / 'index.html'}; total {timings['total']:.1f} s")
