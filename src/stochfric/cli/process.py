@@ -15,6 +15,8 @@ from typing import Annotated, Any
 
 import numpy as np
 import typer
+from rich.console import Console
+from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
 from stochfric.cli.options import (
     GROUP,
@@ -38,8 +40,11 @@ from stochfric.contact.asperity import ContactError, default_approach_m
 from stochfric.contact.materials import MaterialError, load_material, material_names
 from stochfric.io_utils import check_output_path
 from stochfric.process.ensemble import default_window_shift_points
+from stochfric.process.figures import plot_surrogates, write_process_figures
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
+from stochfric.process.statistics import AnalysisConfig, analyse
 from stochfric.surface.io import SurfaceError
+from stochfric.surface.synthesis import iaaft_heights, random_phase_heights
 from stochfric.units import MICROMETRE
 
 __all__ = ["register"]
@@ -109,8 +114,6 @@ def friction_process_command(
     as_json: Annotated[bool, typer.Option("--json", help="Print the result as JSON.")] = False,
 ) -> None:
     """Statistical contact analysis of similar surfaces → friction-process model (method §3–§4)."""
-    from stochfric.process.statistics import AnalysisConfig
-
     try:
         if plot and out is None:
             raise ContactError("--plot writes into the output directory: give --out DIR")
@@ -169,13 +172,8 @@ def _mkdir(path: Path) -> Path:
 
 
 def _run(coarse: Any, mat: Any, u: Any, cfg: Any, name: str, *, show_progress: bool) -> Any:
-    from stochfric.process.statistics import analyse
-
     if not show_progress:
         return analyse(coarse, mat, u, cfg, name=name)
-    from rich.console import Console
-    from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
-
     with Progress(
         TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
         TimeRemainingColumn(), console=Console(stderr=True), transient=True,
@@ -191,9 +189,6 @@ def _run(coarse: Any, mat: Any, u: Any, cfg: Any, name: str, *, show_progress: b
 
 
 def _figures(analysis: Any, heights: Any, directory: Path, seed: int | None) -> list[Path]:
-    from stochfric.process.figures import plot_surrogates, write_process_figures
-    from stochfric.surface.synthesis import iaaft_heights, random_phase_heights
-
     paths = write_process_figures(analysis, directory)
     amp = analysis.config.amplitude
     sur = {

@@ -12,11 +12,17 @@ import sys
 from pathlib import Path
 from typing import Annotated, Any
 
+import numpy as np
 import typer
 from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
+from ..io_utils import check_output_path, require_memory, write_netcdf_atomic, write_text_atomic
+from ..oscillator import integrate
+from ..oscillator.case import build_case
+from ..oscillator.parameters import ParameterError
+from ..report.figures import plot_phase_portrait
 from .options import (
     IntegratorChoice,
     LawChoice,
@@ -147,13 +153,7 @@ def simulate(
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
 ) -> None:
     """Run the friction oscillator (deterministic, white-noise or contact-process friction)."""
-    from ..oscillator.case import build_case
-    from ..oscillator.integrate import simulate as run_sim
-    from ..oscillator.parameters import ParameterError
-
     try:
-        from ..io_utils import check_output_path
-
         if out is not None:
             check_output_path(out, option="--out")
         if plot is not None:
@@ -174,8 +174,6 @@ def simulate(
         pre, process = case.preset, case.process
         te, step = case.tau_end, case.dt
         if te > 0 and step > 0:
-            from ..io_utils import require_memory
-
             save_traj = plot is not None or out is not None
             need = _simulation_memory_bytes(
                 runs, te, step, save_every=save_every, trajectories=save_traj, model=model.value,
@@ -195,7 +193,7 @@ def simulate(
                 prog.update(task, completed=done)
 
         try:
-            result = run_sim(
+            result = integrate.simulate(
                 case.params, **case.simulate_kwargs(model.value),
                 x0=(float(x0[0]), float(x0[1])) if x0 else None, integrator=integrator.value, runs=runs,
                 seed=seed, path_coordinate=path_coordinate.value,
@@ -212,13 +210,9 @@ def simulate(
     summary["preset"] = pre.name if pre else None
     try:
         if out is not None:
-            from ..io_utils import write_netcdf_atomic, write_text_atomic
-
             write_netcdf_atomic(out / "simulation.nc", result.to_dataset())
             write_text_atomic(out / "simulation.json", json.dumps(summary, indent=1))
         if plot is not None:
-            from ..report.figures import plot_phase_portrait
-
             plot_phase_portrait(result, plot)
     except OSError as exc:  # disk full, place removed meanwhile: the previous files stay intact
         raise fail(f"could not write the results: {exc}") from None
@@ -229,8 +223,6 @@ def simulate(
 
 
 def _print_summary(result: Any, summary: dict[str, Any], out: Path | None, plot: Path | None) -> None:
-    import numpy as np
-
     con = Console()
     p = result.params[0]
     con.print(

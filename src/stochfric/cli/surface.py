@@ -19,9 +19,12 @@ import typer
 
 from stochfric.cli.options import GROUP, MethodChoice, SummitRuleChoice, fail, option_group
 from stochfric.contact.asperity import ContactError, ContactResult, asperity_contact
+from stochfric.contact.figures import write_contact_figures
+from stochfric.contact.halfspace import halfspace_contact
 from stochfric.contact.materials import Material, MaterialError, load_material, material_names
 from stochfric.contact.validity import plasticity_validity, result_validity
 from stochfric.io_utils import OutputPathError, check_output_path
+from stochfric.surface.figures import write_surface_figures
 from stochfric.surface.io import Surface, SurfaceError, default_surface_path, read_surface
 from stochfric.surface.preprocess import Preparation, prepare
 from stochfric.surface.statistics import (
@@ -277,8 +280,6 @@ def surface_command(
         payload["warnings"] = warn
         figures: list[str] = []
         if plot is not None:
-            from stochfric.surface.figures import write_surface_figures
-
             figures = [
                 str(p)
                 for p in write_surface_figures(
@@ -379,8 +380,6 @@ def contact_command(
         results: list[ContactResult] = [gw]
         main = gw
         if method is MethodChoice.halfspace:
-            from stochfric.contact.halfspace import halfspace_contact
-
             main = halfspace_contact(
                 coarse, mat, normal_force_n=gw.normal_force_n, summits=cs, frame_points=bem_frame,
                 refine=bem_refine, preparation=dict(gw.preparation),
@@ -408,8 +407,6 @@ def contact_command(
         if output is not None:
             payload["output"] = str(main.to_netcdf(output))
         if plot is not None:
-            from stochfric.contact.figures import write_contact_figures
-
             payload["figures"] = [str(p) for p in write_contact_figures(plot, results)]
     except _INPUT_ERRORS as exc:
         raise fail(str(exc)) from None
