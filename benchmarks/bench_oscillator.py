@@ -65,7 +65,7 @@ from stochfric.oscillator import philox as _ph
 from stochfric.oscillator import reference
 from stochfric.oscillator.case import build_case
 from stochfric.oscillator.friction_laws import FrictionLaw, law_III
-from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.integrate import pack_rows, simulate
 from stochfric.oscillator.parameters import OscillatorParameters
 from stochfric.process.model import BandLimitedProcessModel
 
@@ -307,19 +307,9 @@ def _kernel_only(case: Case, dw: npt.NDArray[np.float64], noise: int) -> Callabl
     ``dw`` pre-drawn) batch call, with the arrays ``simulate`` would pass."""
     runs, nsteps = dw.shape
     tau_end = nsteps * DT
-    p, lw = case.params, case.law
-    prm = np.zeros((runs, _k.N_PRM))
-    prm[:, _k.P_GAMMA0] = p.gamma0
-    prm[:, _k.P_N] = p.n
-    prm[:, _k.P_D] = p.damping_ratio
-    prm[:, _k.P_Q] = p.q
-    prm[:, _k.P_ETA] = p.eta
-    prm[:, _k.P_VSCALE] = p.velocity_scale
-    prm[:, _k.P_MUS] = lw.static
-    prm[:, _k.P_SIGMA] = _sigma(case)
-    prm[:, _k.P_PROC_DX] = 1.0
-    shapes = np.full(runs, lw.shape, dtype=np.int64)
-    lawp = np.tile(lw.param_array, (runs, 1))
+    # the rows simulate passes: one parameter set repeated (length scale L = 1 m, no process)
+    prm, lawp, shapes = pack_rows([case.params] * runs, [case.law] * runs, [_sigma(case)] * runs,
+                                  case.params.length_scale)
     x0 = np.tile(np.asarray(case.x0, dtype=np.float64), (runs, 1))
     nev = int(2 * tau_end) + 16
     proc = np.zeros((runs, 1))

@@ -281,6 +281,41 @@ def _need_pressure(p: OscillatorParameters, what: str) -> float:
     return pr
 
 
+def pack_rows(
+    params: Sequence[OscillatorParameters],
+    laws: Sequence[FrictionLaw],
+    sigma: Sequence[float],
+    process_dx_m: float = 1.0,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.int64]]:
+    """The kernels' per-row inputs of parameter sets: ``(prm, lawp, shapes)``, row i from
+    ``params[i]``, ``laws[i]`` and the noise intensity ``sigma[i]`` (the only place that knows the
+    row layout ``kernels.P_*``; the kernels, ``accurate`` and the benchmarks read it).
+
+    ``process_dx_m``: grid spacing of the contact process [m], stored per row in units of the
+    set's length scale L.  ``lawp`` is padded with zeros to the longest law.
+    """
+    n = len(params)
+    maxp = max(len(lw.params) for lw in laws)
+    prm = np.zeros((n, _k.N_PRM))
+    lawp = np.zeros((n, maxp))
+    shapes = np.zeros(n, dtype=np.int64)
+    for i, (p, lw) in enumerate(zip(params, laws, strict=True)):
+        row = prm[i]
+        row[_k.P_GAMMA0] = p.gamma0
+        row[_k.P_N] = p.n
+        row[_k.P_D] = p.damping_ratio
+        row[_k.P_Q] = p.q
+        row[_k.P_ETA] = p.eta
+        row[_k.P_X30] = 0.0
+        row[_k.P_VSCALE] = p.velocity_scale
+        row[_k.P_MUS] = lw.static
+        row[_k.P_SIGMA] = sigma[i]
+        row[_k.P_PROC_DX] = process_dx_m / p.length_scale
+        lawp[i, : len(lw.params)] = lw.params
+        shapes[i] = lw.shape
+    return prm, lawp, shapes
+
+
 def simulate(
     params: OscillatorParameters | Sequence[OscillatorParameters],
     *,
@@ -420,26 +455,8 @@ def simulate(
     scheme = _k.SCHEME_MILSTEIN if integrator == "milstein" else _k.SCHEME_EULER
     path_mode = PATH_COORDINATES[path_coordinate]
 
-    # per-set rows
-    maxp = max(len(lw.params) for lw in plan.laws)
-    prm_set = np.zeros((npar, _k.N_PRM))
-    lawp_set = np.zeros((npar, maxp))
-    shape_set = np.zeros(npar, dtype=np.int64)
     proc_dx = process.dx if (process is not None and model == "contact") else 1.0
-    for i, (p, lw) in enumerate(zip(plist, plan.laws, strict=True)):
-        row = prm_set[i]
-        row[_k.P_GAMMA0] = p.gamma0
-        row[_k.P_N] = p.n
-        row[_k.P_D] = p.damping_ratio
-        row[_k.P_Q] = p.q
-        row[_k.P_ETA] = p.eta
-        row[_k.P_X30] = 0.0
-        row[_k.P_VSCALE] = p.velocity_scale
-        row[_k.P_MUS] = lw.static
-        row[_k.P_SIGMA] = plan.sigma_eff[i]
-        row[_k.P_PROC_DX] = proc_dx / p.length_scale
-        lawp_set[i, : len(lw.params)] = lw.params
-        shape_set[i] = lw.shape
+    prm_set, lawp_set, shape_set = pack_rows(plist, plan.laws, plan.sigma_eff, proc_dx)
 
     x0_set = np.array(plan.x0, dtype=np.float64).reshape(npar, 2)
     x_gh = np.full((n_traj, nev), np.nan)
