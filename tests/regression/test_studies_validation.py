@@ -20,7 +20,7 @@ FORCES = (1800.0, 3000.0, 4400.0, 5600.0, 8000.0)
 
 
 def _det(**kw: object) -> DampingConfig:
-    base: dict[str, object] = {"models": ("deterministic",), "normal_forces": FORCES, "damping": "0.01:0.25:49",
+    base: dict[str, object] = {"models": ("deterministic",), "normal_forces": FORCES, "damping_ratio": "0.01:0.25:49",
                                "runs": 1, "seed": 0}
     base.update(kw)
     return DampingConfig(**base)  # type: ignore[arg-type]

@@ -26,7 +26,7 @@ dir = "out"
 [[study]]
 kind = "damping"
 normal_forces = [1400]
-damping = "0.1:0.2:3"
+damping_ratio = "0.1:0.2:3"
 runs = 2
 
 [[study]]
@@ -43,7 +43,7 @@ def test_defaults_and_grids(tmp_path: Path) -> None:
     assert rf.execution.executor == "processes" and rf.execution.workers == 2
     d, ly = rf.study
     assert isinstance(d, DampingConfig) and isinstance(ly, LyapunovConfig)
-    assert d.preset == "sheet" and d.seed == 3 and d.damping == (0.1, 0.15, 0.2)
+    assert d.preset == "sheet" and d.seed == 3 and d.damping_ratio == (0.1, 0.15, 0.2)
     assert ly.preset == "brake" and ly.eta == (1.0, 1.2) and ly.perturbation == 1e-6
 
 
@@ -52,8 +52,8 @@ def test_defaults_and_grids(tmp_path: Path) -> None:
     [
         ("[[study]]\nkind = 'damping'\ndampng = 0.1\n", "study[0].dampng: Extra inputs are not permitted"),
         ("[[study]]\nkind = 'dumping'\n", "study[0]"),
-        ("[[study]]\nkind = 'damping'\ndamping = '0.3:0.1:x'\n", "START and STOP must be numbers"),
-        ("[[study]]\nkind = 'damping'\ndamping = [0.2, 0.1]\n", "increasing"),
+        ("[[study]]\nkind = 'damping'\ndamping_ratio = '0.3:0.1:x'\n", "START and STOP must be numbers"),
+        ("[[study]]\nkind = 'damping'\ndamping_ratio = [0.2, 0.1]\n", "increasing"),
         ("[[study]]\nkind = 'damping'\nruns = 0\n", "study[0].runs: Input should be greater than or equal to 1"),
         ("[[study]]\nkind = 'forcing'\npreset = 'car'\n", "study[0].preset"),
         ("[[study]]\nkind = 'damping'\nmodels = ['white', 'white']\n", "listed twice"),
