@@ -85,7 +85,7 @@ def simulate(
     normal_force: Annotated[
         float | None, typer.Option(help="Normal force N [newtons] (needs stiffness).")
     ] = None,
-    damping: Annotated[float | None, typer.Option(help="Damping ratio D [-].")] = None,
+    damping: Annotated[float | None, typer.Option("--damping-ratio", "--damping", help="Damping ratio D [-].")] = None,
     damping_coefficient: Annotated[
         float | None, typer.Option(help="Damper constant d_k [N s/m].")
     ] = None,

@@ -35,6 +35,7 @@ from .options import GROUP, fail, option_group
 #: called through the module so that tests can replace ``plan`` / ``run_study`` / ``reproduce``
 reproduce_mod = importlib.import_module("..studies.reproduce", __package__)
 
+ForcedDampingOpt = Annotated[float | None, typer.Option("--damping-ratio", "--damping", help="D (default 5e-6).")]
 ModelsOpt = Annotated[str | None, typer.Option("--models", help="Comma-separated: deterministic,white,contact.")]
 PresetOpt = Annotated[str, typer.Option("--preset", help="Thesis case: brake | sheet.")]
 ProcessOpt = Annotated[Path | None, typer.Option("--process", help="Friction-process model file (JSON).")]
@@ -282,7 +283,9 @@ def _print_summary(kind: str, s: dict[str, Any]) -> None:
 def damping_command(
     common: dict[str, Any] = GROUP,
     normal_force: Annotated[str | None, typer.Option("--normal-force", help="N [N]: value, list or A:B:NUM.")] = None,
-    damping: Annotated[str, typer.Option("--damping", help="D grid START:STOP:NUM or list.")] = "0.05:0.25:41",
+    damping: Annotated[
+        str, typer.Option("--damping-ratio", "--damping", help="D grid START:STOP:NUM or list.")
+    ] = "0.05:0.25:41",
     stick_window: WinOpt = 0.5,
     confidence: Annotated[float, typer.Option("--confidence", help="Clopper–Pearson level.")] = 0.95,
     p_detect: Annotated[float, typer.Option("--p-detect", help="Tolerated stick probability for D_hi.")] = 0.1,
@@ -311,7 +314,7 @@ def forcing_command(
     normal_force: Annotated[float | None, typer.Option("--normal-force", help="N [N] (default: preset).")] = None,
     q: Annotated[str, typer.Option("--q", help="Forcing amplitudes q = Q/(cL), list.")] = "5e-5,5e-4",
     eta: Annotated[str, typer.Option("--eta", help="η grid START:STOP:NUM or list.")] = "0:3:61",
-    damping: Annotated[float | None, typer.Option("--damping", help="D (default 5e-6).")] = None,
+    damping: ForcedDampingOpt = None,
     stick_window: WinOpt = 0.5,
     run: ExecutionOptions = GROUP,
 ) -> None:
@@ -329,7 +332,7 @@ def lyapunov_command(
     eta: Annotated[str, typer.Option("--eta", help="η grid.")] = "0.1:3:30",
     perturbation: Annotated[float, typer.Option("--perturbation", help="δ added to x1(0) of the comparison run.")
                             ] = 1e-6,
-    damping: Annotated[float | None, typer.Option("--damping", help="D (default 5e-6).")] = None,
+    damping: ForcedDampingOpt = None,
     run: ExecutionOptions = GROUP,
 ) -> None:
     """Largest Lyapunov exponent λ (4.43) / E[Λ] (4.44) over η and N (method §6.4)."""
@@ -343,7 +346,9 @@ def lyapunov_command(
 def normal_force_command(
     common: dict[str, Any] = GROUP,
     normal_force: Annotated[str | None, typer.Option("--normal-force", help="N [N] list (default: preset).")] = None,
-    damping: Annotated[str | None, typer.Option("--damping", help="D list (default 5e-6 and the damped D).")] = None,
+    damping: Annotated[
+        str | None, typer.Option("--damping-ratio", "--damping", help="D list (default 5e-6 and the damped D).")
+    ] = None,
     phase_runs: Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for phase diagrams.")] = 5,
     stick_window: WinOpt = 0.5,
     run: ExecutionOptions = GROUP,

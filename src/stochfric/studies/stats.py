@@ -262,7 +262,8 @@ def std_ratio_over_cells(
         return per, RatioEstimate(math.nan, math.nan, math.nan, math.nan, confidence)
     med = float(np.nanmedian(vals))
     use = np.isfinite(vals)
-    with np.errstate(invalid="ignore"):
+    with np.errstate(invalid="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # a replicate with no finite cell: NaN, dropped below
         bmed = np.nanmedian(np.where(np.isfinite(reps[:, use]), reps[:, use], np.nan), axis=1)
     bmed = bmed[np.isfinite(bmed)]
     if bmed.size < 2:
