@@ -2,7 +2,7 @@
 :class:`StudyResult` it returns (an xarray Dataset plus a JSON summary).
 
 A study is a grid of independent tasks, one :func:`~stochfric.oscillator.integrate.simulate` call
-each (:class:`~stochfric.studies.common.TaskSpec`).  A subclass of :class:`Study` names its task
+each (:class:`~stochfric.studies.tasks.TaskSpec`).  A subclass of :class:`Study` names its task
 axes (:meth:`Study.axes`: the friction model first, then the study's own), the parameter sets of
 one grid point (:meth:`Study.task`) and how the results become a dataset and a summary
 (:meth:`Study.assemble`); :meth:`Study.run` is the same for every study: build the tasks, run them
@@ -25,10 +25,12 @@ import xarray as xr
 
 from ..io_utils import package_versions, write_netcdf_atomic, write_text_atomic
 from ..progress import Progress
-from . import common
-from .common import StudySetup, TaskSpec, model_choices, pad_events, setup_for, warnings_of
+from . import tasks as task_module
+from .common import StudySetup, model_choices, setup_for
 from .executors import Executor, SweepStats, run_tasks
+from .grids import pad_events
 from .store import CheckpointStore
+from .tasks import TaskSpec, warnings_of
 
 
 def jsonable(obj: Any) -> Any:
@@ -159,10 +161,10 @@ class Study:
                 for k, values in enumerate(itertools.product(*self.axes().values()))]
 
     def task_for(self, index: int, point: dict[str, Any], params: Sequence[Any], **fields: Any) -> TaskSpec:
-        """:func:`~stochfric.studies.common.task_for` at ``point`` (label ``"model name=value …"``)."""
+        """:func:`~stochfric.studies.tasks.task_for` at ``point`` (label ``"model name=value …"``)."""
         label = " ".join([point["model"], *(f"{_LABELS.get(k, k)}={v:g}" for k, v in point.items() if k != "model")])
-        return common.task_for(self.config, self.setup, index=index, label=label, model=point["model"], params=params,
-                        **fields)
+        return task_module.task_for(self.config, self.setup, index=index, label=label, model=point["model"],
+                                    params=params, **fields)
 
     @classmethod
     def study(cls, config: Any, *, executor: Executor | None = None, checkpoint: str | None = None,

@@ -26,7 +26,8 @@ from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
-from .common import MODELS, STICK_WINDOW, parse_grid
+from .common import MODELS
+from .grids import STICK_WINDOW, parse_grid
 
 Grid = Annotated[tuple[float, ...], BeforeValidator(parse_grid)]
 ModelName = Literal["deterministic", "white", "contact"]

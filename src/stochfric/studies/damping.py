@@ -49,10 +49,11 @@ from ..io_utils import package_versions
 from ..oscillator.reference import hopf_damping
 from ..random import BOOTSTRAP_KEY, child_generator
 from .base import Progress, Study, StudyResult, sweep, warning_counts
-from .common import TaskSpec, runs_for, task_for, window_mask
 from .config import DampingConfig
 from .executors import Executor, SweepStats
+from .grids import window_mask
 from .stats import clopper_pearson, pooled_bootstrap_se
+from .tasks import TaskSpec, runs_for, task_for
 
 
 def d_max_deterministic(damping: npt.ArrayLike, has_cycle: npt.ArrayLike) -> float:

@@ -1,9 +1,9 @@
 """Executors for study sweeps: serial, local processes, Dask (method §0 randomness rule).
 
-A sweep is a list of independent :class:`~stochfric.studies.common.TaskSpec`; an executor
-runs :func:`~stochfric.studies.common.execute_task` on each and yields ``(task, arrays)``
+A sweep is a list of independent :class:`~stochfric.studies.tasks.TaskSpec`; an executor
+runs :func:`~stochfric.studies.tasks.execute_task` on each and yields ``(task, arrays)``
 as tasks finish, in any order.  Every task draws its random numbers from the stream fixed
-by the root seed and its grid index (:func:`~stochfric.studies.common.task_seed`), so the
+by the root seed and its grid index (:func:`~stochfric.studies.tasks.task_seed`), so the
 same seed gives identical arrays on every executor and with any number of workers.
 
 :func:`run_tasks` adds checkpointing (:class:`~stochfric.studies.store.CheckpointStore`):
@@ -28,8 +28,9 @@ from typing import Any
 
 import numpy.typing as npt
 
-from .common import StudyError, TaskSpec, execute_task
+from .common import StudyError
 from .store import CheckpointStore
+from .tasks import TaskSpec, execute_task
 
 TaskResult = dict[str, npt.NDArray[Any]]
 TaskFunction = Callable[[TaskSpec, int | None], TaskResult]

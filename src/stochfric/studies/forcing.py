@@ -19,10 +19,11 @@ import numpy as np
 from ..io_utils import package_versions
 from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
 from .base import Study, StudyResult, warning_counts
-from .common import TaskSpec, window_mask
 from .config import ForcingConfig
 from .executors import Executor, SweepStats
+from .grids import window_mask
 from .stats import sample_summary, std_ratio_over_cells
+from .tasks import TaskSpec
 
 
 class ForcingStudy(Study):

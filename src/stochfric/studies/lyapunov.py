@@ -56,9 +56,9 @@ import numpy.typing as npt
 
 from ..io_utils import package_versions
 from .base import Study, StudyResult, warning_counts
-from .common import TaskSpec
 from .config import LyapunovConfig
 from .executors import Executor, SweepStats
+from .tasks import TaskSpec
 
 STATUS = ("ok", "merged", "too-few-transitions", "nonlinear")
 #: Fewest transitions in the linear regime for a growth rate.

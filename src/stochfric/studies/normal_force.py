@@ -19,10 +19,11 @@ import numpy as np
 from ..io_utils import package_versions
 from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
 from .base import Study, StudyResult, warning_counts
-from .common import TaskSpec, runs_for, window_mask
 from .config import NormalForceConfig
 from .executors import Executor, SweepStats
+from .grids import window_mask
 from .stats import sample_summary, std_ratio
+from .tasks import TaskSpec, runs_for
 
 _SE_FIELDS = ("mean", "std", "vark", "se_mean_iid", "se_std_iid", "se_vark_iid", "se_mean_boot", "se_std_boot",
               "se_vark_boot", "n", "n_runs")

@@ -15,11 +15,11 @@ from typing import Any
 from ..progress import StagedProgress
 from .base import StudyResult
 from .chapter3 import chapter3_analysis
-from .common import parse_grid
 from .config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
 from .damping import damping_study
 from .executors import Executor
 from .forcing import forcing_study
+from .grids import parse_grid
 from .lyapunov import lyapunov_study
 from .normal_force import normal_force_study
 
