@@ -126,8 +126,8 @@ class RatioEstimate(_JsonRecord):
     """A ratio of two independent Monte Carlo estimates with its uncertainty.
 
     ``se_delta`` is the delta-method standard error r·√((SE_a/a)² + (SE_b/b)²) from the
-    bootstrap-over-runs SEs of numerator and denominator; ``low``/``high`` the bias-corrected
-    percentile interval (:func:`bc_interval`) of the bootstrap distribution of the ratio
+    bootstrap-over-runs SEs of numerator and denominator; ``low``/``high`` the interval
+    r·exp(±z·SE(log r*)) of :func:`ratio_interval`, SE from the bootstrap replicates of the ratio
     (numerator and denominator resampled independently, by runs, fixed seed).
     """
 
