@@ -24,6 +24,19 @@ from ..oscillator.case import process_rule_of as process_rule_of
 from ..oscillator.case import white_increment_of as white_increment_of
 from ..oscillator.case import with_white_intensity as with_white_intensity
 
+# Moved to their own modules (one concept each); importable from here as before.
+from .grids import STICK_WINDOW as STICK_WINDOW
+from .grids import pad_events as pad_events
+from .grids import parse_grid as parse_grid
+from .grids import window_mask as window_mask
+from .tasks import TaskSpec as TaskSpec
+from .tasks import execute_task as execute_task
+from .tasks import integrator_for as integrator_for
+from .tasks import runs_for as runs_for
+from .tasks import task_for as task_for
+from .tasks import task_seed as task_seed
+from .tasks import warnings_of as warnings_of
+
 #: The studies' names for the case of :mod:`stochfric.oscillator.case`: a study's configuration
 #: errors are case errors, its setup is the case setup.
 StudyError = CaseError
@@ -63,16 +76,3 @@ def check_models(models: Sequence[str]) -> tuple[str, ...]:
         raise StudyError("no model given")
     return out
 
-
-# Moved to their own modules (one concept each); importable from here as before.
-from .grids import STICK_WINDOW as STICK_WINDOW  # noqa: E402
-from .grids import pad_events as pad_events  # noqa: E402
-from .grids import parse_grid as parse_grid  # noqa: E402
-from .grids import window_mask as window_mask  # noqa: E402
-from .tasks import TaskSpec as TaskSpec  # noqa: E402
-from .tasks import execute_task as execute_task  # noqa: E402
-from .tasks import integrator_for as integrator_for  # noqa: E402
-from .tasks import runs_for as runs_for  # noqa: E402
-from .tasks import task_for as task_for  # noqa: E402
-from .tasks import task_seed as task_seed  # noqa: E402
-from .tasks import warnings_of as warnings_of  # noqa: E402
