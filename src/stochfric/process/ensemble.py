@@ -36,8 +36,8 @@ from __future__ import annotations
 
 import functools
 import math
-from dataclasses import dataclass, field
-from typing import Any
+from dataclasses import dataclass, field, replace
+from typing import Any, TypedDict, Unpack
 
 import numba
 import numpy as np
@@ -49,13 +49,15 @@ from stochfric.progress import Progress
 from stochfric.random import SeedLike, spawn_generators
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import find_summits
-from stochfric.surface.synthesis import DEFAULT_AMPLITUDE, SURROGATE_METHODS, similar_surface
+from stochfric.surface.synthesis import AMPLITUDE_METHODS, DEFAULT_AMPLITUDE, SURROGATE_METHODS, similar_surface
 
 __all__ = [
     "DEFAULT_SHIFT_FRACTION",
     "SUMMIT_MARGIN",
     "ContactSamples",
     "PathContact",
+    "SurrogateKeywords",
+    "SurrogateOptions",
     "default_window_shift_points",
     "ensemble_contact",
     "naive_window_contact",
@@ -71,6 +73,51 @@ DEFAULT_SHIFT_FRACTION = 0.3 / 5.3
 
 #: Points a summit must lie inside the grid border, per summit rule.
 SUMMIT_MARGIN: dict[str, int] = {"thesis": 2, "8-neighbour": 1}
+
+
+@dataclass(frozen=True, kw_only=True)
+class SurrogateOptions:
+    """How the similar surfaces are made and their summits found (method §3, §4a–c).
+
+    One home for the options shared by :func:`ensemble_contact`, :func:`path_contact` and the
+    analysis settings (:class:`~stochfric.process.analysis_config.AnalysisConfig`).
+
+    ``method``: ``"phase"`` (random-phase) or ``"iaaft"`` surrogates
+    (:func:`~stochfric.surface.synthesis.similar_surface`); ``amplitude``: the amplitude estimate
+    of the measured map (``"hann"`` | ``"raw"``); ``iaaft_tol``: the IAAFT stopping tolerance;
+    ``rule``: the summit rule (``"thesis"`` | ``"8-neighbour"``).
+    """
+
+    method: str = "phase"
+    amplitude: str = DEFAULT_AMPLITUDE
+    iaaft_tol: float = 1e-3
+    rule: str = "thesis"
+
+    def __post_init__(self) -> None:
+        if self.method not in SURROGATE_METHODS:
+            raise ContactError(f"unknown surrogate method {self.method!r}; use one of {', '.join(SURROGATE_METHODS)}")
+        if self.amplitude not in AMPLITUDE_METHODS:
+            raise ContactError(f"amplitude must be one of {AMPLITUDE_METHODS}, got {self.amplitude!r}")
+
+    @classmethod
+    def of(cls, options: SurrogateOptions | None = None, **keywords: Unpack[SurrogateKeywords]) -> SurrogateOptions:
+        """``options`` (default: the defaults) with the given keyword options replaced."""
+        base = options if options is not None else cls()
+        return replace(base, **keywords) if keywords else base
+
+    def similar(self, surface: Surface, rng: np.random.Generator, factor: int = 1) -> Surface:
+        """One similar surface of ``factor`` × the length of ``surface`` with these options."""
+        return similar_surface(surface, rng, method=self.method, factor=factor, tol=self.iaaft_tol,
+                               amplitude=self.amplitude)
+
+
+class SurrogateKeywords(TypedDict, total=False):
+    """The fields of :class:`SurrogateOptions` as keyword arguments (the public functions take both)."""
+
+    method: str
+    amplitude: str
+    iaaft_tol: float
+    rule: str
 
 @dataclass(frozen=True, kw_only=True, eq=False)
 class ContactSamples(BowdenTabor):
@@ -137,39 +184,37 @@ def ensemble_contact(
     approach_m: npt.ArrayLike,
     *,
     realizations: int,
-    method: str = "phase",
     seed: SeedLike = None,
-    rule: str = "thesis",
-    iaaft_tol: float = 1e-3,
-    amplitude: str = DEFAULT_AMPLITUDE,
     progress: Progress | None = None,
+    options: SurrogateOptions | None = None,
+    **surrogate: Unpack[SurrogateKeywords],
 ) -> ContactSamples:
     """Contact of R similar surfaces of original size over ``approach_m`` (method §4a).
 
     Realisation r is :func:`~stochfric.surface.synthesis.similar_surface` with the r-th child
-    stream of ``seed`` and the amplitude estimate ``amplitude``; each is referenced to its own
-    highest summit.  Shape (R, U); ``summit_stats`` (R, 3) holds every realisation's summit
-    count, β̄ and σ_S for the measured-vs-surrogate check.
+    stream of ``seed`` and the surrogate ``options`` (:class:`SurrogateOptions`; its fields
+    ``method``, ``amplitude``, ``iaaft_tol``, ``rule`` may also be given as keywords); each is
+    referenced to its own highest summit.  Shape (R, U); ``summit_stats`` (R, 3) holds every
+    realisation's summit count, β̄ and σ_S for the measured-vs-surrogate check.
     """
     r_count = _check_count("realizations", realizations)
-    if method not in SURROGATE_METHODS:
-        raise ContactError(f"unknown surrogate method {method!r}; use one of {', '.join(SURROGATE_METHODS)}")
+    opts = SurrogateOptions.of(options, **surrogate)
     u = _approach(approach_m)
     area = np.empty((r_count, u.size))
     force = np.empty((r_count, u.size))
     count = np.empty((r_count, u.size), dtype=np.int64)
     stats = np.empty((r_count, 3))
     for r, gen in enumerate(spawn_generators(seed, r_count)):
-        sim = similar_surface(surface, gen, method=method, tol=iaaft_tol, amplitude=amplitude)
+        sim = opts.similar(surface, gen)
         area[r], force[r], count[r], stats[r] = _one_surface_with_stats(
-            sim.heights_m, sim.grid_spacing_m, material, u, rule
+            sim.heights_m, sim.grid_spacing_m, material, u, opts.rule
         )
         if progress is not None:
             progress(r + 1, r_count)
     return ContactSamples.of(
         surface, material, u, area, force, count, summit_stats=stats,
-        info={"kind": "ensemble", "surrogate": method, "amplitude": amplitude, "realizations": r_count,
-              "summit_rule": rule},
+        info={"kind": "ensemble", "surrogate": opts.method, "amplitude": opts.amplitude, "realizations": r_count,
+              "summit_rule": opts.rule},
     )
 
 
@@ -317,22 +362,20 @@ def _long_windows(
     surfaces: int,
     factor: int,
     shifts: tuple[int, ...],
-    method: str,
+    opts: SurrogateOptions,
     seed: SeedLike,
-    rule: str,
-    iaaft_tol: float,
-    amplitude: str,
     progress: Progress | None,
 ) -> list[tuple[FloatArray, FloatArray, IntArray]]:
     """GW sums of the windows of K long surfaces, one (K, W_s, U) triple per window shift."""
     ny = surface.nb_grid_pts[1]
     out: list[list[tuple[FloatArray, FloatArray, IntArray]]] = [[] for _ in shifts]
     for k, gen in enumerate(spawn_generators(seed, surfaces)):
-        long = similar_surface(surface, gen, method=method, factor=factor, tol=iaaft_tol, amplitude=amplitude)
+        long = opts.similar(surface, gen, factor)
         for s_idx, shift in enumerate(shifts):
             out[s_idx].append(
                 window_contact(
-                    long.heights_m, long.grid_spacing_m, material, u, window_points=ny, shift_points=shift, rule=rule
+                    long.heights_m, long.grid_spacing_m, material, u, window_points=ny, shift_points=shift,
+                    rule=opts.rule,
                 )
             )
         del long
@@ -352,30 +395,30 @@ def path_contact(
     long_surfaces: int = 10,
     length_factor: int = 10,
     shift_points: int,
-    method: str = "phase",
     seed: SeedLike = None,
-    rule: str = "thesis",
-    iaaft_tol: float = 1e-3,
-    amplitude: str = DEFAULT_AMPLITUDE,
     progress: Progress | None = None,
+    options: SurrogateOptions | None = None,
+    **surrogate: Unpack[SurrogateKeywords],
 ) -> PathContact:
     """μ(y) over K long surfaces of ``length_factor`` × the original length (method §4c).
 
     Windows of the original size are shifted by ``shift_points`` grid points (a_y) along y;
-    long surface k uses the k-th child stream of ``seed``.  The same long surfaces are also cut
+    long surface k uses the k-th child stream of ``seed`` and the surrogate ``options``
+    (:class:`SurrogateOptions`, or its fields as keywords).  The same long surfaces are also cut
     into ``length_factor`` non-overlapping windows (``blocks``) for the ergodicity check.
     """
     k_count = _check_count("long_surfaces", long_surfaces)
     factor = _check_count("length_factor", length_factor, 2)
     shift = _check_count("shift_points", shift_points)
+    opts = SurrogateOptions.of(options, **surrogate)
     u = _approach(approach_m)
     ny = surface.nb_grid_pts[1]
     (area, force, count), (b_area, b_force, b_count) = _long_windows(
-        surface, material, u, surfaces=k_count, factor=factor, shifts=(shift, ny), method=method,
-        seed=seed, rule=rule, iaaft_tol=iaaft_tol, amplitude=amplitude, progress=progress,
-    )  # fmt: skip
+        surface, material, u, surfaces=k_count, factor=factor, shifts=(shift, ny), opts=opts, seed=seed,
+        progress=progress,
+    )
     dy = surface.grid_spacing_m[1]
-    info = {"surrogate": method, "amplitude": amplitude, "long_surfaces": k_count, "length_factor": factor}
+    info = {"surrogate": opts.method, "amplitude": opts.amplitude, "long_surfaces": k_count, "length_factor": factor}
 
     def samples(a: FloatArray, n: FloatArray, c: IntArray, kind: str) -> ContactSamples:
         return ContactSamples.of(surface, material, u, a, n, c, info={"kind": kind, **info})

@@ -3,7 +3,8 @@
 * :func:`mean_and_std_errors` — mean and standard deviation over independent samples with the
   standard errors SE(mean) = s/√n and SE(s) = √((m4 − s⁴)/n)/(2s) (delta method with the sample
   fourth central moment m4; no Gaussian assumption);
-* :func:`linear_fit` — least-squares line with standard errors (A_c/A_nom over p, Fig. 3.17).
+* :func:`linear_fit` — least-squares line with standard errors (A_c/A_nom over p, Fig. 3.17);
+* :func:`mu_pdfs` — PDFs of μ over the ensemble, one histogram per approach (Fig. 3.18a).
 """
 
 from __future__ import annotations
@@ -13,7 +14,7 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["linear_fit", "mean_and_std_errors"]
+__all__ = ["linear_fit", "mean_and_std_errors", "mu_pdfs"]
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -50,3 +51,17 @@ def linear_fit(x: npt.ArrayLike, y: npt.ArrayLike) -> dict[str, float]:
         "intercept_se": float(np.sqrt(cov[1, 1])),
         "r_squared": 1.0 - ss_res / ss_tot if ss_tot > 0 else math.nan,
     }
+
+
+def mu_pdfs(mu: FloatArray, bins: int) -> tuple[FloatArray, FloatArray]:
+    """Histogram densities of μ per approach: ``(edges (U, bins+1), density (U, bins))`` over samples (axis 0)."""
+    n_u = mu.shape[1]
+    edges = np.empty((n_u, bins + 1))
+    dens = np.empty((n_u, bins))
+    for k in range(n_u):
+        col = mu[:, k][np.isfinite(mu[:, k])]
+        lo, hi = (float(col.min()), float(col.max())) if col.size else (0.0, 1.0)
+        if hi <= lo:
+            hi = lo + 1e-12
+        dens[k], edges[k] = np.histogram(col, bins=bins, range=(lo, hi), density=True)
+    return edges, dens

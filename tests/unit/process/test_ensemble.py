@@ -9,7 +9,9 @@ import pytest
 
 from stochfric.contact.asperity import ContactError, asperity_sums, default_approach_m
 from stochfric.contact.materials import get_material
+from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.ensemble import (
+    SurrogateOptions,
     ensemble_contact,
     naive_window_contact,
     path_contact,
@@ -81,6 +83,28 @@ def test_path_and_block_shapes(fine: Surface) -> None:
     # the non-overlapping windows of the same long surfaces are every 4th shifted window
     assert pc.blocks.mu.shape == (2, 3, 4)
     np.testing.assert_allclose(pc.blocks.mu, pc.samples.mu[:, ::4], rtol=1e-12)
+
+
+def test_surrogate_options_and_keywords_are_the_same(fine: Surface) -> None:
+    """The surrogate options have one home: keywords, a SurrogateOptions and the analysis settings agree."""
+    u = default_approach_m(summits_of(fine), num=3)
+    opts = SurrogateOptions(amplitude="raw", rule="8-neighbour")
+    by_kw = ensemble_contact(fine, MAT, u, realizations=2, seed=3, amplitude="raw", rule="8-neighbour")
+    by_opts = ensemble_contact(fine, MAT, u, realizations=2, seed=3, options=opts)
+    np.testing.assert_array_equal(by_kw.normal_force_n, by_opts.normal_force_n)
+    assert by_kw.info == by_opts.info
+    # keywords override the options' fields
+    assert SurrogateOptions.of(opts, rule="thesis") == SurrogateOptions(amplitude="raw")
+    cfg = AnalysisConfig(amplitude="raw", summit_rule="8-neighbour")
+    assert cfg.surrogate_options == opts
+    path_kw = path_contact(fine, MAT, u, long_surfaces=2, length_factor=2, shift_points=148, seed=1, amplitude="raw")
+    path_opts = path_contact(fine, MAT, u, long_surfaces=2, length_factor=2, shift_points=148, seed=1,
+                             options=SurrogateOptions(amplitude="raw"))
+    np.testing.assert_array_equal(path_kw.samples.normal_force_n, path_opts.samples.normal_force_n)
+    with pytest.raises(ContactError, match="amplitude"):
+        path_contact(fine, MAT, u, long_surfaces=2, length_factor=2, shift_points=148, amplitude="x")
+    with pytest.raises(ContactError, match="surrogate"):
+        AnalysisConfig(surrogate="x")
 
 
 def test_large_surface_many_windows_equal_naive() -> None:

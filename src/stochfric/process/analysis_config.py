@@ -1,0 +1,75 @@
+"""Settings of the statistical contact analysis (:func:`stochfric.process.statistics.analyse`).
+
+Flat fields (they are written as they are to the JSON summary and the NetCDF attributes); the
+surrogate settings among them are one :class:`~stochfric.process.ensemble.SurrogateOptions`
+(:attr:`AnalysisConfig.surrogate_options`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from stochfric.contact.asperity import ContactError
+from stochfric.process.ensemble import SurrogateOptions
+from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
+from stochfric.surface.synthesis import DEFAULT_AMPLITUDE
+
+__all__ = ["AnalysisConfig"]
+
+
+@dataclass(frozen=True, kw_only=True)
+class AnalysisConfig:
+    """Settings of :func:`analyse` (defaults: the thesis's proportions, §3.2.4–3.2.5).
+
+    ``window_shift_points`` is a_y in grid points of y; ``length_factor`` the long surfaces'
+    length in units of the original (thesis: 53 mm / 5.3 mm = 10), which is also the number of
+    non-overlapping windows per long surface in the ergodicity check; ``amplitude`` the
+    amplitude estimate of the measured map (``"hann"``: edge jump removed, default; ``"raw"``:
+    the thesis's DFT of the map as it is, :func:`stochfric.surface.synthesis.amplitude_spectrum`).
+    """
+
+    realizations: int = 100
+    long_surfaces: int = 10
+    length_factor: int = 10
+    window_shift_points: int = 16
+    surrogate: str = "phase"
+    amplitude: str = DEFAULT_AMPLITUDE
+    summit_rule: str = "thesis"
+    iaaft_tol: float = 1e-3
+    max_area_fraction: float = DEFAULT_MAX_AREA_FRACTION
+    pressure_rule: str = "nearest"
+    variance_rule: str = "sigma_mu"
+    sigma_zeta_rule: str = "sigma_mu"
+    pdf_bins: int = 30
+    check_realizations: int = 200
+    seed: int | None = None
+
+    def __post_init__(self) -> None:
+        for name in ("realizations", "long_surfaces", "window_shift_points", "pdf_bins", "check_realizations"):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, int) or v < 1:
+                raise ContactError(f"{name} must be an integer >= 1, got {v!r}")
+        v = self.length_factor
+        if isinstance(v, bool) or not isinstance(v, int) or v < 2:
+            raise ContactError(f"length_factor must be an integer >= 2, got {v!r}")
+        if self.realizations < 2:
+            raise ContactError("realizations must be >= 2 (a standard deviation needs two)")
+        if self.long_surfaces < 3:
+            raise ContactError(
+                f"long_surfaces must be >= 3 (the ergodicity check and the standard errors of the path "
+                f"statistics use the scatter between independent long surfaces), got {self.long_surfaces}"
+            )
+        if not 0.0 < self.max_area_fraction <= 1.0:
+            raise ContactError(f"max_area_fraction must lie in (0, 1], got {self.max_area_fraction!r}")
+        self.surrogate_options  # noqa: B018 - validates surrogate and amplitude (ContactError)
+
+    @property
+    def surrogate_options(self) -> SurrogateOptions:
+        """The surrogate settings (``surrogate``, ``amplitude``, ``iaaft_tol``, ``summit_rule``) as one object."""
+        return SurrogateOptions(method=self.surrogate, amplitude=self.amplitude, iaaft_tol=self.iaaft_tol,
+                                rule=self.summit_rule)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain dictionary (JSON / netCDF attributes)."""
+        return dict(self.__dict__)

@@ -1,0 +1,209 @@
+"""The result of the statistical contact analysis and its files (JSON summary, NetCDF).
+
+:class:`StatisticalContactAnalysis` holds everything :func:`stochfric.process.statistics.analyse`
+computes (SI units; arrays over the approach u last); :meth:`~StatisticalContactAnalysis.to_json_dict`
+is the command line's summary, :meth:`~StatisticalContactAnalysis.to_dataset` /
+:meth:`~StatisticalContactAnalysis.to_netcdf` the full statistics with units and provenance.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import xarray as xr
+
+from stochfric.contact.validity import ValidityWarning
+from stochfric.io_utils import package_versions, write_netcdf_atomic
+from stochfric.process.analysis_config import AnalysisConfig
+from stochfric.process.checks import ErgodicityCheck, ProcessCheck, SurrogateCheck
+from stochfric.process.ensemble import ContactSamples, PathContact
+from stochfric.process.fit import ModelFit
+from stochfric.process.model import TabulatedProcessModel
+
+__all__ = ["StatisticalContactAnalysis"]
+
+FloatArray = npt.NDArray[np.float64]
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class StatisticalContactAnalysis:
+    """All results of :func:`analyse` (SI units; arrays over the approach u last)."""
+
+    config: AnalysisConfig
+    seed_entropy: int
+    material: dict[str, Any]
+    surface_info: dict[str, Any]
+    ensemble: ContactSamples
+    path: PathContact
+    # ensemble statistics (a)
+    ensemble_mu_mean: FloatArray
+    ensemble_mu_std: FloatArray
+    ensemble_mu_mean_se: FloatArray
+    ensemble_mu_std_se: FloatArray
+    ensemble_pressure_pa: FloatArray
+    ensemble_area_fraction: FloatArray
+    pdf_edges: FloatArray
+    pdf_density: FloatArray
+    contact_fraction_fit: dict[str, float]
+    ergodicity: ErgodicityCheck
+    surrogate_check: SurrogateCheck
+    # path statistics (c)
+    pressure_pa: FloatArray
+    area_fraction: FloatArray
+    mu_mean: FloatArray
+    mu_std: FloatArray
+    mu_mean_se: FloatArray
+    mu_std_se: FloatArray
+    lags_m: FloatArray
+    acf: FloatArray
+    correlation_length_m: FloatArray
+    frequencies: FloatArray
+    psd: FloatArray
+    psd_se: FloatArray
+    psd_level: FloatArray
+    psd_level_se: FloatArray
+    # fits (d) and model (e)
+    fits: dict[str, ModelFit]
+    model: TabulatedProcessModel
+    process_check: ProcessCheck
+    notes: list[str] = field(default_factory=list)
+    #: Validity of the model on this surface (:mod:`stochfric.contact.validity`): μ > 1,
+    #: A_c/A_nom > 1 or beyond the non-interaction range, too few contacts, plasticity index.
+    warnings: list[ValidityWarning] = field(default_factory=list)
+
+    def sigma_zeta_table(self) -> dict[str, list[float]]:
+        """σ_ζ at the analysed pressures by both rules (``sigma_mu`` and ``spectral_level``)."""
+        out: dict[str, list[float]] = {"pressure_pa": [float(p) for p in self.pressure_pa]}
+        for rule in ("sigma_mu", "spectral_level"):
+            m = replace(self.model, sigma_zeta_rule=rule)
+            vals: list[float] = []
+            for p in self.pressure_pa:
+                try:
+                    vals.append(m.sigma_zeta(float(p)))
+                except ValueError:
+                    vals.append(math.nan)
+            out[rule] = vals
+        return out
+
+    def to_json_dict(self) -> dict[str, Any]:
+        """The JSON summary of the command line (SI units, p in Pa)."""
+
+        def lst(a: npt.ArrayLike) -> list[float | None]:
+            return [None if not math.isfinite(float(v)) else float(v) for v in np.ravel(a)]
+
+        finite_cl = self.correlation_length_m[np.isfinite(self.correlation_length_m)]
+        return {
+            "approach_m": lst(self.ensemble.approach_m),
+            "pressure_pa": lst(self.pressure_pa),
+            "area_fraction": lst(self.area_fraction),
+            "mu_mean": lst(self.mu_mean),
+            "mu_std": lst(self.mu_std),
+            "mu_mean_se": lst(self.mu_mean_se),
+            "mu_std_se": lst(self.mu_std_se),
+            "psd_level_m": lst(self.psd_level),
+            "correlation_length_m": lst(self.correlation_length_m),
+            "correlation_length_mean_m": float(finite_cl.mean()) if finite_cl.size else None,
+            "window_shift_m": self.path.window_shift_m,
+            "window_length_m": self.path.window_length_m,
+            "long_surface_length_m": self.path.surface_length_m,
+            "fit": {name: f.to_dict() for name, f in self.fits.items()},
+            "ensemble": {
+                "pressure_pa": lst(self.ensemble_pressure_pa),
+                "mu_mean": lst(self.ensemble_mu_mean),
+                "mu_std": lst(self.ensemble_mu_std),
+                "area_fraction": lst(self.ensemble_area_fraction),
+                "contact_fraction_fit": self.contact_fraction_fit,
+            },
+            "ergodicity": self.ergodicity.to_dict(),
+            "surrogate_check": self.surrogate_check.to_dict(),
+            "sigma_zeta": self.sigma_zeta_table(),
+            "process_check": self.process_check.to_dict(),
+            "model": self.model.to_dict(),
+            "config": self.config.to_dict(),
+            "seed_entropy": self.seed_entropy,
+            "material": self.material,
+            "surface": self.surface_info,
+            "notes": list(self.notes),
+            "warnings": [w.to_dict() for w in self.warnings],
+        }
+
+    def to_dataset(self) -> Any:
+        """All statistics as an :class:`xarray.Dataset` (units and provenance in ``attrs``)."""
+        ens, blocks, path = self.ensemble, self.path.blocks, self.path.samples
+        u = ("approach",)
+
+        def var(dims: tuple[str, ...], data: npt.ArrayLike, units: str, long_name: str) -> Any:
+            return (dims, np.asarray(data), {"units": units, "long_name": long_name})
+
+        data_vars = {
+            "ensemble_mu": var(("realization", *u), ens.mu, "1", "mu of each realisation (3.16)"),
+            "ensemble_pressure_pa": var(("realization", *u), ens.pressure_pa, "Pa", "p = N/A_nom per realisation"),
+            "ensemble_area_fraction": var(("realization", *u), ens.area_fraction, "1", "A_c/A_nom per realisation"),
+            "ensemble_mu_mean": var(u, self.ensemble_mu_mean, "1", "E[mu] over the ensemble"),
+            "ensemble_mu_std": var(u, self.ensemble_mu_std, "1", "sigma_mu over the ensemble (ddof=1)"),
+            "ensemble_mean_pressure_pa": var(u, self.ensemble_pressure_pa, "Pa", "E[N]/A_nom over the ensemble"),
+            "ensemble_mean_area_fraction": var(u, self.ensemble_area_fraction, "1", "E[A_c]/A_nom"),
+            "mu_pdf": var((*u, "pdf_bin"), self.pdf_density, "1", "PDF of mu over the ensemble"),
+            "mu_pdf_edges": var((*u, "pdf_edge"), self.pdf_edges, "1", "bin edges of mu_pdf"),
+            "block_mu": var(("surface", "block", *u), blocks.mu, "1",
+                            "mu of the non-overlapping windows of the long surfaces (ergodicity check)"),
+            "ergodic_z_mean": var(u, self.ergodicity.z_mean, "1", "ANOVA of the path means, as a two-sided z"),
+            "ergodic_z_std": var(u, self.ergodicity.z_std, "1", "(sd along - sd across surfaces)/jackknife SE"),
+            "surrogate_summit_stats": var(("realization", "summit_stat"),
+                                          ens.summit_stats if ens.summit_stats is not None else np.empty((0, 3)),
+                                          "mixed",
+                                          "summit count [1], mean radius [m], summit-height sd [m] per realisation"),
+            "measured_mu": var(u, self.surrogate_check.mu_measured, "1", "mu of the measured map itself"),
+            "measured_mu_z": var(u, self.surrogate_check.mu_z, "1", "(measured - ensemble mean)/ensemble sd"),
+            "path_mu": var(("surface", "window", *u), path.mu, "1", "mu(y) along the path (windows shifted by a_y)"),
+            "path_pressure_pa": var(("surface", "window", *u), path.pressure_pa, "Pa", "p(y) of each window"),
+            "pressure_pa": var(u, self.pressure_pa, "Pa", "mean pressure p(u) of the path windows"),
+            "area_fraction": var(u, self.area_fraction, "1", "mean A_c/A_nom of the path windows"),
+            "mu_mean": var(u, self.mu_mean, "1", "E[mu] along the path"),
+            "mu_std": var(u, self.mu_std, "1", "sigma_mu along the path"),
+            "mu_mean_se": var(u, self.mu_mean_se, "1", "SE of E[mu] from the K surfaces"),
+            "mu_std_se": var(u, self.mu_std_se, "1", "SE of sigma_mu from the K surfaces"),
+            "acf": var((*u, "lag"), self.acf, "1", "autocorrelation of normalised mu (3.17/3.18)"),
+            "correlation_length_m": var(u, self.correlation_length_m, "m", "first zero crossing of the ACF"),
+            "psd": var((*u, "frequency"), self.psd, "m", "one-sided PSD of mu-hat (method 0), surface mean"),
+            "psd_se": var((*u, "frequency"), self.psd_se, "m", "SE of psd over surfaces"),
+            "psd_level": var(u, self.psd_level, "m", "low-frequency PSD level E[S] = S(f->0)"),
+            "psd_level_se": var(u, self.psd_level_se, "m", "SE of E[S] over surfaces"),
+            "fit_used": var(u, np.asarray(self.fits["mu_mean"].used, dtype=np.int8), "1", "point used in the fits"),
+        }
+        attrs: dict[str, Any] = {
+            "title": "stochfric statistical contact analysis (docs/method.md sections 3-4)",
+            "config": json.dumps(self.config.to_dict(), sort_keys=True),
+            "seed_entropy": str(self.seed_entropy),
+            "material": json.dumps(self.material, sort_keys=True),
+            "surface": json.dumps(self.surface_info, sort_keys=True, default=str),
+            "fits": json.dumps({k: f.to_dict() for k, f in self.fits.items()}, sort_keys=True),
+            "ergodicity": json.dumps(self.ergodicity.to_dict(), sort_keys=True),
+            "surrogate_check": json.dumps(self.surrogate_check.to_dict(), sort_keys=True),
+            "contact_fraction_fit": json.dumps(self.contact_fraction_fit, sort_keys=True),
+            "window_shift_m": self.path.window_shift_m,
+            "window_length_m": self.path.window_length_m,
+            "long_surface_length_m": self.path.surface_length_m,
+            "psd_convention": "one-sided, S_k = 2 dy |X_k|^2 / N, sum S df = variance (docs/method.md section 0)",
+            "versions": json.dumps(package_versions(), sort_keys=True),
+        }
+        return xr.Dataset(
+            data_vars=data_vars,
+            coords={
+                "approach_m": (u, ens.approach_m, {"units": "m", "long_name": "approach u (3.11)"}),
+                "lag_m": (("lag",), self.lags_m, {"units": "m"}),
+                "frequency_per_m": (("frequency",), self.frequencies, {"units": "1/m"}),
+                "window_y_m": (("window",), self.path.positions_m, {"units": "m"}),
+            },
+            attrs=attrs,
+        )
+
+    def to_netcdf(self, path: str | Path) -> Path:
+        """Write :meth:`to_dataset` atomically; a full disk is a clean ``OSError`` (``write_netcdf_atomic``)."""
+        return write_netcdf_atomic(path, self.to_dataset())
