@@ -320,11 +320,13 @@ def _kernel_only(case: Case, dw: npt.NDArray[np.float64], noise: int) -> Callabl
     traj = np.zeros((runs, 0, 3))
     diag = np.zeros((runs, _k.N_DIAG))
     keys = np.zeros(runs, dtype=np.uint64)
+    rows = _k.KernelRows(prm, shapes, lawp, x0, proc, nproc)
+    out = _k.KernelOutput(xgh, tgh, counts, traj, diag)
+    grid = _k.FixedStepGrid(nsteps, DT, 10)
+    white = _k.WhiteInput(_k.WHITE_GIVEN, dw, keys)
 
     def call() -> None:
-        _k.run_fixed_step_batch(prm, shapes, lawp, x0, nsteps, DT, _k.SCHEME_EULER,
-                                noise, _k.PATH_MASS, dw, proc, nproc, xgh, tgh,
-                                counts, traj, 10, diag, _k.WHITE_GIVEN, keys)
+        _k.run_fixed_step_batch(rows, out, grid, _k.SCHEME_EULER, noise, _k.PATH_MASS, white)
 
     return call
 

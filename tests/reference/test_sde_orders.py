@@ -15,6 +15,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from kernel_helpers import run_fixed_step  # tests/kernel_helpers.py (test helper)
 from stochfric.oscillator import kernels as K
 from stochfric.oscillator.friction_laws import law_III
 
@@ -65,7 +66,7 @@ def _friction_final_states(dw: np.ndarray, dt: float, scheme: int) -> tuple[np.n
     ok = np.ones(paths, dtype=bool)
     for i in range(paths):
         diag = np.zeros(K.N_DIAG)
-        m = K.run_fixed_step(prm, law.shape, law.param_array, 3.0, 0.0, dw.shape[1], dt, scheme,
+        m = run_fixed_step(prm, law.shape, law.param_array, 3.0, 0.0, dw.shape[1], dt, scheme,
                              K.NOISE_WHITE, K.PATH_RELATIVE, dw[i], np.zeros(1), 1,
                              np.zeros(4), np.zeros(4), np.zeros((0, 3)), 1, diag)
         out[i] = diag[K.D_X1], diag[K.D_X2]
@@ -110,10 +111,10 @@ def test_zero_intensity_white_noise_equals_the_deterministic_euler(scheme: int) 
     prm[K.P_GAMMA0], prm[K.P_N], prm[K.P_VSCALE], prm[K.P_MUS] = 1.0, 10.0, 1.0, 0.4
     prm[K.P_PROC_DX] = 1.0
     d1, d2 = np.zeros(K.N_DIAG), np.zeros(K.N_DIAG)
-    K.run_fixed_step(prm, law.shape, law.param_array, 3.0, 0.0, 400, 0.005, scheme,
+    run_fixed_step(prm, law.shape, law.param_array, 3.0, 0.0, 400, 0.005, scheme,
                      K.NOISE_WHITE, 1, dw[0], np.zeros(1), 1, np.zeros(4), np.zeros(4),
                      np.zeros((0, 3)), 1, d1)
-    K.run_fixed_step(prm, law.shape, law.param_array, 3.0, 0.0, 400, 0.005, K.SCHEME_EULER,
+    run_fixed_step(prm, law.shape, law.param_array, 3.0, 0.0, 400, 0.005, K.SCHEME_EULER,
                      K.NOISE_NONE, 1, dw[0], np.zeros(1), 1, np.zeros(4), np.zeros(4),
                      np.zeros((0, 3)), 1, d2)
     assert d1[K.D_X1] == d2[K.D_X1] and d1[K.D_X2] == d2[K.D_X2]

@@ -25,6 +25,7 @@ independent of the initial step and of the tolerance to about 1e-9 (tests).
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
@@ -32,15 +33,6 @@ import numpy.typing as npt
 
 from .friction_laws import mu_kinetic
 from .kernels import (
-    D_MIN_SLIP_PATH,
-    D_N_BREAKAWAY,
-    D_N_NO_STICK,
-    D_N_SHORT_SLIP,
-    D_N_SLIP_PHASES,
-    D_PATH,
-    D_STICK,
-    D_X1,
-    D_X2,
     NOISE_PROCESS,
     P_D,
     P_ETA,
@@ -52,8 +44,12 @@ from .kernels import (
     P_VSCALE,
     P_X30,
     PATH_MASS,
-    _stick_force,
+    KernelOutput,
+    KernelRows,
     process_value,
+    slip_drift,
+    stick_force,
+    store_diagnostics,
 )
 
 # Dormand–Prince 5(4) coefficients (Dormand & Prince 1980; Hairer, Nørsett & Wanner, Table II.5.2)
@@ -78,6 +74,18 @@ DD1, DD3, DD4, DD5, DD6, DD7 = (
     -1453857185.0 / 822651844.0,
     69997945.0 / 29380423.0,
 )
+
+class AccurateSettings(NamedTuple):
+    """Settings of the adaptive integrator: ``τ_end``, initial step ``h0``, ``max_step``,
+    tolerances ``rtol``/``atol`` and the sampling interval ``save_dt`` of the saved states."""
+
+    tau_end: float
+    h0: float
+    max_step: float
+    rtol: float
+    atol: float
+    save_dt: float
+
 
 EV_NONE = 0
 EV_BELT = 1
@@ -108,10 +116,8 @@ def _rhs(
     if noise == NOISE_PROCESS:
         mu += process_value(proc, n_proc, prm[P_PROC_DX], y[2])
     out[0] = x2
-    out[1] = (
-        -x1 - 2.0 * prm[P_D] * x2 + prm[P_N] * mu * s
-        + prm[P_Q] * math.cos(prm[P_X30] + prm[P_ETA] * tau)
-    )
+    out[1] = slip_drift(x1, x2, 2.0 * prm[P_D], prm[P_N], mu, s) + prm[P_Q] * math.cos(
+        prm[P_X30] + prm[P_ETA] * tau)
     out[2] = abs(x2) if path_mode == PATH_MASS else abs(vr)
 
 
@@ -195,7 +201,7 @@ def breakaway_time(
     gamma0 = prm[P_GAMMA0]
     qq = prm[P_Q]
     eta = prm[P_ETA]
-    f0 = x1s + 2.0 * prm[P_D] * gamma0 - qq * math.cos(prm[P_X30] + eta * tau_s)
+    f0 = stick_force(x1s, tau_s, prm)
     if qq == 0.0 or eta == 0.0:
         tb = tau_s + (lim - f0) / gamma0
         if tb < tau_s:
@@ -205,9 +211,7 @@ def breakaway_time(
     a = tau_s
     while a < tau_end:
         b = min(a + delta, tau_end)
-        fb = x1s + gamma0 * (b - tau_s) + 2.0 * prm[P_D] * gamma0 - qq * math.cos(
-            prm[P_X30] + eta * b
-        )
+        fb = stick_force(x1s + gamma0 * (b - tau_s), b, prm)
         if abs(fb) > lim:
             bound = lim if fb > 0.0 else -lim
             lo = a
@@ -216,9 +220,7 @@ def breakaway_time(
                 mid = 0.5 * (lo + hi)
                 if mid <= lo or mid >= hi:
                     break
-                fm = x1s + gamma0 * (mid - tau_s) + 2.0 * prm[P_D] * gamma0 - qq * math.cos(
-                    prm[P_X30] + eta * mid
-                )
+                fm = stick_force(x1s + gamma0 * (mid - tau_s), mid, prm)
                 if (fm - bound) * (fb - bound) > 0.0 and abs(fm) > lim:
                     hi = mid
                 else:
@@ -251,30 +253,25 @@ def _save_stick(
 
 @numba.njit(cache=True, nogil=True)
 def run_accurate(
-    prm: npt.NDArray[np.float64],
-    shape: int,
-    lawp: npt.NDArray[np.float64],
-    x10: float,
-    x20: float,
-    tau_end: float,
-    h0: float,
-    max_step: float,
-    rtol: float,
-    atol: float,
-    noise: int,
-    path_mode: int,
-    proc: npt.NDArray[np.float64],
-    n_proc: int,
-    xgh: npt.NDArray[np.float64],
-    tgh: npt.NDArray[np.float64],
-    traj: npt.NDArray[np.float64],
-    save_dt: float,
-    diag: npt.NDArray[np.float64],
+    rows: KernelRows, out: KernelOutput, i: int, settings: AccurateSettings, noise: int, path_mode: int
 ) -> int:  # pragma: no cover
-    """Integrate one trajectory from ``τ = 0`` to ``τ_end``; returns ``M`` (see module doc).
+    """Integrate trajectory (row) ``i`` from ``τ = 0`` to ``τ_end``; returns ``M`` (see module doc).
 
-    ``traj`` rows (``τ, x1, x2``) are filled at ``τ = k·save_dt`` from the dense output.
+    Reads row ``i`` of ``rows`` and writes row ``i`` of ``out`` except ``out.counts``; ``traj``
+    rows (``τ, x1, x2``) are filled at ``τ = k·save_dt`` from the dense output.
     """
+    prm = rows.prm[i]
+    shape = rows.shapes[i]
+    lawp = rows.lawp[i]
+    x10 = rows.x0[i, 0]
+    x20 = rows.x0[i, 1]
+    proc = rows.proc[i]
+    n_proc = rows.n_proc[i]
+    xgh = out.x_gh[i]
+    tgh = out.t_gh[i]
+    traj = out.traj[i]
+    diag = out.diag[i]
+    tau_end, h0, max_step, rtol, atol, save_dt = settings
     gamma0 = prm[P_GAMMA0]
     nn = prm[P_N]
     lim = nn * prm[P_MUS]
@@ -305,11 +302,11 @@ def run_accurate(
             return max(lim, nn * (kinetic0 + process_value(proc, n_proc, pdx, path)))
         return lim
 
-    stick = x20 == gamma0 and abs(_stick_force(x10, 0.0, prm)) <= _lim_eff(0.0)
+    stick = x20 == gamma0 and abs(stick_force(x10, 0.0, prm)) <= _lim_eff(0.0)
     # off the belt speed the relative velocity decides; on it (and outside the static band) the
     # unbalanced force does: slip backwards (s = +1) when it exceeds +limit, forwards below −limit
     if x20 == gamma0:
-        s = 1.0 if _stick_force(x10, 0.0, prm) >= 0.0 else -1.0
+        s = 1.0 if stick_force(x10, 0.0, prm) >= 0.0 else -1.0
     else:
         s = 1.0 if x20 < gamma0 else -1.0
     h = min(h0, max_step)
@@ -326,7 +323,7 @@ def run_accurate(
             tau = tb
             stick = False
             n_break += 1
-            s = 1.0 if _stick_force(y[0], tau, prm) > 0.0 else -1.0
+            s = 1.0 if stick_force(y[0], tau, prm) > 0.0 else -1.0
             path_slip_start = y[2]
             h = min(h0, max_step)
             continue
@@ -406,7 +403,7 @@ def run_accurate(
             h = min(max(h, 1e-6), max_step)
             if ev == EV_BELT:
                 y[1] = gamma0
-                if abs(_stick_force(y[0], tau, prm)) <= lim:
+                if abs(stick_force(y[0], tau, prm)) <= lim:
                     if m < max_ev:
                         xgh[m] = y[0]
                         tgh[m] = tau
@@ -428,43 +425,14 @@ def run_accurate(
             else:
                 y[2] = (math.floor(y[2] / pdx + 0.5)) * pdx
                 _rhs(tau, y, s, prm, shape, lawp, noise, path_mode, proc, n_proc, k[0])
-    diag[D_PATH] = y[2]
-    diag[D_MIN_SLIP_PATH] = min_slip
-    diag[D_N_SHORT_SLIP] = n_short
-    diag[D_N_NO_STICK] = n_no_stick
-    diag[D_X1] = y[0]
-    diag[D_X2] = y[1]
-    diag[D_STICK] = 1.0 if stick else 0.0
-    diag[D_N_BREAKAWAY] = n_break
-    diag[D_N_SLIP_PHASES] = n_phases
+    store_diagnostics(diag, y[2], min_slip, n_short, n_no_stick, y[0], y[1], stick, n_break, n_phases)
     return m
 
 
 @numba.njit(cache=True, nogil=True)
 def run_accurate_batch(
-    prm: npt.NDArray[np.float64],
-    shapes: npt.NDArray[np.int64],
-    lawp: npt.NDArray[np.float64],
-    x0: npt.NDArray[np.float64],
-    tau_end: float,
-    h0: float,
-    max_step: float,
-    rtol: float,
-    atol: float,
-    noise: int,
-    path_mode: int,
-    proc: npt.NDArray[np.float64],
-    n_proc: npt.NDArray[np.int64],
-    xgh: npt.NDArray[np.float64],
-    tgh: npt.NDArray[np.float64],
-    counts: npt.NDArray[np.int64],
-    traj: npt.NDArray[np.float64],
-    save_dt: float,
-    diag: npt.NDArray[np.float64],
+    rows: KernelRows, out: KernelOutput, settings: AccurateSettings, noise: int, path_mode: int
 ) -> None:  # pragma: no cover
     """:func:`run_accurate` over the rows of a batch (GIL released)."""
-    for i in range(prm.shape[0]):
-        counts[i] = run_accurate(
-            prm[i], shapes[i], lawp[i], x0[i, 0], x0[i, 1], tau_end, h0, max_step, rtol, atol,
-            noise, path_mode, proc[i], n_proc[i], xgh[i], tgh[i], traj[i], save_dt, diag[i],
-        )
+    for i in range(rows.prm.shape[0]):
+        out.counts[i] = run_accurate(rows, out, i, settings, noise, path_mode)

@@ -41,6 +41,16 @@ N_PARAMS = {SHAPE_CONSTANT: 1, SHAPE_RATIONAL: 4, SHAPE_TABULATED: -1}
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def mu_rational(p0: float, p1: float, p2: float, p3: float, v_abs: float) -> float:  # pragma: no cover
+    """The ``rational`` shape ``μ = p0/(1 + p1|v|) + p2 + p3 v²`` (law III, eq. 4.13), |v| in m/s.
+
+    The one place this formula is written: :func:`mu_kinetic_row` and the kernels' vectorised
+    fast pass (which holds p0..p3 per lane; the constant law is p0 with p1 = p2 = p3 = 0, the
+    same bits) both call it."""
+    return p0 / (1.0 + p1 * v_abs) + p2 + p3 * v_abs * v_abs
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def mu_kinetic_row(
     shape: int, v_abs: float, p: npt.NDArray[np.float64], r: int | np.uint64
 ) -> float:  # pragma: no cover
@@ -58,7 +68,7 @@ def mu_kinetic_row(
     if shape == 0:
         return p[r, 0]
     elif shape == 1:
-        return p[r, 0] / (1.0 + p[r, 1] * v_abs) + p[r, 2] + p[r, 3] * v_abs * v_abs
+        return mu_rational(p[r, 0], p[r, 1], p[r, 2], p[r, 3], v_abs)
     else:
         m = int(p[r, 0])
         if v_abs <= p[r, 1]:

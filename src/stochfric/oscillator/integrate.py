@@ -400,6 +400,75 @@ def simulate(
     plist = [params] if isinstance(params, OscillatorParameters) else list(params)
     if not plist:
         raise ParameterError("no parameter set given")
+    _check_options(model, integrator, white_increment, white_stream, path_coordinate, runs, save_every)
+    warn_list = check_time_step(dt, tau_end, integrator, plist)
+    law_spec: LawSpec = law_III() if law is None else law
+    plan = _plan(plist, model, law_spec, process, sigma_zeta, x0, tau_end, dt, white_increment)
+    root = as_seed_sequence(seed)
+    npar = len(plist)
+    nev = int(max_events) if max_events is not None else int(2 * tau_end) + 16
+    nsave = plan.nsteps // save_every + 1 if save_trajectory else 0
+    out = _allocate_output(npar * runs, nev, nsave)
+    runner = _BatchRunner(
+        plan=plan, model=model, integrator=integrator, process=process, root=root, runs=runs,
+        common_random_numbers=common_random_numbers, path_mode=PATH_COORDINATES[path_coordinate],
+        white_stream=white_stream, dt=dt, tau_end=tau_end, save_every=save_every,
+        accurate=_acc.AccurateSettings(float(tau_end), min(dt, max_step), max_step, rtol, atol,
+                                       save_every * dt),
+        out=out,
+    )
+    _run_batches(runner, npar * runs, workers, batch_size, progress)
+
+    diagnostics = {k: out.diag[:, j].reshape(npar, runs).copy() for k, j in DIAGNOSTICS.items()}
+    # returned in the result only (``result.warnings``, also in its JSON and NetCDF); callers show
+    # them (the CLI prints each on stderr, the studies count them, the report explains them)
+    warn_list += _post_warnings(out.counts, nev, out.diag, model, process, plist, runner.path_mode)
+    return SimulationResult(
+        params=plist,
+        x_gh=out.x_gh.reshape(npar, runs, nev),
+        t_gh=out.t_gh.reshape(npar, runs, nev),
+        stick_count=out.counts.reshape(npar, runs),
+        diagnostics=diagnostics,
+        trajectory=out.traj.reshape(npar, runs, nsave, 3) if save_trajectory else None,
+        model=model,
+        integrator=integrator,
+        dt=dt,
+        tau_end=tau_end,
+        runs=runs,
+        seed_entropy=int(root.entropy),  # type: ignore[arg-type]
+        versions=package_versions(),
+        path_coordinate=path_coordinate,
+        x0=plan.x0,
+        laws=[lw.to_dict() for lw in plan.laws],
+        sigma_zeta=plan.sigma,
+        process=process.to_dict() if (process is not None and model != "deterministic") else None,
+        warnings=warn_list,
+        settings={
+            "save_every": save_every, "max_events": nev,
+            "common_random_numbers": common_random_numbers,
+            "rtol": rtol, "atol": atol, "max_step": max_step,
+            "spawn_key_layout": "(param_set, run)",
+            "white_increment": white_increment,
+            "white_stream": white_stream,
+            "sigma_zeta_effective": plan.sigma_eff,
+        },
+    )
+
+
+#: Result diagnostics name → column of the kernels' diagnostics rows (``kernels.D_*``).
+DIAGNOSTICS = {
+    "path": _k.D_PATH, "min_slip_path": _k.D_MIN_SLIP_PATH,
+    "n_short_slip_phases": _k.D_N_SHORT_SLIP, "n_belt_speed_without_stick": _k.D_N_NO_STICK,
+    "x1_final": _k.D_X1, "x2_final": _k.D_X2, "stick_final": _k.D_STICK,
+    "n_breakaway": _k.D_N_BREAKAWAY, "n_slip_phases": _k.D_N_SLIP_PHASES,
+}
+
+
+def _check_options(
+    model: str, integrator: str, white_increment: str, white_stream: str, path_coordinate: str,
+    runs: Any, save_every: int,
+) -> None:
+    """Refuse a combination of :func:`simulate` options that has no meaning, saying what to change."""
     if model not in MODELS:
         raise ParameterError(f"unknown model {model!r}; choose one of {MODELS}")
     if integrator not in INTEGRATORS:
@@ -440,95 +509,114 @@ def simulate(
         raise ParameterError(f"runs must be a positive integer, got {runs!r}")
     if save_every < 1:
         raise ParameterError(f"save_every must be >= 1, got {save_every}")
-    warn_list = check_time_step(dt, tau_end, integrator, plist)
-    law_spec: LawSpec = law_III() if law is None else law
-    plan = _plan(plist, model, law_spec, process, sigma_zeta, x0, tau_end, dt, white_increment)
-    root = as_seed_sequence(seed)
 
-    npar = len(plist)
-    n_traj = npar * runs
-    nev = int(max_events) if max_events is not None else int(2 * tau_end) + 16
-    nsteps = plan.nsteps
-    nsave = nsteps // save_every + 1 if save_trajectory else 0
-    noise = {"deterministic": _k.NOISE_NONE, "white": _k.NOISE_WHITE,
-             "contact": _k.NOISE_PROCESS}[model]
-    scheme = _k.SCHEME_MILSTEIN if integrator == "milstein" else _k.SCHEME_EULER
-    path_mode = PATH_COORDINATES[path_coordinate]
 
-    proc_dx = process.dx if (process is not None and model == "contact") else 1.0
-    prm_set, lawp_set, shape_set = pack_rows(plist, plan.laws, plan.sigma_eff, proc_dx)
+def _allocate_output(n_traj: int, capacity: int, nsave: int) -> _k.KernelOutput:
+    """The outputs of ``n_traj`` trajectories: X_gh/τ_gh NaN beyond M, counts, saved states, diagnostics."""
+    return _k.KernelOutput(
+        x_gh=np.full((n_traj, capacity), np.nan), t_gh=np.full((n_traj, capacity), np.nan),
+        counts=np.zeros(n_traj, dtype=np.int64), traj=np.zeros((n_traj, nsave, 3)),
+        diag=np.zeros((n_traj, _k.N_DIAG)),
+    )
 
-    x0_set = np.array(plan.x0, dtype=np.float64).reshape(npar, 2)
-    x_gh = np.full((n_traj, nev), np.nan)
-    t_gh = np.full((n_traj, nev), np.nan)
-    counts = np.zeros(n_traj, dtype=np.int64)
-    diag = np.zeros((n_traj, _k.N_DIAG))
-    traj = np.zeros((n_traj, nsave, 3))
-    n_proc_len = 1
-    if model == "contact":
-        assert process is not None
-        n_proc_len = round(process.length / process.dx)
 
-    philox_white = noise == _k.NOISE_WHITE and white_stream == "philox"
-    buffer_white = noise == _k.NOISE_WHITE and not philox_white
-    spectral = (_SpectralBatch(process) if noise == _k.NOISE_PROCESS
-                and getattr(type(process), "generate", None) in _SPECTRAL_GENERATE else None)
+@dataclass
+class _BatchRunner:
+    """Runs trajectories ``lo … hi − 1`` (trajectory ``j`` = parameter set ``j // runs``, run
+    ``j % runs``) through the compiled kernel: draws their random input from their own streams
+    (:func:`trajectory_seed`), then writes rows ``lo … hi − 1`` of ``out``."""
 
-    def run_batch(lo: int, hi: int) -> None:
-        idx = np.arange(lo, hi)
-        sets = idx // runs
-        rr = idx % runs
-        b = hi - lo
-        if buffer_white:
-            dw = np.empty((b, nsteps))  # every row is filled below
-        else:
-            dw = np.zeros((b, 1))
-        proc = np.zeros((b, n_proc_len))
-        nproc = np.full(b, n_proc_len, dtype=np.int64)
-        if philox_white:
-            # the key of trajectory (i, r): its spawned seed's first 64 bits (same as
-            # _ph.trajectory_key(trajectory_seed(root, i, r)), computed in compiled code)
-            keys = _ph.trajectory_keys(root, np.zeros_like(sets) if common_random_numbers else sets, rr)
-        else:
-            keys = np.zeros(1, dtype=np.uint64)
-        if spectral is not None:
-            key_sets = np.zeros_like(sets) if common_random_numbers else sets
-            prs = [plan.pressures[int(i)] for i in sets]
-            spectral.fill(proc, root, key_sets, rr, [float(p_) for p_ in prs if p_ is not None])
-        elif noise != _k.NOISE_NONE and not philox_white:
-            sq = math.sqrt(dt)
+    plan: _Plan
+    model: str
+    integrator: str
+    process: ProcessModel | None
+    root: np.random.SeedSequence
+    runs: int
+    common_random_numbers: bool
+    path_mode: int
+    white_stream: str
+    dt: float
+    tau_end: float
+    save_every: int
+    accurate: _acc.AccurateSettings
+    out: _k.KernelOutput
+
+    def __post_init__(self) -> None:
+        self.noise = {"deterministic": _k.NOISE_NONE, "white": _k.NOISE_WHITE,
+                      "contact": _k.NOISE_PROCESS}[self.model]
+        self.scheme = _k.SCHEME_MILSTEIN if self.integrator == "milstein" else _k.SCHEME_EULER
+        contact = self.model == "contact" and self.process is not None
+        self.n_proc = round(self.process.length / self.process.dx) if contact else 1  # type: ignore[union-attr]
+        self.rows = pack_rows(self.plan.params, self.plan.laws, self.plan.sigma_eff,
+                              self.process.dx if contact else 1.0)  # type: ignore[union-attr]
+        self.x0 = np.array(self.plan.x0, dtype=np.float64).reshape(len(self.plan.params), 2)
+        self.philox = self.noise == _k.NOISE_WHITE and self.white_stream == "philox"
+        self.spectral = (_SpectralBatch(self.process) if self.noise == _k.NOISE_PROCESS
+                         and getattr(type(self.process), "generate", None) in _SPECTRAL_GENERATE else None)
+
+    def _random_input(
+        self, sets: npt.NDArray[np.int64], rr: npt.NDArray[np.int64]
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.uint64]]:
+        """The increments ``dw`` (white noise from a buffer), process realisations and Philox keys
+        of the trajectories ``(sets[j], rr[j])``."""
+        b = sets.size
+        nsteps = self.plan.nsteps
+        buffer_white = self.noise == _k.NOISE_WHITE and not self.philox
+        dw = np.empty((b, nsteps)) if buffer_white else np.zeros((b, 1))  # every row is filled below
+        proc = np.zeros((b, self.n_proc))
+        key_sets = np.zeros_like(sets) if self.common_random_numbers else sets
+        # the key of trajectory (i, r): its spawned seed's first 64 bits (the same as
+        # _ph.trajectory_key(trajectory_seed(root, i, r)), computed in compiled code)
+        keys = _ph.trajectory_keys(self.root, key_sets, rr) if self.philox else np.zeros(1, dtype=np.uint64)
+        if self.spectral is not None:
+            prs = [self.plan.pressures[int(i)] for i in sets]
+            self.spectral.fill(proc, self.root, key_sets, rr, [float(p_) for p_ in prs if p_ is not None])
+        elif self.noise != _k.NOISE_NONE and not self.philox:
+            sq = math.sqrt(self.dt)
             for j in range(b):
-                key_set = 0 if common_random_numbers else int(sets[j])
-                rng = np.random.Generator(np.random.PCG64(trajectory_seed(root, key_set, int(rr[j]))))
-                if noise == _k.NOISE_WHITE:
+                rng = np.random.Generator(np.random.PCG64(trajectory_seed(self.root, int(key_sets[j]),
+                                                                          int(rr[j]))))
+                if self.noise == _k.NOISE_WHITE:
                     rng.standard_normal(out=dw[j])
                     dw[j] *= sq
                 else:
-                    assert process is not None
-                    pr = plan.pressures[int(sets[j])]
+                    assert self.process is not None
+                    pr = self.plan.pressures[int(sets[j])]
                     assert pr is not None
-                    vals = np.asarray(process.generate(pr, rng), dtype=np.float64)
-                    if vals.shape != (n_proc_len,):
+                    vals = np.asarray(self.process.generate(pr, rng), dtype=np.float64)
+                    if vals.shape != (self.n_proc,):
                         raise RuntimeError(
-                            f"process realisation has shape {vals.shape}, expected ({n_proc_len},)"
+                            f"process realisation has shape {vals.shape}, expected ({self.n_proc},)"
                         )
                     proc[j] = vals
-        x0b = x0_set[sets]
-        if integrator == "accurate":
-            _acc.run_accurate_batch(
-                prm_set[sets], shape_set[sets], lawp_set[sets], x0b, float(tau_end),
-                min(dt, max_step), max_step, rtol, atol, noise, path_mode, proc, nproc,
-                x_gh[lo:hi], t_gh[lo:hi], counts[lo:hi], traj[lo:hi], save_every * dt,
-                diag[lo:hi],
-            )
+        return dw, proc, keys
+
+    def __call__(self, lo: int, hi: int) -> None:
+        idx = np.arange(lo, hi)
+        sets = idx // self.runs
+        rr = idx % self.runs
+        dw, proc, keys = self._random_input(sets, rr)
+        prm, lawp, shapes = self.rows
+        rows = _k.KernelRows(prm[sets], shapes[sets], lawp[sets], self.x0[sets], proc,
+                             np.full(hi - lo, self.n_proc, dtype=np.int64))
+        o = self.out
+        out = _k.KernelOutput(o.x_gh[lo:hi], o.t_gh[lo:hi], o.counts[lo:hi], o.traj[lo:hi], o.diag[lo:hi])
+        if self.integrator == "accurate":
+            _acc.run_accurate_batch(rows, out, self.accurate, self.noise, self.path_mode)
         else:
             _k.run_fixed_step_batch(
-                prm_set[sets], shape_set[sets], lawp_set[sets], x0b, nsteps, dt, scheme, noise,
-                path_mode, dw, proc, nproc, x_gh[lo:hi], t_gh[lo:hi], counts[lo:hi],
-                traj[lo:hi], save_every, diag[lo:hi],
-                _k.WHITE_PHILOX if philox_white else _k.WHITE_GIVEN, keys,
+                rows, out, _k.FixedStepGrid(self.plan.nsteps, self.dt, self.save_every), self.scheme,
+                self.noise, self.path_mode,
+                _k.WhiteInput(_k.WHITE_PHILOX if self.philox else _k.WHITE_GIVEN, dw, keys),
             )
 
+
+def _run_batches(
+    run_batch: Callable[[int, int], None], n_traj: int, workers: int | None, batch_size: int,
+    progress: Callable[[int, int], None] | None,
+) -> None:
+    """Run ``run_batch(lo, hi)`` over ``0 … n_traj`` in batches on ``workers`` threads (default: all
+    cores); ``progress(done, total)`` after every batch, in order.  The kernels release the GIL."""
     nworkers = workers if workers is not None else (os.cpu_count() or 1)
     if nworkers < 1:
         raise ParameterError(f"workers must be >= 1, got {workers}")
@@ -548,61 +636,19 @@ def simulate(
             done += hi - lo
             if progress is not None:
                 progress(done, n_traj)
-    else:
-        with ThreadPoolExecutor(max_workers=nworkers) as pool:
-            futures = [pool.submit(run_batch, lo, hi) for lo, hi in bounds]
-            try:
-                for f, (lo, hi) in zip(futures, bounds, strict=True):
-                    f.result()
-                    done += hi - lo
-                    if progress is not None:
-                        progress(done, n_traj)
-            except BaseException:
-                for f in futures:
-                    f.cancel()
-                raise
-
-    # outputs
-    diag_names = {
-        "path": _k.D_PATH, "min_slip_path": _k.D_MIN_SLIP_PATH,
-        "n_short_slip_phases": _k.D_N_SHORT_SLIP, "n_belt_speed_without_stick": _k.D_N_NO_STICK,
-        "x1_final": _k.D_X1, "x2_final": _k.D_X2, "stick_final": _k.D_STICK,
-        "n_breakaway": _k.D_N_BREAKAWAY, "n_slip_phases": _k.D_N_SLIP_PHASES,
-    }
-    diagnostics = {k: diag[:, j].reshape(npar, runs).copy() for k, j in diag_names.items()}
-    # returned in the result only (``result.warnings``, also in its JSON and NetCDF); callers show
-    # them (the CLI prints each on stderr, the studies count them, the report explains them)
-    warn_list += _post_warnings(counts, nev, diag, model, process, plist, path_mode)
-    return SimulationResult(
-        params=plist,
-        x_gh=x_gh.reshape(npar, runs, nev),
-        t_gh=t_gh.reshape(npar, runs, nev),
-        stick_count=counts.reshape(npar, runs),
-        diagnostics=diagnostics,
-        trajectory=traj.reshape(npar, runs, nsave, 3) if save_trajectory else None,
-        model=model,
-        integrator=integrator,
-        dt=dt,
-        tau_end=tau_end,
-        runs=runs,
-        seed_entropy=int(root.entropy),  # type: ignore[arg-type]
-        versions=package_versions(),
-        path_coordinate=path_coordinate,
-        x0=plan.x0,
-        laws=[lw.to_dict() for lw in plan.laws],
-        sigma_zeta=plan.sigma,
-        process=process.to_dict() if (process is not None and model != "deterministic") else None,
-        warnings=warn_list,
-        settings={
-            "save_every": save_every, "max_events": nev,
-            "common_random_numbers": common_random_numbers,
-            "rtol": rtol, "atol": atol, "max_step": max_step,
-            "spawn_key_layout": "(param_set, run)",
-            "white_increment": white_increment,
-            "white_stream": white_stream,
-            "sigma_zeta_effective": plan.sigma_eff,
-        },
-    )
+        return
+    with ThreadPoolExecutor(max_workers=nworkers) as pool:
+        futures = [pool.submit(run_batch, lo, hi) for lo, hi in bounds]
+        try:
+            for f, (lo, hi) in zip(futures, bounds, strict=True):
+                f.result()
+                done += hi - lo
+                if progress is not None:
+                    progress(done, n_traj)
+        except BaseException:
+            for f in futures:
+                f.cancel()
+            raise
 
 
 def _post_warnings(

@@ -41,12 +41,13 @@ condition fails, the mass keeps slipping and the friction force changes sign
 from __future__ import annotations
 
 import math
+from typing import NamedTuple
 
 import numba
 import numpy as np
 import numpy.typing as npt
 
-from .friction_laws import SHAPE_CONSTANT, SHAPE_RATIONAL, mu_kinetic_row
+from .friction_laws import SHAPE_CONSTANT, SHAPE_RATIONAL, mu_kinetic_row, mu_rational
 from .philox import pair_normals
 
 # --- codes -------------------------------------------------------------------
@@ -68,6 +69,45 @@ PATH_POSITION = 2
 #: :mod:`stochfric.oscillator.philox`), ``ΔW_k = R_k √Δτ``.
 WHITE_GIVEN = 0
 WHITE_PHILOX = 1
+
+class KernelRows(NamedTuple):
+    """Per-trajectory inputs of both integrators; row ``i`` belongs to trajectory ``i``
+    (:func:`stochfric.oscillator.integrate.pack_rows` builds ``prm``, ``shapes``, ``lawp``)."""
+
+    prm: npt.NDArray[np.float64]  #: (n, N_PRM) parameter rows in the ``P_*`` layout
+    shapes: npt.NDArray[np.int64]  #: (n,) friction-law shape codes (``friction_laws.SHAPE_*``)
+    lawp: npt.NDArray[np.float64]  #: (n, k) friction-law parameters, zero-padded
+    x0: npt.NDArray[np.float64]  #: (n, 2) initial (x1, x2)
+    proc: npt.NDArray[np.float64]  #: (n, n_max) contact-process realisations (contact model)
+    n_proc: npt.NDArray[np.int64]  #: (n,) points of each realisation (one period)
+
+
+class KernelOutput(NamedTuple):
+    """Per-trajectory outputs of both integrators (row ``i`` = trajectory ``i``)."""
+
+    x_gh: npt.NDArray[np.float64]  #: (n, capacity) slip→stick positions X_gh (NaN beyond M)
+    t_gh: npt.NDArray[np.float64]  #: (n, capacity) their times τ
+    counts: npt.NDArray[np.int64]  #: (n,) M, the number of slip→stick transitions
+    traj: npt.NDArray[np.float64]  #: (n, n_save, 3) saved states (τ, x1, x2); n_save may be 0
+    diag: npt.NDArray[np.float64]  #: (n, N_DIAG) diagnostics in the ``D_*`` layout
+
+
+class FixedStepGrid(NamedTuple):
+    """The fixed-step grid: ``nsteps`` steps of ``dt``; every ``decimate``-th state is saved."""
+
+    nsteps: int
+    dt: float
+    decimate: int
+
+
+class WhiteInput(NamedTuple):
+    """Where the white-noise increments come from: ``source`` ``WHITE_GIVEN`` (``dw[i]``, the
+    increments ΔW_k of row ``i``) or ``WHITE_PHILOX`` (drawn in the kernel from ``keys[i]``)."""
+
+    source: int
+    dw: npt.NDArray[np.float64]
+    keys: npt.NDArray[np.uint64]
+
 
 # --- layout of the per-trajectory parameter row --------------------------------
 P_GAMMA0 = 0
@@ -96,6 +136,23 @@ N_DIAG = 9
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def store_diagnostics(
+    row: npt.NDArray[np.float64], path: float, min_slip_path: float, n_short: int, n_no_stick: int,
+    x1: float, x2: float, stick: bool, n_breakaway: int, n_slip_phases: int,
+) -> None:  # pragma: no cover
+    """Write one trajectory's diagnostics row in the ``D_*`` layout (both integrators)."""
+    row[D_PATH] = path
+    row[D_MIN_SLIP_PATH] = min_slip_path
+    row[D_N_SHORT_SLIP] = n_short
+    row[D_N_NO_STICK] = n_no_stick
+    row[D_X1] = x1
+    row[D_X2] = x2
+    row[D_STICK] = 1.0 if stick else 0.0
+    row[D_N_BREAKAWAY] = n_breakaway
+    row[D_N_SLIP_PHASES] = n_slip_phases
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def process_value_row(
     proc: npt.NDArray[np.float64], r: int | np.uint64, n_proc: int, dx: float, path: float
 ) -> float:  # pragma: no cover
@@ -103,14 +160,27 @@ def process_value_row(
     grid points ``j·dx`` and periodic continuation with period ``n_proc·dx`` (thesis 4.1.3)."""
     u = path / dx
     i = math.floor(u)
-    w = u - i
+    i0, i1 = _segment_ends(i, n_proc)
+    return lerp(u - i, proc[r, i0], proc[r, i1])
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _segment_ends(i: float, n_proc: int) -> tuple[int, int]:  # pragma: no cover
+    """Grid indices ``(i0, i1)`` of the ends of process segment ``i = floor(path/dx)`` under the
+    periodic continuation with period ``n_proc`` points."""
     i0 = int(i)
     if i0 < 0 or i0 >= n_proc:  # integer division only beyond the first period
         i0 %= n_proc
     i1 = i0 + 1  # = (i0 + 1) mod n_proc
     if i1 == n_proc:
         i1 = 0
-    return (1.0 - w) * proc[r, i0] + w * proc[r, i1]
+    return i0, i1
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def lerp(w: float, v0: float, v1: float) -> float:  # pragma: no cover
+    """``(1 − w) v0 + w v1``: μ̂ between two grid values (the one interpolation of the process)."""
+    return (1.0 - w) * v0 + w * v1
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
@@ -119,13 +189,13 @@ def process_value(proc: npt.NDArray[np.float64], n_proc: int, dx: float, path: f
     return process_value_row(proc.reshape((1, proc.shape[0])), 0, n_proc, dx, path)
 
 
-@numba.njit(cache=True, nogil=True, error_model="numpy")
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def em_step(x: float, drift: float, diffusion: float, dw: float, h: float) -> float:  # pragma: no cover
     """One Euler–Maruyama step ``x + a h + b ΔW`` (Itô)."""
     return x + drift * h + diffusion * dw
 
 
-@numba.njit(cache=True, nogil=True, error_model="numpy")
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def milstein_step(
     x: float, drift: float, diffusion: float, bbprime: float, dw: float, h: float
 ) -> float:  # pragma: no cover
@@ -133,8 +203,30 @@ def milstein_step(
     return x + drift * h + diffusion * dw + 0.5 * bbprime * (dw * dw - h)
 
 
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def slip_drift(x1: float, x2: float, dd2: float, nn: float, mu: float, s: float) -> float:  # pragma: no cover
+    """The unforced slip acceleration of (4.7)/(4.36), ``−x1 − 2D x2 + n μ s`` (``dd2 = 2D``,
+    ``s = sign(γ0 − x2)``, μ = μ_k + μ̂); the caller adds ``q cos x3`` where the case is forced.
+    Every integrator (fixed step, fast passes, DOPRI5) evaluates the slip equations through it."""
+    return -x1 - dd2 * x2 + nn * mu * s
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def white_velocity_step(
+    x2: float, drift: float, s: float, ito: float, nn: float, sigma: float, avr: float, dw: float,
+    h: float, milstein: bool,
+) -> float:  # pragma: no cover
+    """``x2`` after one white-noise step of length ``h`` with increment ``dw`` (method §5.1):
+    Itô drift ``a − s n² σ_ζ/4`` (``ito = −n² σ_ζ/4``, erratum 3), diffusion
+    ``b = n s √(σ_ζ |γ0 − x2|)``; Euler–Maruyama, or Milstein with ``b b' = 2 s·ito``."""
+    b = nn * s * math.sqrt(sigma * avr)
+    if milstein:
+        return milstein_step(x2, drift + s * ito, b, 2.0 * s * ito, dw, h)
+    return em_step(x2, drift + s * ito, b, dw, h)
+
+
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _stick_force(x1: float, tau: float, prm: npt.NDArray[np.float64]) -> float:  # pragma: no cover
+def stick_force(x1: float, tau: float, prm: npt.NDArray[np.float64]) -> float:  # pragma: no cover
     """``x1 + 2Dγ0 − q cos(x30 + ητ)``: the force the static friction must hold (4.2/4.9)."""
     return x1 + 2.0 * prm[P_D] * prm[P_GAMMA0] - prm[P_Q] * math.cos(prm[P_X30] + prm[P_ETA] * tau)
 
@@ -143,7 +235,7 @@ def _stick_force(x1: float, tau: float, prm: npt.NDArray[np.float64]) -> float: 
 def _stick_force_hoisted(
     x1: float, tau: float, c2: float, qq: float, x30: float, eta: float, forced: bool
 ) -> float:  # pragma: no cover
-    """:func:`_stick_force` with the invariants hoisted: ``c2 = 2Dγ0``; the cosine is
+    """:func:`stick_force` with the invariants hoisted: ``c2 = 2Dγ0``; the cosine is
     skipped when ``q = 0`` (``forced`` false), where ``q cos x3`` is ±0 and changes nothing."""
     f = x1 + c2
     if forced:
@@ -195,8 +287,7 @@ def _lane_candidates(
     vr = gam - a2
     s = 1.0 if vr > 0.0 else -1.0
     avr = abs(vr)
-    v = vscale * avr
-    mu = p0 / (1.0 + p1 * v) + p2 + p3 * v * v
+    mu = mu_rational(p0, p1, p2, p3, vscale * avr)
     return x1s, ok_stick, vr, s, avr, mu
 
 
@@ -246,8 +337,8 @@ def _fast_pass_contact(
         fl = math.floor(u)
         w = u - fl
         hit = fl == pseg[jj]
-        mu += (1.0 - w) * pv0[jj] + w * pv1[jj]
-        drift = -a1 - cd2[jj] * a2 + cn[jj] * mu * s
+        mu += lerp(w, pv0[jj], pv1[jj])
+        drift = slip_drift(a1, a2, cd2[jj], cn[jj], mu, s)
         x1n = a1 + a2 * dt
         x2n = a2 + drift * dt
         ok_slip = (vr != 0.0) & ((gam - x2n) * s > 0.0)
@@ -267,15 +358,8 @@ def _load_segment(
 ) -> None:  # pragma: no cover
     """Lane ``jj``: the process segment ``floor(coord/dx)`` of realisation ``proc[r]`` and its
     end values, as :func:`process_value_row` indexes them (periodic continuation)."""
-    u = coord / dx
-    i = math.floor(u)
-    n = n_proc[r]
-    i0 = int(i)
-    if i0 < 0 or i0 >= n:
-        i0 %= n
-    i1 = i0 + 1
-    if i1 == n:
-        i1 = 0
+    i = math.floor(coord / dx)
+    i0, i1 = _segment_ends(i, n_proc[r])
     pseg[jj] = i
     pv0[jj] = proc[r, i0]
     pv1[jj] = proc[r, i1]
@@ -403,17 +487,13 @@ def _advance(
             mu = mu_kinetic_row(shape, vscale * avr, lawp, j)
             if contact:
                 mu += process_value_row(proc, j, n_proc[j], pdx, x1 if position else path)
-            drift = -x1 - dd2 * x2 + nn * mu * s
+            drift = slip_drift(x1, x2, dd2, nn, mu, s)
             if forced:
                 drift += qq * math.cos(x30 + eta * tau)
             x1n = x1 + x2 * h
             if white:
                 dwh = dwk if h == dt else dwk * math.sqrt(h / dt)
-                b = nn * s * math.sqrt(sigma * avr)
-                if milstein:
-                    x2n = milstein_step(x2, drift + s * ito, b, 2.0 * s * ito, dwh, h)
-                else:
-                    x2n = em_step(x2, drift + s * ito, b, dwh, h)
+                x2n = white_velocity_step(x2, drift, s, ito, nn, sigma, avr, dwh, h, milstein)
             else:
                 x2n = x2 + drift * h
             if mass_path:
@@ -479,32 +559,15 @@ def _advance(
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def run_fixed_step_batch(
-    prm: npt.NDArray[np.float64],
-    shapes: npt.NDArray[np.int64],
-    lawp: npt.NDArray[np.float64],
-    x0: npt.NDArray[np.float64],
-    nsteps: int,
-    dt: float,
-    scheme: int,
-    noise: int,
-    path_mode: int,
-    dw: npt.NDArray[np.float64],
-    proc: npt.NDArray[np.float64],
-    n_proc: npt.NDArray[np.int64],
-    xgh: npt.NDArray[np.float64],
-    tgh: npt.NDArray[np.float64],
-    counts: npt.NDArray[np.int64],
-    traj: npt.NDArray[np.float64],
-    decimate: int,
-    diag: npt.NDArray[np.float64],
-    white_source: int,
-    keys: npt.NDArray[np.uint64],
+    rows: KernelRows, out: KernelOutput, grid: FixedStepGrid, scheme: int, noise: int, path_mode: int,
+    white_input: WhiteInput,
 ) -> None:  # pragma: no cover
-    """Integrate every row (one trajectory each) from ``τ = 0`` over ``nsteps`` steps of ``dt``.
+    """Integrate every row (one trajectory each) from ``τ = 0`` over ``grid.nsteps`` steps of
+    ``grid.dt``.
 
     Row ``i`` reads only row ``i`` of every input and writes only row ``i`` of every output:
     ``counts[i]`` = number of slip→stick transitions ``M``, their positions ``X_gh`` and
-    times in ``xgh[i]``/``tgh[i]`` (as many as fit), every ``decimate``-th grid state
+    times in ``x_gh[i]``/``t_gh[i]`` (as many as fit), every ``decimate``-th grid state
     (``τ, x1, x2``) in ``traj[i]`` when it has rows, diagnostics in ``diag[i]``.  ``dw[i]``
     holds the Wiener increments ``ΔW_k`` (``N(0, dt)``) for white noise when
     ``white_source == WHITE_GIVEN``; with ``WHITE_PHILOX`` they are drawn inside the kernel,
@@ -524,6 +587,10 @@ def run_fixed_step_batch(
     vectorise).  The numbers of a trajectory do not depend on the grouping or the batching.
     Releases the GIL, so batches run in parallel threads.
     """
+    prm, shapes, lawp, x0, proc, n_proc = rows
+    xgh, tgh, counts, traj, diag = out
+    nsteps, dt, decimate = grid
+    white_source, dw, keys = white_input
     white = noise == NOISE_WHITE
     philox = white and white_source == WHITE_PHILOX
     sqdt = math.sqrt(dt)
@@ -581,7 +648,7 @@ def run_fixed_step_batch(
             # on the belt speed the unbalanced force decides the direction of a first slip
             # (forwards, s = −1, when it is below the static band); off it the relative velocity
             if x2 == gamma0:
-                fs[_F_S, jj] = 1.0 if _stick_force(x1, 0.0, row) >= 0.0 else -1.0
+                fs[_F_S, jj] = 1.0 if stick_force(x1, 0.0, row) >= 0.0 else -1.0
             else:
                 fs[_F_S, jj] = -1.0 if x2 > gamma0 else 1.0
             fs[_F_PATH, jj] = 0.0
@@ -589,7 +656,7 @@ def run_fixed_step_batch(
                                                row[P_PROC_DX], x1 if position else 0.0)
             fs[_F_PSS, jj] = 0.0
             fs[_F_MINSLIP, jj] = np.inf
-            stick = (x2 == gamma0) and (abs(_stick_force(x1, 0.0, row)) <= lim)
+            stick = (x2 == gamma0) and (abs(stick_force(x1, 0.0, row)) <= lim)
             fs[_F_STK, jj] = 1.0 if stick else 0.0
             ist[_I_ISAVE, jj] = 1
             if nsave > 0:
@@ -652,16 +719,11 @@ def run_fixed_step_batch(
                     x1s, ok_stick, vr, s, avr, mu = _lane_candidates(
                         a1, a2, gam, cc2[jj], vlimb[jj], cvs[jj], cp0[jj], cp1[jj], cp2[jj],
                         cp3[jj], dt)
-                    drift = -a1 - cd2[jj] * a2 + cn[jj] * mu * s
+                    drift = slip_drift(a1, a2, cd2[jj], cn[jj], mu, s)
                     x1n = a1 + a2 * dt
                     if white:
-                        ito = cito[jj]
-                        b = cn[jj] * s * math.sqrt(csig[jj] * avr)
-                        dwj = wk[jj]
-                        if milstein:
-                            x2n = a2 + (drift + s * ito) * dt + b * dwj + 0.5 * (2.0 * s * ito) * (dwj * dwj - dt)
-                        else:
-                            x2n = a2 + (drift + s * ito) * dt + b * dwj
+                        x2n = white_velocity_step(a2, drift, s, cito[jj], cn[jj], csig[jj], avr, wk[jj], dt,
+                                                  milstein)
                     else:
                         x2n = a2 + drift * dt
                     ok_slip = (vr != 0.0) & ((gam - x2n) * s > 0.0)
@@ -706,17 +768,13 @@ def run_fixed_step_batch(
                             if contact:
                                 mu += process_value_row(proc, j, n_proc[j], cs[_C_PDX, jj],
                                                         a1 if position else path)
-                            drift = -a1 - cd2[jj] * a2 + nn * mu * s
+                            drift = slip_drift(a1, a2, cd2[jj], nn, mu, s)
                             if cs[_C_FORCED, jj] != 0.0:
                                 drift += cs[_C_QQ, jj] * math.cos(cs[_C_X30, jj] + cs[_C_ETA, jj] * (k * dt))
                             x1n = a1 + a2 * dt
                             if white:
-                                ito = cito[jj]
-                                b = nn * s * math.sqrt(csig[jj] * avr)
-                                if milstein:
-                                    x2n = milstein_step(a2, drift + s * ito, b, 2.0 * s * ito, wk[jj], dt)
-                                else:
-                                    x2n = em_step(a2, drift + s * ito, b, wk[jj], dt)
+                                x2n = white_velocity_step(a2, drift, s, cito[jj], nn, csig[jj], avr, wk[jj], dt,
+                                                          milstein)
                             else:
                                 x2n = a2 + drift * dt
                             if (gam - x2n) * s > 0.0:
@@ -748,62 +806,6 @@ def run_fixed_step_batch(
         for jj in range(ng):
             j = g0 + jj
             counts[j] = ist[_I_M, jj]
-            diag[j, D_PATH] = fs[_F_PATH, jj]
-            diag[j, D_MIN_SLIP_PATH] = fs[_F_MINSLIP, jj]
-            diag[j, D_N_SHORT_SLIP] = ist[_I_NSHORT, jj]
-            diag[j, D_N_NO_STICK] = ist[_I_NNOSTICK, jj]
-            diag[j, D_X1] = fs[_F_X1, jj]
-            diag[j, D_X2] = fs[_F_X2, jj]
-            diag[j, D_STICK] = 1.0 if fs[_F_STK, jj] != 0.0 else 0.0
-            diag[j, D_N_BREAKAWAY] = ist[_I_NBREAK, jj]
-            diag[j, D_N_SLIP_PHASES] = ist[_I_NPHASES, jj]
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def run_fixed_step(
-    prm: npt.NDArray[np.float64],
-    shape: int,
-    lawp: npt.NDArray[np.float64],
-    x10: float,
-    x20: float,
-    nsteps: int,
-    dt: float,
-    scheme: int,
-    noise: int,
-    path_mode: int,
-    dw: npt.NDArray[np.float64],
-    proc: npt.NDArray[np.float64],
-    n_proc: int,
-    xgh: npt.NDArray[np.float64],
-    tgh: npt.NDArray[np.float64],
-    traj: npt.NDArray[np.float64],
-    decimate: int,
-    diag: npt.NDArray[np.float64],
-) -> int:  # pragma: no cover
-    """One trajectory through :func:`run_fixed_step_batch`; returns ``M``.
-
-    Same meaning of the arguments, for a single row (``traj`` is ``(k, 3)``).
-    """
-    prm2 = prm.copy().reshape((1, prm.shape[0]))
-    shapes = np.full(1, shape, dtype=np.int64)
-    lawp2 = lawp.copy().reshape((1, lawp.shape[0]))
-    x0 = np.empty((1, 2))
-    x0[0, 0] = x10
-    x0[0, 1] = x20
-    dw2 = dw.copy().reshape((1, dw.shape[0]))
-    proc2 = proc.copy().reshape((1, proc.shape[0]))
-    nproc = np.full(1, n_proc, dtype=np.int64)
-    xgh2 = np.full((1, xgh.shape[0]), np.nan)
-    tgh2 = np.full((1, tgh.shape[0]), np.nan)
-    counts = np.zeros(1, dtype=np.int64)
-    traj2 = np.zeros((1, traj.shape[0], 3))
-    diag2 = np.zeros((1, diag.shape[0]))
-    run_fixed_step_batch(prm2, shapes, lawp2, x0, nsteps, dt, scheme, noise, path_mode, dw2,
-                         proc2, nproc, xgh2, tgh2, counts, traj2, decimate, diag2, WHITE_GIVEN,
-                         np.zeros(1, dtype=np.uint64))
-    m = min(int(counts[0]), xgh.shape[0])
-    xgh[:m] = xgh2[0, :m]
-    tgh[:m] = tgh2[0, :m]
-    traj[:, :] = traj2[0]
-    diag[:] = diag2[0]
-    return int(counts[0])
+            store_diagnostics(diag[j], fs[_F_PATH, jj], fs[_F_MINSLIP, jj], ist[_I_NSHORT, jj],
+                              ist[_I_NNOSTICK, jj], fs[_F_X1, jj], fs[_F_X2, jj], fs[_F_STK, jj] != 0.0,
+                              ist[_I_NBREAK, jj], ist[_I_NPHASES, jj])

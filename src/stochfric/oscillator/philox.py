@@ -42,6 +42,7 @@ is only ~10 µs of integration.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numba
 import numpy as np
@@ -104,30 +105,26 @@ def philox4x32_10_array(
 
 # --- bit casts (compiled to a plain register move, so loops using them still vectorise) ---------
 
-@intrinsic
-def _as_float(typingctx, bits):  # type: ignore[no-untyped-def]  # pragma: no cover
-    """Reinterpret the 64 bits of a uint64 as a float64 (no conversion)."""
-    if bits != types.uint64:
-        return None
-    sig = types.float64(types.uint64)
+def _bitcast(source: Any, target: Any, llvm_type: Any) -> Any:
+    """A compiled-only function reinterpreting the 64 bits of a ``source`` value as ``target``
+    (no conversion: one LLVM ``bitcast``)."""
 
-    def codegen(context, builder, signature, args):  # type: ignore[no-untyped-def]
-        return builder.bitcast(args[0], ir.DoubleType())
+    @intrinsic
+    def cast(typingctx, value):  # type: ignore[no-untyped-def]  # pragma: no cover
+        if value != source:
+            return None
 
-    return sig, codegen
+        def codegen(context, builder, signature, args):  # type: ignore[no-untyped-def]
+            return builder.bitcast(args[0], llvm_type)
+
+        return target(source), codegen
+
+    return cast
 
 
-@intrinsic
-def _as_bits(typingctx, x):  # type: ignore[no-untyped-def]  # pragma: no cover
-    """Reinterpret the 64 bits of a float64 as a uint64 (no conversion)."""
-    if x != types.float64:
-        return None
-    sig = types.uint64(types.float64)
-
-    def codegen(context, builder, signature, args):  # type: ignore[no-untyped-def]
-        return builder.bitcast(args[0], ir.IntType(64))
-
-    return sig, codegen
+#: uint64 bits → float64, and back
+_as_float = _bitcast(types.uint64, types.float64, ir.DoubleType())
+_as_bits = _bitcast(types.float64, types.uint64, ir.IntType(64))
 
 
 # --- branch-free elementary functions for the Box–Muller transform ------------------------------
@@ -164,7 +161,7 @@ _SQRT2 = 1.4142135623730951
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def log_positive(u: float) -> float:  # pragma: no cover
     """ln u for a normal, finite u > 0 (branch-free fdlibm ``__ieee754_log``; < 1 ulp)."""
-    bits: np.uint64 = _as_bits(u)  # type: ignore[call-arg]
+    bits: np.uint64 = _as_bits(u)
     e = np.int64(bits >> np.uint64(52)) - 1023
     m = _as_float((bits & _MANT) | _ONE_BITS)  # u = 2^e m, m in [1, 2)
     big = m > _SQRT2

@@ -18,6 +18,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
+from kernel_helpers import run_accurate  # tests/kernel_helpers.py (test helper)
 from stochfric.oscillator import accurate as A
 from stochfric.oscillator import kernels as K
 from stochfric.oscillator.friction_laws import SHAPE_CONSTANT
@@ -49,9 +50,9 @@ def run(x0: tuple[float, float], tau_end: float, *, mu_k: float = MU_K, proc: np
     nsave = int(tau_end / save_dt) + 1
     traj = np.full((nsave, 3), np.nan)
     diag = np.zeros(K.N_DIAG)
-    m = A.run_accurate(_prm(proc_dx=proc_dx, **kw), SHAPE_CONSTANT, np.array([mu_k]), x0[0], x0[1], tau_end,
-                       1e-3, 0.1, 1e-11, 1e-13, noise, K.PATH_MASS, procv, procv.size, xgh, tgh, traj,
-                       save_dt, diag)
+    m = run_accurate(_prm(proc_dx=proc_dx, **kw), SHAPE_CONSTANT, np.array([mu_k]), x0[0], x0[1], tau_end,
+                     1e-3, 0.1, 1e-11, 1e-13, noise, K.PATH_MASS, procv, procv.size, xgh, tgh, traj,
+                     save_dt, diag)
     return {"m": m, "xgh": xgh[:m], "tgh": tgh[:m], "traj": traj, "n_no_stick": diag[K.D_N_NO_STICK],
             "n_break": diag[K.D_N_BREAKAWAY], "stick": diag[K.D_STICK], "x1": diag[K.D_X1]}
 
@@ -191,7 +192,7 @@ def test_the_last_trajectory_sample_at_tau_end_is_written() -> None:
     (simulate(..., integrator='accurate', tau_end=0.3, dt=0.1, save_every=1) allocates these 4 rows.)"""
     traj = np.full((4, 3), np.nan)
     xgh, tgh, diag = np.full(4, np.nan), np.full(4, np.nan), np.zeros(K.N_DIAG)
-    A.run_accurate(_prm(), SHAPE_CONSTANT, np.array([MU_K]), 0.0, G0, 0.3, 1e-3, 0.1, 1e-11, 1e-13,
-                   K.NOISE_NONE, K.PATH_MASS, np.zeros(1), 1, xgh, tgh, traj, 0.1, diag)
+    run_accurate(_prm(), SHAPE_CONSTANT, np.array([MU_K]), 0.0, G0, 0.3, 1e-3, 0.1, 1e-11, 1e-13,
+                 K.NOISE_NONE, K.PATH_MASS, np.zeros(1), 1, xgh, tgh, traj, 0.1, diag)
     np.testing.assert_allclose(traj[:3], [[0.0, 0.0, 1.0], [0.1, 0.1, 1.0], [0.2, 0.2, 1.0]], atol=1e-15)
     np.testing.assert_allclose(traj[3], [0.3, 0.3, 1.0], atol=1e-12)

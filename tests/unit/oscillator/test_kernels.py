@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 import pytest
 
+from kernel_helpers import run_fixed_step  # tests/kernel_helpers.py (test helper)
 from stochfric.oscillator import kernels as K
 from stochfric.oscillator.friction_laws import SHAPE_CONSTANT, SHAPE_RATIONAL, SHAPE_TABULATED
 
@@ -83,9 +84,10 @@ def run(
     counts = np.zeros(nt, dtype=np.int64)
     traj = np.zeros((nt, nsteps + 1, 3))
     diag = np.zeros((nt, K.N_DIAG))
-    K.run_fixed_step_batch(prm, shapes, lawp, x0a, nsteps, dt, scheme, noise, path_mode, dwa, proca,
-                           nproc, xgh, tgh, counts, traj, 1, diag, K.WHITE_GIVEN,
-                           np.zeros(1, dtype=np.uint64))
+    K.run_fixed_step_batch(K.KernelRows(prm, shapes, lawp, x0a, proca, nproc),
+                           K.KernelOutput(xgh, tgh, counts, traj, diag), K.FixedStepGrid(nsteps, dt, 1),
+                           scheme, noise, path_mode,
+                           K.WhiteInput(K.WHITE_GIVEN, dwa, np.zeros(1, dtype=np.uint64)))
     return {"x1": diag[:, K.D_X1], "x2": diag[:, K.D_X2], "stick": diag[:, K.D_STICK],
             "path": diag[:, K.D_PATH], "n_break": diag[:, K.D_N_BREAKAWAY],
             "n_no_stick": diag[:, K.D_N_NO_STICK], "n_phases": diag[:, K.D_N_SLIP_PHASES],
@@ -301,7 +303,7 @@ def test_single_trajectory_wrapper_equals_the_batch_kernel() -> None:
     xgh = np.full(8, np.nan)
     tgh = np.full(8, np.nan)
     diag = np.zeros(K.N_DIAG)
-    m = K.run_fixed_step(prm, SHAPE_CONSTANT, np.array([0.25]), 0.0, 1.0, 2000, 0.01, K.SCHEME_EULER,
+    m = run_fixed_step(prm, SHAPE_CONSTANT, np.array([0.25]), 0.0, 1.0, 2000, 0.01, K.SCHEME_EULER,
                          K.NOISE_NONE, K.PATH_MASS, np.zeros(1), np.zeros(1), 1, xgh, tgh,
                          np.zeros((0, 3)), 1, diag)
     out = run((0.0, 1.0), 2000, 0.01)

@@ -16,6 +16,7 @@ import numpy as np
 import pytest
 from philox64 import philox4x64_10_array  # tests/unit/oscillator/philox64.py (test helper)
 
+from kernel_helpers import run_fixed_step  # tests/kernel_helpers.py (test helper)
 from stochfric.oscillator import kernels as K
 from stochfric.oscillator import philox as P
 from stochfric.oscillator.friction_laws import law_III
@@ -185,9 +186,10 @@ def test_kernel_draws_equal_the_same_numbers_given_as_increments(scheme: int) ->
             traj = np.zeros((n, nsteps // 10 + 1, 3))
             diag = np.zeros((n, K.N_DIAG))
             counts = np.zeros(n, dtype=np.int64)
-            K.run_fixed_step_batch(prm, shapes, lawp, x0, nsteps, dt, scheme, K.NOISE_WHITE,
-                                   K.PATH_MASS, dw, np.zeros((n, 1)), np.ones(n, dtype=np.int64),
-                                   xgh, np.full((n, 64), np.nan), counts, traj, 10, diag, src, keys)
+            K.run_fixed_step_batch(
+                K.KernelRows(prm, shapes, lawp, x0, np.zeros((n, 1)), np.ones(n, dtype=np.int64)),
+                K.KernelOutput(xgh, np.full((n, 64), np.nan), counts, traj, diag),
+                K.FixedStepGrid(nsteps, dt, 10), scheme, K.NOISE_WHITE, K.PATH_MASS, K.WhiteInput(src, dw, keys))
             outs.append((xgh, traj, diag, counts))
         for a, b in zip(*outs, strict=True):
             np.testing.assert_array_equal(a, b)
@@ -216,7 +218,7 @@ def test_simulate_white_streams() -> None:
             dw = draw(r) * math.sqrt(dt)
             traj = np.zeros((nsteps + 1, 3))
             diag = np.zeros(K.N_DIAG)
-            K.run_fixed_step(_prm(0.05)[0], law_III().shape, law_III().param_array, 0.0, 1.0, nsteps,
+            run_fixed_step(_prm(0.05)[0], law_III().shape, law_III().param_array, 0.0, 1.0, nsteps,
                              dt, K.SCHEME_EULER, K.NOISE_WHITE, K.PATH_MASS, dw, np.zeros(1), 1,
                              np.zeros(32), np.zeros(32), traj, 1, diag)
             np.testing.assert_array_equal(res.trajectory[0, r], traj)
