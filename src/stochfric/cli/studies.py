@@ -45,6 +45,10 @@ TauOpt = Annotated[float | None, typer.Option("--tau-end", help="Simulated time 
 DtOpt = Annotated[float | None, typer.Option("--dt", help="Time step Δτ (default: preset).")]
 IntOpt = Annotated[str, typer.Option("--integrator", help="euler | accurate (deterministic, contact).")]
 WinOpt = Annotated[float, typer.Option("--stick-window", help="Stick window: τ > w·τ_end counts (default 0.5).")]
+ForceListOpt = Annotated[str | None, typer.Option("--normal-force", help="N [N] list (default: preset).")]
+ForcingQOpt = Annotated[str, typer.Option("--q", help="Forcing amplitudes q = Q/(cL), list.")]
+EtaOpt = Annotated[str, typer.Option("--eta", help="η = Ω/ω0 grid START:STOP:NUM or list.")]
+PhaseRunsOpt = Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for the phase diagrams (0: none).")]
 ExecOpt = Annotated[str, typer.Option("--executor", help="serial | processes (local) ; see --scheduler.")]
 WorkersOpt = Annotated[int | None, typer.Option("--workers", help="Processes (or threads for serial).")]
 SchedOpt = Annotated[str | None, typer.Option("--scheduler", help="Dask scheduler address (uses Dask).")]
@@ -296,8 +300,7 @@ def damping_command(
     phase_damping: Annotated[str | None, typer.Option(
         "--phase-damping", help="D values of the phase diagrams, list or A:B:NUM (default: 5 grid values from the "
                                 "lowest D to the first grid D above the largest D_max at the phase force).")] = None,
-    phase_runs: Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for the phase diagrams "
-                                                                        "(0: none).")] = 3,
+    phase_runs: PhaseRunsOpt = 3,
     run: ExecutionOptions = GROUP,
 ) -> None:
     """Damping study: D_max^d, D_max^s (with interval), D_H, M_diff, M_quot, phase diagrams over D (method §6.2)."""
@@ -312,8 +315,8 @@ def damping_command(
 def forcing_command(
     common: dict[str, Any] = GROUP,
     normal_force: Annotated[float | None, typer.Option("--normal-force", help="N [N] (default: preset).")] = None,
-    q: Annotated[str, typer.Option("--q", help="Forcing amplitudes q = Q/(cL), list.")] = "5e-5,5e-4",
-    eta: Annotated[str, typer.Option("--eta", help="η grid START:STOP:NUM or list.")] = "0:3:61",
+    q: ForcingQOpt = "5e-5,5e-4",
+    eta: EtaOpt = "0:3:61",
     damping: ForcedDampingOpt = None,
     stick_window: WinOpt = 0.5,
     run: ExecutionOptions = GROUP,
@@ -327,9 +330,9 @@ def forcing_command(
 @option_group("run", execution_options)
 def lyapunov_command(
     common: dict[str, Any] = GROUP,
-    normal_force: Annotated[str | None, typer.Option("--normal-force", help="N [N] list (default: preset).")] = None,
-    q: Annotated[str, typer.Option("--q", help="Forcing amplitudes q, list.")] = "5e-5,5e-4",
-    eta: Annotated[str, typer.Option("--eta", help="η grid.")] = "0.1:3:30",
+    normal_force: ForceListOpt = None,
+    q: ForcingQOpt = "5e-5,5e-4",
+    eta: EtaOpt = "0.1:3:30",
     perturbation: Annotated[float, typer.Option("--perturbation", help="δ added to x1(0) of the comparison run.")
                             ] = 1e-6,
     damping: ForcedDampingOpt = None,
@@ -345,11 +348,11 @@ def lyapunov_command(
 @option_group("run", execution_options)
 def normal_force_command(
     common: dict[str, Any] = GROUP,
-    normal_force: Annotated[str | None, typer.Option("--normal-force", help="N [N] list (default: preset).")] = None,
+    normal_force: ForceListOpt = None,
     damping: Annotated[
         str | None, typer.Option("--damping-ratio", "--damping", help="D list (default 5e-6 and the damped D).")
     ] = None,
-    phase_runs: Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for phase diagrams.")] = 5,
+    phase_runs: PhaseRunsOpt = 5,
     stick_window: WinOpt = 0.5,
     run: ExecutionOptions = GROUP,
 ) -> None:

@@ -252,6 +252,22 @@ def _save_stick(
 
 
 @numba.njit(cache=True, nogil=True)
+def _save_dense(
+    traj: npt.NDArray[np.float64], isave: int, save_dt: float, tau: float, tau_e: float,
+    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
+) -> int:  # pragma: no cover
+    """Rows ``τ = isave·save_dt ≤ τ_e`` of ``traj`` from the dense output of the step ``[τ, τ + h]``
+    (slip); returns the next row index (the slip counterpart of :func:`_save_stick`)."""
+    while isave < traj.shape[0] and isave * save_dt <= tau_e + SAVE_TOL * save_dt:
+        tq = (isave * save_dt - tau) / h
+        traj[isave, 0] = isave * save_dt
+        traj[isave, 1] = _dense(y, ynew, k, h, tq, 0)
+        traj[isave, 2] = _dense(y, ynew, k, h, tq, 1)
+        isave += 1
+    return isave
+
+
+@numba.njit(cache=True, nogil=True)
 def run_accurate(
     rows: KernelRows, out: KernelOutput, i: int, settings: AccurateSettings, noise: int, path_mode: int
 ) -> int:  # pragma: no cover
@@ -373,12 +389,7 @@ def run_accurate(
                         ev = EV_NODE
             h_next = h * min(5.0, max(0.2, 0.9 * max(err, 1e-10) ** -0.2))
             if ev == EV_NONE:
-                while isave < traj.shape[0] and isave * save_dt <= tau + h + SAVE_TOL * save_dt:
-                    tq = (isave * save_dt - tau) / h
-                    traj[isave, 0] = isave * save_dt
-                    traj[isave, 1] = _dense(y, ynew, k, h, tq, 0)
-                    traj[isave, 2] = _dense(y, ynew, k, h, tq, 1)
-                    isave += 1
+                isave = _save_dense(traj, isave, save_dt, tau, tau + h, y, ynew, k, h)
                 tau += h
                 for i in range(3):
                     y[i] = ynew[i]
@@ -389,12 +400,7 @@ def run_accurate(
                 continue
             # event inside the step: recompute the state exactly at it
             hev = th * h
-            while isave < traj.shape[0] and isave * save_dt <= tau + hev + SAVE_TOL * save_dt:
-                tq = (isave * save_dt - tau) / h
-                traj[isave, 0] = isave * save_dt
-                traj[isave, 1] = _dense(y, ynew, k, h, tq, 0)
-                traj[isave, 2] = _dense(y, ynew, k, h, tq, 1)
-                isave += 1
+            isave = _save_dense(traj, isave, save_dt, tau, tau + hev, y, ynew, k, h)
             _dopri_step(tau, y, hev, k, s, prm, shape, lawp, noise, path_mode, proc, n_proc,
                         ynew, tmp)
             tau += hev
