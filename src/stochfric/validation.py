@@ -1,15 +1,19 @@
 """Validators of scalar inputs shared by the parameter classes (SI values; messages say what to change).
 
-Every validator returns the value as a ``float`` or raises ``error`` (default :class:`ValueError`;
-callers pass their own subclass, e.g. :class:`stochfric.oscillator.parameters.ParameterError`)
-with a message that names the quantity, the allowed range with its unit, and the value given.
+Every validator returns the value as a ``float`` (:func:`finite_tuple`: a tuple of floats) or
+raises ``error`` (default :class:`ValueError`; callers pass their own subclass, e.g.
+:class:`stochfric.oscillator.parameters.ParameterError`) with a message that names the quantity,
+the allowed range with its unit, and the value given.
 """
 
 from __future__ import annotations
 
 import math
+from typing import Any
 
-__all__ = ["finite", "non_negative", "positive"]
+import numpy as np
+
+__all__ = ["finite", "finite_tuple", "non_negative", "positive"]
 
 
 def finite(name: str, value: float, *, error: type[ValueError] = ValueError) -> float:
@@ -37,3 +41,14 @@ def non_negative(name: str, value: float, unit: str = "", *, error: type[ValueEr
     if v < 0.0:
         raise error(f"{name} must be >= 0{(' ' + unit) if unit else ''}, got {value!r}")
     return v
+
+
+def finite_tuple(name: str, values: Any, *, error: type[ValueError] = ValueError) -> tuple[float, ...]:
+    """A non-empty 1-D sequence of finite numbers as a tuple of floats, or ``error``."""
+    try:
+        arr = np.asarray(values, dtype=np.float64)
+    except (TypeError, ValueError):
+        raise error(f"{name} must be a sequence of numbers") from None
+    if arr.ndim != 1 or arr.size == 0 or not np.all(np.isfinite(arr)):
+        raise error(f"{name} must be a non-empty 1-D sequence of finite numbers")
+    return tuple(float(v) for v in arr)

@@ -24,7 +24,7 @@ from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.checks import ErgodicityCheck, ProcessCheck, SurrogateCheck
 from stochfric.process.ensemble import ContactSamples, PathContact
 from stochfric.process.fit import ModelFit
-from stochfric.process.model import TabulatedProcessModel
+from stochfric.process.tabulated import TabulatedProcessModel
 
 __all__ = ["StatisticalContactAnalysis"]
 

@@ -21,7 +21,7 @@ from scipy import stats as sps
 from stochfric.contact.asperity import ContactError, asperity_sums
 from stochfric.contact.materials import Material
 from stochfric.process.ensemble import ContactSamples, summit_statistics
-from stochfric.process.model import FrictionProcessModel
+from stochfric.process.model_base import FrictionProcessModel
 from stochfric.process.spectral import one_sided_psd
 from stochfric.random import SeedLike, as_seed_sequence, spawn_generators
 from stochfric.surface.io import Surface

@@ -14,7 +14,7 @@ c) **μ along the path** (:func:`~stochfric.process.ensemble.path_contact`): K l
    averaged over the surfaces (Fig. 3.19–3.21);
 d) the **model functions** f(p) = a p^b + c for E[μ], σ_μ and the PSD level over the mean
    pressure of c), high-pressure points excluded (:mod:`stochfric.process.fit`; Fig. 3.22);
-e) the **friction-process model** (:class:`~stochfric.process.model.TabulatedProcessModel`)
+e) the **friction-process model** (:class:`~stochfric.process.tabulated.TabulatedProcessModel`)
    and the check of generated realisations against it
    (:func:`~stochfric.process.checks.check_generated_process`, Fig. 3.23);
 f) the check that the surrogates resemble the measured map
@@ -47,9 +47,9 @@ from stochfric.process.ensemble import ensemble_contact, path_contact
 from stochfric.process.estimators import linear_fit, mean_and_std_errors, mu_pdfs
 from stochfric.process.fit import fit_mask, fit_model_function
 from stochfric.process.memory import check_memory
-from stochfric.process.model import TabulatedProcessModel
 from stochfric.process.spectra import autocorrelation, correlation_length, mean_psd, psd_level
 from stochfric.process.spectral import one_sided_psd
+from stochfric.process.tabulated import TabulatedProcessModel
 from stochfric.progress import StagedProgress
 from stochfric.random import as_seed_sequence, seed_entropy, spawn_seed_sequences
 from stochfric.surface.io import Surface

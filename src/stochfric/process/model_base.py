@@ -1,0 +1,268 @@
+"""What every friction-process model is and shares (method §4d/e).
+
+:class:`FrictionProcessModel` is what the oscillator needs from a model; :class:`ProcessModelBase`
+is the implementation the model kinds share (statistics over pressure from the fitted model
+functions, the band f_k = k/ℓ < 1/(2Δx) and its grid, realisations by the spectral representation
+2.48/4.32, JSON files).  The kinds: :class:`~stochfric.process.band_limited.BandLimitedProcessModel`
+and :class:`~stochfric.process.tabulated.TabulatedProcessModel`; any of them is loaded through
+:func:`stochfric.process.model.load_process_model`.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+from pathlib import Path
+from typing import Any, Literal, Protocol, Self, get_args
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from stochfric.io_utils import write_json_atomic
+from stochfric.process.model_function import ModelFunction, checked_pressure
+from stochfric.process.spectral import (
+    band_limited_frequencies,
+    generate_process,
+    nyquist_frequency,
+)
+from stochfric.random import SeedLike
+from stochfric.validation import positive
+
+__all__ = [
+    "LOW_FREQUENCY_FRACTION",
+    "SCHEMA_VERSION",
+    "FrictionProcessModel",
+    "ProcessModelBase",
+    "SigmaZetaRule",
+    "low_frequency_level",
+]
+
+SigmaZetaRule = Literal["sigma_mu", "spectral_level"]
+
+_SIGMA_ZETA_RULES: tuple[str, ...] = get_args(SigmaZetaRule)
+
+#: Version of the model files' schema (``"schema_version"``); :meth:`ProcessModelBase.from_dict` refuses others.
+SCHEMA_VERSION = 1
+
+#: Fraction of the band (lowest frequencies, at least one bin) over which the low-frequency
+#: level S0 of the ``"spectral_level"`` σ_ζ rule is averaged.
+LOW_FREQUENCY_FRACTION = 0.25
+
+
+def low_frequency_level(psd_over_band: ArrayLike) -> float:
+    """S0 [m]: mean one-sided PSD over the lowest quarter of the band (at least one bin).
+
+    ``psd_over_band`` is S(f_i) at the band's frequencies in increasing order.  For a flat
+    spectrum S0 is its level.  Used by the σ_ζ rule ``"spectral_level"``: σ_ζ = S0/2.
+    """
+    s = np.asarray(psd_over_band, dtype=np.float64)
+    if s.ndim != 1 or s.size == 0:
+        raise ValueError("the band spectrum must be a non-empty 1-D array")
+    k = max(1, math.floor(LOW_FREQUENCY_FRACTION * s.size))
+    return float(np.mean(s[:k]))
+
+
+#: Units of the serialised models (SI; PSD in the convention of method §0).
+_UNITS = {"dx": "m", "length": "m", "pressure": "Pa", "frequency": "1/m", "psd": "m (one-sided, method §0)"}
+
+
+class FrictionProcessModel(Protocol):
+    """What the oscillator needs from a friction-process model (method §4e, §5.1, §5.2).
+
+    Units: pressure p [Pa], path frequency f [1/m], one-sided PSD S [m] (method §0),
+    grid spacing ``dx`` and ``length`` [m]; μ, σ_μ, σ_ζ dimensionless.
+    """
+
+    @property
+    def name(self) -> str:
+        """Label of the model."""
+        ...
+
+    @property
+    def dx(self) -> float:
+        """Grid spacing Δx [m] of a realisation."""
+        ...
+
+    @property
+    def length(self) -> float:
+        """Process length ℓ [m] (period of the realisation)."""
+        ...
+
+    def mean(self, p_pa: float) -> float:
+        """E[μ](p)."""
+        ...
+
+    def std(self, p_pa: float) -> float:
+        """σ_μ(p)."""
+        ...
+
+    def frequencies(self) -> NDArray[np.float64]:
+        """The band's path frequencies [1/m]."""
+        ...
+
+    def spectrum(self, f: ArrayLike, p_pa: float) -> NDArray[np.float64]:
+        """One-sided PSD S(f; p) [m]."""
+        ...
+
+    def sigma_zeta(self, p_pa: float) -> float:
+        """White-noise intensity σ_ζ(p) (eq. 4.17)."""
+        ...
+
+    def generate(self, p_pa: float, rng: np.random.Generator | SeedLike) -> NDArray[np.float64]:
+        """One realisation of μ̂_SD on the grid x_j = j dx."""
+        ...
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-compatible dict with a ``"kind"`` tag."""
+        ...
+
+
+class ProcessModelBase:
+    """What every friction-process model shares: pressure statistics from the fitted model
+    functions, the band f_k = k/ℓ < 1/(2Δx) and its grid, realisations by the spectral
+    representation (2.48/4.32), JSON files.  Subclasses are frozen dataclasses that define the
+    fields below and :meth:`spectrum`, :meth:`sigma_zeta`, :meth:`to_dict`, :meth:`from_dict`.
+    """
+
+    name: str
+    mu_mean: ModelFunction
+    mu_std: ModelFunction
+    dx: float
+    length: float
+    sigma_zeta_rule: SigmaZetaRule
+
+    def _check_common(self) -> None:
+        """Validate and normalise name, model functions, Δx, ℓ and the σ_ζ rule."""
+        if not isinstance(self.name, str) or not self.name:
+            raise ValueError(f"name must be a non-empty string, got {self.name!r}")
+        for attr in ("mu_mean", "mu_std"):
+            if not isinstance(getattr(self, attr), ModelFunction):
+                raise TypeError(f"{attr} must be a ModelFunction, got {getattr(self, attr)!r}")
+        dx = positive("dx", self.dx, "m")
+        length = positive("length", self.length, "m")
+        object.__setattr__(self, "dx", dx)
+        object.__setattr__(self, "length", length)
+        if length <= 2.0 * dx:
+            raise ValueError(
+                f"length {length!r} m must exceed 2·dx = {2 * dx!r} m so that the band "
+                "k/length < 1/(2·dx) holds at least one frequency"
+            )
+        if self.sigma_zeta_rule not in _SIGMA_ZETA_RULES:
+            raise ValueError(
+                f"sigma_zeta_rule must be one of {_SIGMA_ZETA_RULES}, got {self.sigma_zeta_rule!r}"
+            )
+
+    @staticmethod
+    def _check_kind(data: dict[str, Any], kind: str) -> None:
+        """Refuse a dict of another kind or schema version (:meth:`from_dict`)."""
+        found = data.get("kind", kind)
+        if found != kind:
+            raise ValueError(f"not a {kind.replace('_', '-')} process model: kind = {found!r}")
+        version = data.get("schema_version", SCHEMA_VERSION)
+        if version != SCHEMA_VERSION:
+            raise ValueError(f"unsupported schema_version {version!r} (this version reads {SCHEMA_VERSION})")
+
+    # --- statistics over pressure ------------------------------------------------------
+
+    def mean(self, p_pa: float) -> float:
+        """E[μ](p) = a p^b + c (eq. 3.21, Tables 3.3/3.6), p [Pa] > 0."""
+        return self.mu_mean(checked_pressure(p_pa))
+
+    def std(self, p_pa: float) -> float:
+        """σ_μ(p) = a p^b + c (eq. 3.21), p [Pa] > 0.
+
+        Raises ValueError where the fit turns negative (outside its range of validity).
+        """
+        s = self.mu_std(checked_pressure(p_pa))
+        if s < 0.0:
+            raise ValueError(
+                f"the σ_μ model function of {self.name!r} is negative ({s:.4g}) at "
+                f"p = {p_pa:.6g} Pa: the fit is used outside its range of validity"
+            )
+        return s
+
+    # --- the band ----------------------------------------------------------------------
+
+    @property
+    def frequency_step(self) -> float:
+        """Δf = 1/ℓ [1/m]."""
+        return 1.0 / self.length
+
+    @property
+    def n_points(self) -> int:
+        """Number of grid points n = round(ℓ/Δx) of a realisation."""
+        return round(self.length / self.dx)
+
+    @property
+    def grid_is_periodic(self) -> bool:
+        """Whether ℓ/Δx is an integer (to 1e-9 relative), i.e. the grid spans one period ℓ.
+
+        Only then is a realisation's grid variance exactly the model variance and its periodic
+        continuation with period n Δx seamless.
+        """
+        ratio = self.length / self.dx
+        return abs(ratio - round(ratio)) <= 1e-9 * ratio
+
+    def grid(self) -> NDArray[np.float64]:
+        """Grid positions x_j = j Δx [m], j = 0..n−1, of :meth:`generate`."""
+        return np.arange(self.n_points, dtype=np.float64) * self.dx
+
+    def frequencies(self) -> NDArray[np.float64]:
+        """Band f_k = k/ℓ [1/m], k = 1..K, f_K < 1/(2Δx) (:func:`band_limited_frequencies`)."""
+        return band_limited_frequencies(self.dx, self.length)
+
+    def spectrum(self, f: ArrayLike, p_pa: float) -> NDArray[np.float64]:  # pragma: no cover - abstract
+        """One-sided PSD S(f; p) [m] at path frequencies f [1/m] (method §0), 0 outside the band."""
+        raise NotImplementedError
+
+    def variance(self, p_pa: float) -> float:
+        """Σ_i S(f_i; p) Δf over the band."""
+        return float(np.sum(self.spectrum(self.frequencies(), p_pa)) * self.frequency_step)
+
+    # --- realisations ------------------------------------------------------------------
+
+    def generate(self, p_pa: float, rng: np.random.Generator | SeedLike) -> NDArray[np.float64]:
+        """One realisation of μ̂_SD(x_j; p) on :meth:`grid` (eq. 2.48/4.32, method §4e).
+
+        Zero-mean part only; the friction coefficient is μ = E[μ](p) + μ̂_SD (eq. 3.22).
+        Draws K = len(frequencies()) phases from ``rng`` (see
+        :func:`stochfric.process.spectral.generate_process`).
+        """
+        f = self.frequencies()
+        return generate_process(f, self.spectrum(f, p_pa), self.dx, self.length, rng)
+
+    # --- files -------------------------------------------------------------------------
+
+    def _dict_head(self, kind: str) -> dict[str, Any]:
+        """The leading entries of :meth:`to_dict` every model kind shares (kind, schema, μ fits, grid)."""
+        return {"kind": kind, "schema_version": SCHEMA_VERSION, "name": self.name, "mu_mean": self.mu_mean.to_dict(),
+                "mu_std": self.mu_std.to_dict(), "dx": self.dx, "length": self.length}
+
+    @staticmethod
+    def _head_fields(data: dict[str, Any]) -> dict[str, Any]:
+        """Constructor arguments from the entries of :meth:`_dict_head` (inverse of it)."""
+        return {"name": data["name"], "mu_mean": ModelFunction.from_dict(data["mu_mean"]),
+                "mu_std": ModelFunction.from_dict(data["mu_std"]), "dx": data["dx"], "length": data["length"]}
+
+    @classmethod
+    def from_dict(cls, data: dict[str, Any]) -> Self:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> Self:
+        """Read a model written by :meth:`save`."""
+        with open(path, encoding="utf-8") as fh:
+            return cls.from_dict(json.load(fh))
+
+    def _dict_tail(self) -> dict[str, Any]:
+        """The derived entries at the end of :meth:`to_dict` (ignored by ``from_dict``)."""
+        return {"units": dict(_UNITS), "nyquist_frequency": nyquist_frequency(self.dx)}
+
+    def to_dict(self) -> dict[str, Any]:  # pragma: no cover - abstract
+        """JSON-compatible dict with ``kind`` and SI units."""
+        raise NotImplementedError
+
+    def save(self, path: str | os.PathLike[str]) -> Path:
+        """Write :meth:`to_dict` as JSON to ``path`` atomically (temporary file + rename); returns the path."""
+        return write_json_atomic(path, self.to_dict())
