@@ -26,8 +26,8 @@ def test_brake_oscillator_parameters() -> None:
     b = brake()
     assert b.omega0 == pytest.approx(707.1, abs=0.05)  # thesis: 707 rad/s
     assert b.gamma0 == pytest.approx(1.414e-3, rel=1e-3)  # thesis: 1.4e-3
-    assert (b.mass, b.stiffness, b.belt_speed, b.contact_area) == (2.0, 1e6, 1.0, 0.016)
-    assert b.normal_force_range == (500.0, 20000.0)
+    assert (b.mass, b.stiffness, b.belt_speed, b.contact_area_m2) == (2.0, 1e6, 1.0, 0.016)
+    assert b.normal_force_range_n == (500.0, 20000.0)
     assert (b.tau_end, b.dt) == (50.0, 0.005)
     assert b.pressure(8000.0) == pytest.approx(5e5)
 
@@ -36,9 +36,12 @@ def test_sheet_oscillator_parameters() -> None:
     s = sheet()
     assert s.omega0 == pytest.approx(316.2, abs=0.05)  # thesis: 316 rad/s
     assert s.gamma0 == pytest.approx(3.162e-3, rel=1e-3)  # thesis: 3.16e-3
-    assert (s.mass, s.stiffness, s.belt_speed, s.contact_area) == (1.0, 1e5, 1.0, 1e-3)
-    assert s.normal_force_range == (100.0, 2000.0)
-    assert s.pressure_range == pytest.approx((1e5, 2e6))
+    assert (s.mass, s.stiffness, s.belt_speed, s.contact_area_m2) == (1.0, 1e5, 1.0, 1e-3)
+    assert s.normal_force_range_n == (100.0, 2000.0)
+    assert s.pressure_range_pa == pytest.approx((1e5, 2e6))
+    # the names before docs/glossary.md are still read
+    assert (s.contact_area, s.normal_force_range, s.default_normal_force, s.pressure_range) == (
+        s.contact_area_m2, s.normal_force_range_n, s.default_normal_force_n, s.pressure_range_pa)
 
 
 def test_study_parameters() -> None:
@@ -90,7 +93,7 @@ def test_process_bands() -> None:
 
 @pytest.mark.parametrize("preset", [brake(), sheet()], ids=["brake", "sheet"])
 def test_spectrum_variance_is_sigma_mu_squared_over_the_force_range(preset: Preset) -> None:
-    for force in np.geomspace(*preset.normal_force_range, 7):
+    for force in np.geomspace(*preset.normal_force_range_n, 7):
         p = preset.pressure(float(force))
         assert preset.process.variance(p) == pytest.approx(preset.process.std(p) ** 2, rel=1e-13)
 
@@ -127,8 +130,8 @@ def test_preset_validation() -> None:
 
     b = brake()
     with pytest.raises(ValueError, match="outside"):
-        dataclasses.replace(b, default_normal_force=100.0)
+        dataclasses.replace(b, default_normal_force_n=100.0)
     with pytest.raises(ValueError, match="mass"):
         dataclasses.replace(b, mass=-2.0)
-    with pytest.raises(ValueError, match="normal_force_range"):
-        dataclasses.replace(b, normal_force_range=(2000.0, 500.0))
+    with pytest.raises(ValueError, match="normal_force_range_n"):
+        dataclasses.replace(b, normal_force_range_n=(2000.0, 500.0))

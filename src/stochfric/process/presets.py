@@ -63,11 +63,11 @@ class Preset:
         Spring stiffness c [N/m].
     belt_speed:
         Belt speed v0 [m/s].
-    contact_area:
+    contact_area_m2:
         Nominal contact area A [m²] for the pressure p = N/A (eq. 4.13).
-    normal_force_range:
+    normal_force_range_n:
         (N_min, N_max) [N] of the stick-slip range studied in the thesis.
-    default_normal_force:
+    default_normal_force_n:
         A representative normal force N [N] inside that range.
     process:
         The friction-process model (E[μ](p), σ_μ(p), band-limited spectrum, σ_ζ rule).
@@ -83,15 +83,18 @@ class Preset:
         The thesis's E[S](p) fit (third row of Table 3.3/3.6), **metadata only, not
         used**: its PSD normalisation is unstated (method §7.8) and incompatible with
         method §0; the process spectrum is instead scaled to σ_μ(p)².
+
+    The names before docs/glossary.md (``contact_area``, ``normal_force_range``,
+    ``default_normal_force``, ``pressure_range``) are still read, as read-only aliases.
     """
 
     name: str
     mass: float
     stiffness: float
     belt_speed: float
-    contact_area: float
-    normal_force_range: tuple[float, float]
-    default_normal_force: float
+    contact_area_m2: float
+    normal_force_range_n: tuple[float, float]
+    default_normal_force_n: float
     process: BandLimitedProcessModel
     tau_end: float = 50.0
     dt: float = 0.005
@@ -104,8 +107,8 @@ class Preset:
             ("mass", "kg"),
             ("stiffness", "N/m"),
             ("belt_speed", "m/s"),
-            ("contact_area", "m²"),
-            ("default_normal_force", "N"),
+            ("contact_area_m2", "m²"),
+            ("default_normal_force_n", "N"),
             ("tau_end", "(dimensionless)"),
             ("dt", "(dimensionless)"),
         ):
@@ -113,17 +116,17 @@ class Preset:
             if not math.isfinite(value) or value <= 0.0:
                 raise ValueError(f"{attr} must be a positive finite number {unit}, got {value!r}")
             object.__setattr__(self, attr, value)
-        lo, hi = (float(v) for v in self.normal_force_range)
+        lo, hi = (float(v) for v in self.normal_force_range_n)
         if not (0.0 < lo < hi and math.isfinite(hi)):
             raise ValueError(
-                f"normal_force_range must be (N_min, N_max) with 0 < N_min < N_max, "
-                f"got {self.normal_force_range!r}"
+                f"normal_force_range_n must be (N_min, N_max) with 0 < N_min < N_max, "
+                f"got {self.normal_force_range_n!r}"
             )
-        object.__setattr__(self, "normal_force_range", (lo, hi))
-        if not lo <= self.default_normal_force <= hi:
+        object.__setattr__(self, "normal_force_range_n", (lo, hi))
+        if not lo <= self.default_normal_force_n <= hi:
             raise ValueError(
-                f"default_normal_force {self.default_normal_force!r} N lies outside "
-                f"normal_force_range {self.normal_force_range!r}"
+                f"default_normal_force_n {self.default_normal_force_n!r} N lies outside "
+                f"normal_force_range_n {self.normal_force_range_n!r}"
             )
         if not isinstance(self.process, BandLimitedProcessModel):
             raise TypeError(f"process must be a BandLimitedProcessModel, got {self.process!r}")
@@ -144,13 +147,34 @@ class Preset:
         n = float(normal_force)
         if not math.isfinite(n) or n <= 0.0:
             raise ValueError(f"normal_force must be a positive finite number [N], got {n!r}")
-        return n / self.contact_area
+        return n / self.contact_area_m2
+
+    @property
+    def pressure_range_pa(self) -> tuple[float, float]:
+        """(p_min, p_max) [Pa] of :attr:`normal_force_range_n`."""
+        lo, hi = self.normal_force_range_n
+        return lo / self.contact_area_m2, hi / self.contact_area_m2
+
+    # names before docs/glossary.md, still read (no warning: read wherever a case is built)
+    @property
+    def contact_area(self) -> float:
+        """Old name of :attr:`contact_area_m2`."""
+        return self.contact_area_m2
+
+    @property
+    def normal_force_range(self) -> tuple[float, float]:
+        """Old name of :attr:`normal_force_range_n`."""
+        return self.normal_force_range_n
+
+    @property
+    def default_normal_force(self) -> float:
+        """Old name of :attr:`default_normal_force_n`."""
+        return self.default_normal_force_n
 
     @property
     def pressure_range(self) -> tuple[float, float]:
-        """(p_min, p_max) [Pa] of :attr:`normal_force_range`."""
-        lo, hi = self.normal_force_range
-        return lo / self.contact_area, hi / self.contact_area
+        """Old name of :attr:`pressure_range_pa`."""
+        return self.pressure_range_pa
 
 
 def brake() -> Preset:
@@ -176,9 +200,9 @@ def brake() -> Preset:
         mass=2.0,
         stiffness=1e6,
         belt_speed=1.0,
-        contact_area=0.016,
-        normal_force_range=(500.0, 20000.0),
-        default_normal_force=5600.0,
+        contact_area_m2=0.016,
+        normal_force_range_n=(500.0, 20000.0),
+        default_normal_force_n=5600.0,
         process=process,
         tau_end=50.0,
         dt=0.005,
@@ -219,9 +243,9 @@ def sheet() -> Preset:
         mass=1.0,
         stiffness=1e5,
         belt_speed=1.0,
-        contact_area=1e-3,
-        normal_force_range=(100.0, 2000.0),
-        default_normal_force=1400.0,
+        contact_area_m2=1e-3,
+        normal_force_range_n=(100.0, 2000.0),
+        default_normal_force_n=1400.0,
         process=process,
         tau_end=50.0,
         dt=0.005,
