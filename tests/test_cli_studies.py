@@ -36,10 +36,10 @@ def _json(app: typer.Typer, args: list[str]) -> dict:
 def test_damping_json_contract(app: typer.Typer) -> None:
     d = _json(app, ["study", "damping", "--preset", "brake", "--normal-force", "5600", "--damping", "0.05:0.25:41",
                     "--runs", "10", "--json"])
-    for key in ("normal_force", "damping", "d_max_deterministic", "d_max_stochastic", "d_hopf", "d_safe",
+    for key in ("normal_force_n", "damping_ratio", "d_max_deterministic", "d_max_stochastic", "d_hopf", "d_safe",
                 "stick_probability", "m_diff", "seed", "versions"):
         assert key in d, key
-    assert d["normal_force"] == [5600.0] and len(d["damping"]) == 41
+    assert d["normal_force_n"] == [5600.0] and len(d["damping_ratio"]) == 41
     assert d["d_max_deterministic"] == [0.14]
     assert d["d_hopf"][0] == pytest.approx(0.0946, abs=1e-4)
     for m in ("white", "contact"):
@@ -51,9 +51,9 @@ def test_damping_json_contract(app: typer.Typer) -> None:
     assert d["sigma_zeta"][0] == pytest.approx(0.0742, abs=5e-4)  # σ_μ(0.35 MPa)
     # phase diagrams over D at the preset's force (Fig. 4.22): auto D from the lowest grid D to above D_max
     ph = d["phase"]
-    assert ph["normal_force"] == 5600.0 and ph["damping_rule"] == "auto"
-    assert len(ph["damping"]) == 5 and ph["damping"][0] == 0.05
-    assert ph["damping"][-1] > max(d["d_max_deterministic"][0], d["d_max_stochastic"]["contact"][0]["value"])
+    assert ph["normal_force_n"] == 5600.0 and ph["damping_rule"] == "auto"
+    assert len(ph["damping_ratio"]) == 5 and ph["damping_ratio"][0] == 0.05
+    assert ph["damping_ratio"][-1] > max(d["d_max_deterministic"][0], d["d_max_stochastic"]["contact"][0]["value"])
     assert ph["runs"] == {"deterministic": 1, "white": 3, "contact": 3}
 
 
@@ -67,7 +67,8 @@ def test_other_studies_json(app: typer.Typer, tmp_path: Path) -> None:
     assert ly["status"]["deterministic"][0][0][0] in ("ok", "merged", "too-few-transitions")
     nf = _json(app, ["study", "normal-force", "--preset", "sheet", "--runs", "3", "--phase-runs", "1", "--json"])
     assert {"x_gh_mean", "x_gh_std", "varK", "varK_se", "x_gh_mean_se"} <= set(nf)
-    assert nf["normal_force"] == [400.0, 880.0, 1750.0] and nf["damping"] == [5e-6, 0.17]
+    assert nf["normal_force_n"] == [400.0, 880.0, 1750.0] and nf["damping_ratio"] == [5e-6, 0.17]
+    assert nf["layout"] == "model -> [normal_force_n][damping_ratio]" and len(nf["x_gh_mean"]["white"]) == 3
 
 
 def test_human_output_and_report(app: typer.Typer, tmp_path: Path) -> None:
@@ -114,7 +115,7 @@ def test_white_intensity_and_path_coordinate(app: typer.Typer, tmp_path: Path) -
     assert thesis["sigma_zeta"][0] == pytest.approx(0.0742, abs=5e-4)
     # the flat brake spectrum: S0 = σ_μ²/(K Δf), σ_ζ = S0/2
     assert level["sigma_zeta"][0] == pytest.approx(0.0742037**2 / (39 * 20.0) / 2, rel=1e-3)
-    for key in ("stick_probability", "m_mean"):  # deterministic and contact results do not depend on the rule
+    for key in ("stick_probability", "stick_count_mean"):  # deterministic and contact results do not depend on the rule
         for m in ("deterministic", "contact"):
             assert thesis[key][m] == level[key][m], (key, m)
     import xarray as xr
@@ -125,7 +126,7 @@ def test_white_intensity_and_path_coordinate(app: typer.Typer, tmp_path: Path) -
         assert float(ds["sigma_zeta"].sel(model="white").values[0]) == pytest.approx(level["sigma_zeta"][0])
     rel = _json(app, [*base, "--path-coordinate", "relative"])
     assert rel["path_coordinate"] == "relative"
-    assert rel["m_mean"]["deterministic"] == thesis["m_mean"]["deterministic"]
+    assert rel["stick_count_mean"]["deterministic"] == thesis["stick_count_mean"]["deterministic"]
     for kind, extra in (("forcing", ["--eta", "1.0"]), ("normal-force", ["--phase-runs", "0"]),
                         ("lyapunov", ["--normal-force", "4000", "--q", "5e-4", "--eta", "1.2", "--tau-end", "30"])):
         s = _json(app, ["study", kind, "--runs", "2", "--white-intensity", "spectral_level",
@@ -139,8 +140,8 @@ def test_phase_options(app: typer.Typer) -> None:
     d = _json(app, ["study", "damping", "--preset", "sheet", "--normal-force", "1000,2000", "--damping", "0.1:0.2:3",
                     "--runs", "2", "--phase-damping", "0.12,0.05", "--phase-runs", "2", "--json"])
     # the sheet's damping-study force 1400 N is not on the grid: the middle force is used
-    assert d["phase"]["normal_force"] == 1000.0
-    assert d["phase"]["damping"] == [0.05, 0.12] and d["phase"]["damping_rule"] == "given"
+    assert d["phase"]["normal_force_n"] == 1000.0
+    assert d["phase"]["damping_ratio"] == [0.05, 0.12] and d["phase"]["damping_rule"] == "given"
     assert d["phase"]["runs"] == {"deterministic": 1, "white": 2, "contact": 2}
     d = _json(app, ["study", "damping", "--normal-force", "5600", "--damping", "0.1,0.2", "--runs", "2",
                     "--phase-force", "3000", "--phase-runs", "0", "--json"])
@@ -185,7 +186,7 @@ eta = [1.0]
     assert [s["study"] for s in d["studies"]] == ["damping", "forcing"]
     dmp, frc = d["studies"]
     assert dmp["white_intensity"] == "spectral_level" and dmp["path_coordinate"] == "relative"
-    assert dmp["phase"]["damping"] == [0.1, 0.2]
+    assert dmp["phase"]["damping_ratio"] == [0.1, 0.2]
     assert frc["white_intensity"] == "sigma_mu" and frc["path_coordinate"] == "mass"
     assert (tmp_path / "out" / "index.html").exists()
     assert (tmp_path / "out" / "00_damping_brake" / "damping.nc").exists()

@@ -195,7 +195,7 @@ def test_no_overlapping_ticks_and_no_blank_panels(report: Path) -> None:
 def test_grid_edges_are_named(report: Path) -> None:
     # the contact model still sticks at the last grid D (0.2) at 6000 N in this run
     assert "> grid" in FIGURES["01_damping_brake_dmax.png"]["texts"]
-    summary = {"normal_force": [1000.0, 2000.0], "damping": [0.05, 0.1, 0.15], "d_hopf": [0.01, 0.02],
+    summary = {"normal_force_n": [1000.0, 2000.0], "damping_ratio": [0.05, 0.1, 0.15], "d_hopf": [0.01, 0.02],
                "d_max_deterministic": [None, 0.15], "models": ["deterministic", "white"],
                "d_max_stochastic": {"white": [{"value": 0.1, "interval": [0.1, None]},
                                               {"value": 0.15, "interval": [0.15, None]}]}}

@@ -55,11 +55,11 @@ def test_dmax_independent_of_dt_with_accurate() -> None:
 def test_probability_is_one_below_and_zero_far_above() -> None:
     cfg = DampingConfig(normal_forces=(5600.0,), damping_ratio=(0.06, 0.09, 0.3 * 0.99), runs=6, seed=3)
     ds = damping_study(cfg).to_dataset()
-    p = ds["stick_probability"].sel(normal_force=5600.0)
+    p = ds["stick_probability"].sel(normal_force_n=5600.0)
     for m in cfg.models:
         assert p.sel(model=m).values[0] == 1.0
         assert p.sel(model=m).values[-1] == 0.0
-    lo = ds["stick_probability_low"].sel(normal_force=5600.0, model="white").values
-    hi = ds["stick_probability_high"].sel(normal_force=5600.0, model="white").values
+    lo = ds["stick_probability_low"].sel(normal_force_n=5600.0, model="white").values
+    hi = ds["stick_probability_high"].sel(normal_force_n=5600.0, model="white").values
     assert lo[0] == pytest.approx(0.025 ** (1 / 6))
     assert hi[-1] == pytest.approx(1 - 0.025 ** (1 / 6))

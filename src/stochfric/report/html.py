@@ -118,7 +118,7 @@ def model_choices_text(summary: dict[str, Any]) -> str:
     if pc is None and wi is None:
         return ""
     sz = summary.get("sigma_zeta")
-    forces = summary.get("normal_force")
+    forces = summary.get("normal_force_n")
     if isinstance(sz, list) and isinstance(forces, list) and len(sz) == len(forces):
         sz_txt = ", ".join(f"{_fmt(v, '.4g')} (N = {nf:g} N)" for v, nf in zip(sz, forces, strict=True))
     else:
@@ -137,7 +137,7 @@ def model_choices_text(summary: dict[str, Any]) -> str:
 
 def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:
     """(table HTML, reading text) for a damping study summary."""
-    forces = summary["normal_force"]
+    forces = summary["normal_force_n"]
     stoch = list(summary.get("d_max_stochastic", {}))
     header = ["N [N]", "D_H", "D_max^d"] + [f"D_max^s {m} [lo, hi]" for m in stoch] + [
         f"safe limit ({m})" for m in stoch]
@@ -145,7 +145,7 @@ def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:
     lines = []
     for i, nf in enumerate(forces):
         dd = summary.get("d_max_deterministic", [None] * len(forces))[i]
-        grid = summary.get("damping") or [math.nan]
+        grid = summary.get("damping_ratio") or [math.nan]
         row: list[Any] = [nf, summary["d_hopf"][i],
                           dmax_text(dd, grid) if "d_max_deterministic" in summary else None]
         for m in stoch:
@@ -175,8 +175,8 @@ def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:
     if ph:
         frac = ph.get("has_cycle_fraction", {})
         parts = "; ".join(f"{m} " + ", ".join(_fmt(v, ".2g") for v in vals) for m, vals in frac.items())
-        lines.append(f"Phase curves at N = {ph['normal_force']:g} N for D = "
-                     + ", ".join(f"{v:g}" for v in ph["damping"])
+        lines.append(f"Phase curves at N = {ph['normal_force_n']:g} N for D = "
+                     + ", ".join(f"{v:g}" for v in ph["damping_ratio"])
                      + f" ({ph.get('damping_rule', 'auto')}); fraction of the phase runs still sticking after the "
                      f"transient: {parts}.")
     return _table(header, rows), " ".join(lines)
@@ -203,7 +203,7 @@ def lyapunov_reading(summary: dict[str, Any]) -> tuple[str, str]:
     """(table, reading) for a Lyapunov study summary."""
     rows = []
     for m in summary["models"]:
-        c = summary["counts"][m]
+        c = summary["status_counts"][m]
         sig = summary.get("significance", {}).get(m, {})
         rows.append([m, c.get("ok"), c.get("merged"), c.get("too-few-transitions"), c.get("nonlinear"),
                      sig.get("positive"), sig.get("negative")])
@@ -221,27 +221,28 @@ def lyapunov_reading(summary: dict[str, Any]) -> tuple[str, str]:
 def normal_force_reading(summary: dict[str, Any]) -> tuple[str, str]:
     """(table, reading) for a normal-force study summary."""
     rows = []
+    # tables [normal_force_n][damping_ratio] (docs/glossary.md); rows as before: per D, then per N
     for m in summary["models"]:
-        for di, d in enumerate(summary["damping"]):
-            for ni, nf in enumerate(summary["normal_force"]):
-                mean = summary["x_gh_mean"][m][di][ni]
-                sd = summary["x_gh_std"][m][di][ni]
-                vk = summary["varK"][m][di][ni]
-                rows.append([m, d, nf, mean, summary["x_gh_mean_se"][m][di][ni], sd,
-                             summary["x_gh_std_se"][m][di][ni],
+        for di, d in enumerate(summary["damping_ratio"]):
+            for ni, nf in enumerate(summary["normal_force_n"]):
+                mean = summary["x_gh_mean"][m][ni][di]
+                sd = summary["x_gh_std"][m][ni][di]
+                vk = summary["varK"][m][ni][di]
+                rows.append([m, d, nf, mean, summary["x_gh_mean_se"][m][ni][di], sd,
+                             summary["x_gh_std_se"][m][ni][di],
                              None if vk is None else 100 * vk,
-                             None if summary["varK_se"][m][di][ni] is None else 100 * summary["varK_se"][m][di][ni],
-                             summary["n_events"][m][di][ni]])
+                             None if summary["varK_se"][m][ni][di] is None else 100 * summary["varK_se"][m][ni][di],
+                             summary["n_events"][m][ni][di]])
     txt = ""
     if "white" in summary["models"] and "contact" in summary["models"]:
         parts = []
-        for di, d in enumerate(summary["damping"]):
-            for ni, nf in enumerate(summary["normal_force"]):
-                sw = summary["x_gh_std"]["white"][di][ni]
-                sc = summary["x_gh_std"]["contact"][di][ni]
+        for di, d in enumerate(summary["damping_ratio"]):
+            for ni, nf in enumerate(summary["normal_force_n"]):
+                sw = summary["x_gh_std"]["white"][ni][di]
+                sc = summary["x_gh_std"]["contact"][ni][di]
                 if sw is not None and sc is not None and math.isfinite(sw) and math.isfinite(sc) and sw > 0:
-                    rc = (summary.get("sigma_ratio_contact_white") or [[{}] * len(summary["normal_force"])] *
-                          len(summary["damping"]))[di][ni] or {}
+                    rc = (summary.get("sigma_ratio_contact_white") or [[{}] * len(summary["damping_ratio"])] *
+                          len(summary["normal_force_n"]))[ni][di] or {}
                     iv = (f" [{_fmt(rc.get('low'), '.2g')}, {_fmt(rc.get('high'), '.2g')}]"
                           if rc.get("low") is not None else "")
                     parts.append(f"N = {nf:g} N, D = {d:g}: {sc / sw:.2g}{iv}")
@@ -276,11 +277,11 @@ def _above(v: float | None, ref: float | None) -> bool:
 def damping_headline(summary: dict[str, Any]) -> str:
     """One-line answer of a damping study: the limits at the phase force (the thesis's case) and the
     verdict whether the deterministic limit is safe, plus where it is unsafe over all forces."""
-    forces = list(summary["normal_force"])
-    grid = summary.get("damping") or [math.nan]
+    forces = list(summary["normal_force_n"])
+    grid = summary.get("damping_ratio") or [math.nan]
     stoch = list(summary.get("d_max_stochastic", {}))
     det = summary.get("d_max_deterministic")
-    nf = float((summary.get("phase") or {}).get("normal_force", forces[(len(forces) - 1) // 2]))
+    nf = float((summary.get("phase") or {}).get("normal_force_n", forces[(len(forces) - 1) // 2]))
     i = min(range(len(forces)), key=lambda k: abs(forces[k] - nf))
     parts = []
     if det is not None:
@@ -311,11 +312,11 @@ def damping_headline(summary: dict[str, Any]) -> str:
 
 def normal_force_headline(summary: dict[str, Any]) -> str:
     """One line: at which forces each model has stick-slip, per damping ratio."""
-    forces = summary["normal_force"]
+    forces = summary["normal_force_n"]
     models = summary["models"]
     parts = []
-    for di, d in enumerate(summary["damping"]):
-        has = {m: [forces[k] for k in range(len(forces)) if (summary["n_events"][m][di][k] or 0) > 0]
+    for di, d in enumerate(summary["damping_ratio"]):
+        has = {m: [forces[k] for k in range(len(forces)) if (summary["n_events"][m][k][di] or 0) > 0]
                for m in models}
         if all(len(v) == len(forces) for v in has.values()):
             parts.append(f"at D = {d:g} stick-slip at every force in every model")
@@ -329,7 +330,7 @@ def normal_force_headline(summary: dict[str, Any]) -> str:
 def forcing_headline(summary: dict[str, Any]) -> str:
     """One line: σ(X_gh) contact/white over η, against the thesis's ratios."""
     med = summary.get("sigma_ratio_median") or {}
-    nf = summary.get("normal_force")
+    nf = summary.get("normal_force_n")
     head = f"{summary.get('preset', '')}, forced" + (f", N = {nf:g} N" if isinstance(nf, int | float) else "")
     if not med:
         return head + ": no white/contact pair to compare."
@@ -470,6 +471,7 @@ def write_report(
     """
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
+    results = [res.current() for res in results]  # results saved before docs/glossary.md: today's names
     body = [f"<h1>{html.escape(title)}</h1>",
             "<p>Friction oscillator driven by deterministic, white-noise and contact-analysis friction, side by "
             "side (N. Gaus, KIT 2013, chapter 4). Dimensionless x = y/L (L = 1 m), τ = ω0 t; forces in N. "

@@ -87,7 +87,7 @@ def damping_phase_figure(ds: xr.Dataset, directory: str | Path, prefix: str = "d
     d = Path(directory)
     models = [str(m) for m in ds["model"].values]
     pd = ds["phase_damping"].values
-    nf = float(ds["phase_normal_force"].values)
+    nf = float(ds["phase_normal_force_n"].values)
     g0 = _gamma0(ds)
     cmap = matplotlib.colormaps.get_cmap("viridis")
     cols = [cmap(0.9 * k / max(1, pd.size - 1)) for k in range(pd.size)]
@@ -126,10 +126,10 @@ def damping_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "dampin
     out: list[Figure] = damping_phase_figure(ds, d, prefix)
     models = [str(m) for m in ds["model"].values]
     dd = ds["damping_ratio"].values
-    nn = ds["normal_force"].values
+    nn = ds["normal_force_n"].values
     fig, axes = new_subplots(2, len(models), figsize=(4.2 * len(models), 6.4), squeeze=False)
     for j, m in enumerate(models):
-        for i, (var, lab) in enumerate((("x_gh_mean", "E[X_gh] (0: no stick)"), ("m_mean", "E[M]"))):
+        for i, (var, lab) in enumerate((("x_gh_mean", "E[X_gh] (0: no stick)"), ("stick_count_mean", "E[M]"))):
             ax = axes[i, j]
             z = ds[var].sel(model=m).values
             if nn.size > 1:
@@ -320,15 +320,15 @@ def lyapunov_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "lyapu
     d = Path(directory)
     models = [str(m) for m in ds["model"].values]
     qs = ds["forcing_q"].values
-    nn = ds["normal_force"].values
+    nn = ds["normal_force_n"].values
     eta = ds["eta"].values
     fig, axes = new_subplots(len(qs), len(models), figsize=(4.3 * len(models), 3.2 * len(qs)), squeeze=False)
     for i, q in enumerate(qs):
         for j, m in enumerate(models):
             ax = axes[i, j]
             for nf in nn:
-                lam = ds["lyapunov"].sel(model=m, forcing_q=q, normal_force=nf).values
-                st = ds["status"].sel(model=m, forcing_q=q, normal_force=nf).values
+                lam = ds["lyapunov"].sel(model=m, forcing_q=q, normal_force_n=nf).values
+                st = ds["status"].sel(model=m, forcing_q=q, normal_force_n=nf).values
                 line = ax.plot(eta, lam, "o-", ms=3, lw=0.8, label=f"N = {nf:g} N")
                 mg = st == "merged"
                 if mg.any():
@@ -350,14 +350,14 @@ def normal_force_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "n
     d = Path(directory)
     out: list[Figure] = []
     models = [str(m) for m in ds["model"].values]
-    nn = ds["normal_force"].values
+    nn = ds["normal_force_n"].values
     for di, dval in enumerate(ds["damping_ratio"].values):
         if "trajectory" in ds:
             fig, axes = new_subplots(1, len(models), figsize=(4.3 * len(models), 3.5), squeeze=False)
             for j, m in enumerate(models):
                 ax = axes[0, j]
                 for k, nf in enumerate(nn):
-                    tr = ds["trajectory"].sel(model=m, normal_force=nf).values[di]
+                    tr = ds["trajectory"].sel(model=m, normal_force_n=nf).isel(damping_ratio=di).values
                     for r in range(tr.shape[0]):
                         if np.isfinite(tr[r, :, 1]).any():
                             ax.plot(tr[r, :, 1], tr[r, :, 2], lw=0.4, color=f"C{k}",
@@ -375,8 +375,9 @@ def normal_force_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "n
             ax = axes[0, k]
             drawn = False
             for m in models:
-                x = ds["x_gh"].sel(model=m, normal_force=nf).where(ds["in_window"].sel(model=m, normal_force=nf) > 0)
-                v = x.values[di].ravel()
+                at = {"model": m, "normal_force_n": nf}
+                x = ds["x_gh"].sel(at).where(ds["in_window"].sel(at) > 0)
+                v = x.isel(damping_ratio=di).values.ravel()
                 v = v[np.isfinite(v)]
                 if m == "deterministic":
                     for xv in np.unique(np.round(v, 12))[:5]:

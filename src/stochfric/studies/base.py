@@ -29,6 +29,7 @@ from . import tasks as task_module
 from .common import StudySetup, model_choices, setup_for
 from .executors import Executor, SweepStats, run_tasks
 from .grids import pad_events
+from .names import SummaryDict, current_dataset, current_summary
 from .store import CheckpointStore
 from .tasks import TaskSpec, warnings_of
 
@@ -62,9 +63,26 @@ class StudyResult:
         return self.dataset
 
     def to_json_dict(self) -> dict[str, Any]:
-        """The CLI's ``--json`` object."""
-        out: dict[str, Any] = jsonable(self.summary)
-        return out
+        """The CLI's ``--json`` object (pre-glossary top-level keys still read: :class:`~.names.SummaryDict`)."""
+        return SummaryDict(jsonable(self.summary))
+
+    def current(self) -> StudyResult:
+        """This result under today's names and dimension order (:mod:`~stochfric.studies.names`): itself
+        unless it was built from files written before the glossary."""
+        summary, ds = current_summary(self.kind, self.summary), current_dataset(self.kind, self.dataset)
+        if summary is self.summary and ds is self.dataset:
+            return self
+        return StudyResult(self.kind, ds, summary, self.stats)
+
+    @classmethod
+    def load(cls, directory: str | Path, kind: str) -> StudyResult:
+        """The result :meth:`save` wrote to ``directory`` (``<kind>.nc``, ``<kind>.json``), under today's
+        names also when it was written before the glossary (with a :class:`DeprecationWarning`)."""
+        d = Path(directory)
+        summary = json.loads((d / f"{kind}.json").read_text(encoding="utf-8"))
+        with xr.open_dataset(d / f"{kind}.nc", engine="h5netcdf") as ds:
+            dataset = ds.load()
+        return cls(kind, dataset, summary).current()
 
     def to_netcdf(self, path: str | Path) -> Path:
         """Write the dataset to NetCDF (h5netcdf) atomically."""
@@ -233,4 +251,4 @@ class Study:
         return ds
 
 
-_LABELS = {"damping_ratio": "D", "normal_force": "N", "forcing_q": "q"}
+_LABELS = {"damping_ratio": "D", "normal_force_n": "N", "forcing_q": "q"}

@@ -133,10 +133,10 @@ class DampingStudy(Study):
             float(sp["damping_study_force"]), tuple(self.forces)))
 
     def axes(self) -> dict[str, Sequence[Any]]:
-        return {"model": self.config.models, "normal_force": self.forces}
+        return {"model": self.config.models, "normal_force_n": self.forces}
 
     def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
-        return self.task_for(index, point, [self.setup.parameters(point["normal_force"], d)
+        return self.task_for(index, point, [self.setup.parameters(point["normal_force_n"], d)
                                             for d in self.config.damping_ratio],
                              common_random_numbers=self.config.common_random_numbers)
 
@@ -191,7 +191,7 @@ class DampingStudy(Study):
             warnings.simplefilter("ignore", RuntimeWarning)
             xmean_nan = np.nanmean(xw, axis=(-2, -1))
             xstd_nan = np.nanstd(xw, axis=(-2, -1), ddof=1)
-            m_mean = np.nanmean(sc, axis=-1)
+            m_mean = np.nanmean(sc, axis=-1)  # E[M]
         # Monte Carlo uncertainty: E[M] over independent runs (s/√R); E[X_gh], σ(X_gh) by a bootstrap over runs
         with np.errstate(invalid="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
@@ -219,12 +219,13 @@ class DampingStudy(Study):
         d_hopf = np.array([hopf_damping(c.params, c.law) for c in (setup.case(nf, float(dgrid[0])) for nf in forces)])
         coords: dict[str, Any] = {
             "model": models,
-            "normal_force": ("normal_force", np.asarray(forces, float), {"units": "N", "long_name": "normal force N"}),
+            "normal_force_n": ("normal_force_n", np.asarray(forces, float),
+                               {"units": "N", "long_name": "normal force N"}),
             "damping_ratio": ("damping_ratio", dgrid, {"units": "1", "long_name": "damping ratio D"}),
             "run": np.arange(nr),
             "event": np.arange(nev),
         }
-        dims5 = ("model", "normal_force", "damping_ratio", "run", "event")
+        dims5 = ("model", "normal_force_n", "damping_ratio", "run", "event")
         dims4 = dims5[:4]
         dims3 = dims5[:3]
         data: dict[str, Any] = {
@@ -239,8 +240,9 @@ class DampingStudy(Study):
             "stick_probability": (dims3, prob, {"units": "1", "long_name": "fraction of runs with a cycle"}),
             "stick_probability_low": (dims3, lo, {"units": "1", "long_name": "Clopper-Pearson lower bound"}),
             "stick_probability_high": (dims3, hi, {"units": "1", "long_name": "Clopper-Pearson upper bound"}),
-            "m_mean": (dims3, m_mean, {"units": "1", "long_name": "E[M] (deterministic: M_d)"}),
-            "m_mean_se": (dims3, m_se, {"units": "1", "long_name": "standard error of E[M] (runs independent)"}),
+            "stick_count_mean": (dims3, m_mean, {"units": "1", "long_name": "E[M] (deterministic: M_d)"}),
+            "stick_count_mean_se": (dims3, m_se, {"units": "1",
+                                                  "long_name": "standard error of E[M] (runs independent)"}),
             "x_gh_mean_se": (dims3, x_se_mean, {"units": "1", "long_name": "bootstrap SE of E[X_gh] (NaN: undefined)"}),
             "x_gh_std_se": (dims3, x_se_std, {"units": "1", "long_name": "bootstrap SE of sigma(X_gh)"}),
             "x_gh_mean": (dims3, xmean, {"units": "1",
@@ -248,12 +250,12 @@ class DampingStudy(Study):
             "x_gh_std": (dims3, xstd, {"units": "1", "long_name": "sigma(X_gh) in the window, 0 where none"}),
             "x_gh_mean_nan": (dims3, xmean_nan, {"units": "1", "long_name": "E[X_gh] in the window, NaN where none"}),
             "x_gh_std_nan": (dims3, xstd_nan, {"units": "1", "long_name": "sigma(X_gh), NaN where undefined"}),
-            "sigma_zeta": (("model", "normal_force"), sig, {"units": "1", "long_name": "white-noise intensity"}),
-            "d_max": (("model", "normal_force"), dmax, {"units": "1", "long_name": "D_max^d / D_max^s"}),
-            "d_max_low": (("model", "normal_force"), dlo, {"units": "1"}),
-            "d_max_high": (("model", "normal_force"), dhi, {"units": "1",
+            "sigma_zeta": (("model", "normal_force_n"), sig, {"units": "1", "long_name": "white-noise intensity"}),
+            "d_max": (("model", "normal_force_n"), dmax, {"units": "1", "long_name": "D_max^d / D_max^s"}),
+            "d_max_low": (("model", "normal_force_n"), dlo, {"units": "1"}),
+            "d_max_high": (("model", "normal_force_n"), dhi, {"units": "1",
                                                              "long_name": "det: next grid D; stoch: D_hi"}),
-            "d_hopf": (("normal_force",), d_hopf, {"units": "1", "long_name": "D_H = -n mu'(v0) v0/(2 gamma0)"}),
+            "d_hopf": (("normal_force_n",), d_hopf, {"units": "1", "long_name": "D_H = -n mu'(v0) v0/(2 gamma0)"}),
         }
         if "deterministic" in models:
             di = models.index("deterministic")
@@ -264,12 +266,12 @@ class DampingStudy(Study):
                 with np.errstate(invalid="ignore", divide="ignore"):
                     quot = np.where(md > 0, ms / np.where(md > 0, md, 1.0), np.nan)
                 coords["stochastic_model"] = stoch
-                data["m_diff"] = (("stochastic_model", "normal_force", "damping_ratio"), md[None] - ms,
+                data["m_diff"] = (("stochastic_model", "normal_force_n", "damping_ratio"), md[None] - ms,
                                   {"units": "1", "long_name": "M_diff = M_d - E[M_s] (4.41)"})
-                data["m_quot"] = (("stochastic_model", "normal_force", "damping_ratio"), quot,
+                data["m_quot"] = (("stochastic_model", "normal_force_n", "damping_ratio"), quot,
                                   {"units": "1", "long_name": "M_quot = E[M_s]/M_d (4.42), NaN where M_d = 0"})
                 safe = np.stack([np.fmax(dmax[di], dmax[models.index(m)]) for m in stoch])
-                data["d_safe"] = (("stochastic_model", "normal_force"), safe,
+                data["d_safe"] = (("stochastic_model", "normal_force_n"), safe,
                                   {"units": "1", "long_name": "safe limit max(D_max^d, D_max^s)"})
         phase_rule = "none"
         if n_phase:
@@ -329,7 +331,7 @@ def _add_phase(data: dict[str, Any], coords: dict[str, Any], models: list[str], 
     coords["component"] = ("component", ["tau", "x1", "x2"],
                            {"long_name": "tau = omega0 t, x1 = y/L, x2 = x1' (dimensionless, L = 1 m)"})
     pdims = ("model", "phase_damping", "phase_run")
-    data["phase_normal_force"] = ((), float(phase_force), {"units": "N", "long_name": "normal force of the "
+    data["phase_normal_force_n"] = ((), float(phase_force), {"units": "N", "long_name": "normal force of the "
                                                                                       "phase diagrams"})
     data["phase_trajectory"] = ((*pdims, "sample", "component"), traj,
                                 {"units": "1", "long_name": "decimated trajectory (tau, x1, x2) at the phase force; "
@@ -347,7 +349,7 @@ def _none(v: float) -> float | None:
 def _summary(study: DampingStudy, ds: xr.Dataset, warns: list[dict[str, str]]) -> dict[str, Any]:
     config, setup, models, forces = study.config, study.setup, list(study.config.models), study.forces
     out = study.summary_head(
-        forces, {"normal_force": list(forces), "damping": list(config.damping_ratio),
+        forces, {"normal_force_n": list(forces), "damping_ratio": list(config.damping_ratio),
                  "d_hopf": [float(v) for v in ds["d_hopf"].values]},
         stick_window=[config.stick_window * setup.tau_end, setup.tau_end], confidence=config.confidence,
         p_detect=config.p_detect)
@@ -372,8 +374,8 @@ def _summary(study: DampingStudy, ds: xr.Dataset, warns: list[dict[str, str]]) -
             "high": ds["stick_probability_high"].sel(model=m).values.tolist()}
         for m in models
     }
-    out["m_mean"] = {m: ds["m_mean"].sel(model=m).values.tolist() for m in models}
-    out["m_mean_se"] = {m: ds["m_mean_se"].sel(model=m).values.tolist() for m in models}
+    out["stick_count_mean"] = {m: ds["stick_count_mean"].sel(model=m).values.tolist() for m in models}
+    out["stick_count_mean_se"] = {m: ds["stick_count_mean_se"].sel(model=m).values.tolist() for m in models}
     out["x_gh_mean_se"] = {m: ds["x_gh_mean_se"].sel(model=m).values.tolist() for m in models}
     out["x_gh_std_se"] = {m: ds["x_gh_std_se"].sel(model=m).values.tolist() for m in models}
     if "m_diff" in ds:
@@ -381,8 +383,8 @@ def _summary(study: DampingStudy, ds: xr.Dataset, warns: list[dict[str, str]]) -
                          for m in ds["stochastic_model"].values.tolist()}
     if "phase_trajectory" in ds:
         out["phase"] = {
-            "normal_force": float(ds["phase_normal_force"].values),
-            "damping": [float(v) for v in ds["phase_damping"].values],
+            "normal_force_n": float(ds["phase_normal_force_n"].values),
+            "damping_ratio": [float(v) for v in ds["phase_damping"].values],
             "damping_rule": ds.attrs.get("phase_damping_rule", "auto"),
             "runs": {m: int(np.isfinite(ds["phase_has_cycle"].sel(model=m).values[0]).sum()) for m in models},
             "save_every": config.save_every,

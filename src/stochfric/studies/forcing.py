@@ -36,15 +36,15 @@ class ForcingStudy(Study):
         sp = self.setup.preset.study_parameters
         self.normal_force = config.normal_force if config.normal_force is not None else float(
             sp["forcing_study_force"])
-        self.damping = config.damping_ratio if config.damping_ratio is not None else float(sp["damping_undamped"])
+        self.damping_ratio = config.damping_ratio if config.damping_ratio is not None else float(sp["damping_undamped"])
 
     def axes(self) -> dict[str, Sequence[Any]]:
         return {"model": self.config.models, "forcing_q": self.config.forcing_q}
 
     def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
         st, q = self.setup, point["forcing_q"]
-        return self.task_for(index, point, [st.parameters(self.normal_force, self.damping, q * st.preset.stiffness,
-                                                          eta) for eta in self.config.eta])
+        return self.task_for(index, point, [st.parameters(self.normal_force, self.damping_ratio,
+                                                          q * st.preset.stiffness, eta) for eta in self.config.eta])
 
     def assemble(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]], stats: SweepStats,
                  chash: str | None, executor: Executor | None) -> StudyResult:
@@ -70,7 +70,7 @@ class ForcingStudy(Study):
         })
         summary: dict[str, Any] = {
             **self.summary_head([nf], {
-                "normal_force": nf, "damping": self.damping, "forcing_q": qs,
+                "normal_force_n": nf, "damping_ratio": self.damping_ratio, "forcing_q": qs,
                 "forcing_amplitude_n": [q * setup.preset.stiffness for q in qs], "eta": etas.tolist()}),
             "x_gh_mean": {m: mean[i].tolist() for i, m in enumerate(models)},
             "x_gh_std": {m: std[i].tolist() for i, m in enumerate(models)},

@@ -147,17 +147,18 @@ class LyapunovStudy(Study):
         super().__init__(config)
         sp = self.setup.preset.study_parameters
         self.forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
-        self.damping = config.damping_ratio if config.damping_ratio is not None else float(sp["damping_undamped"])
+        self.damping_ratio = config.damping_ratio if config.damping_ratio is not None else float(sp["damping_undamped"])
 
     def axes(self) -> dict[str, Sequence[Any]]:
-        return {"model": self.config.models, "forcing_q": self.config.forcing_q, "normal_force": self.forces}
+        return {"model": self.config.models, "forcing_q": self.config.forcing_q, "normal_force_n": self.forces}
 
     def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
         config, st = self.config, self.setup
         params = []
         x0s = []
         for eta in config.eta:
-            p = st.parameters(point["normal_force"], self.damping, point["forcing_q"] * st.preset.stiffness, eta)
+            p = st.parameters(point["normal_force_n"], self.damping_ratio, point["forcing_q"] * st.preset.stiffness,
+                              eta)
             base = config.x0 if config.x0 is not None else (0.0, p.gamma0)
             params += [p, p, p]
             x0s += [(float(base[0]) + k * config.perturbation, float(base[1])) for k in (0, 1, 2)]
@@ -219,12 +220,12 @@ class LyapunovStudy(Study):
         coords: dict[str, Any] = {
             "model": models,
             "forcing_q": ("forcing_q", np.asarray(qs), {"units": "1"}),
-            "normal_force": ("normal_force", np.asarray(forces, float), {"units": "N"}),
+            "normal_force_n": ("normal_force_n", np.asarray(forces, float), {"units": "N"}),
             "eta": ("eta", etas, {"units": "1"}),
             "run": np.arange(nr),
             "event": np.arange(nev),
         }
-        d4 = ("model", "forcing_q", "normal_force", "eta")
+        d4 = ("model", "forcing_q", "normal_force_n", "eta")
         ds = self.dataset({
             "w": ((*d4, "run", "event"), w, {"units": "1", "long_name": "w(i) = |X_gh,ref(i) - X_gh,pert(i)|"}),
             "d_pair": ((*d4, "run", "event"), dd, {"units": "1", "long_name": "X_gh,pert - X_gh,ref (delta)"}),
@@ -246,14 +247,15 @@ class LyapunovStudy(Study):
         }, coords, executor, chash, perturbation=config.perturbation, linearity_tolerance=tol)
         sig = {m: _significant(rate[i], rate_se[i]) for i, m in enumerate(models)}
         summary: dict[str, Any] = {
-            **self.summary_head(forces, {"normal_force": list(forces), "forcing_q": qs, "eta": etas.tolist(),
-                                         "damping": self.damping},
+            **self.summary_head(forces, {"normal_force_n": list(forces), "forcing_q": qs, "eta": etas.tolist(),
+                                         "damping_ratio": self.damping_ratio},
                                 perturbation=config.perturbation, linearity_tolerance=tol),
             "lyapunov": {m: rate[i].tolist() for i, m in enumerate(models)},
             "lyapunov_se": {m: rate_se[i].tolist() for i, m in enumerate(models)},
             "status": {m: rate_status[i].tolist() for i, m in enumerate(models)},
             "n_transitions": {m: kk[i].tolist() for i, m in enumerate(models)},
-            "counts": {m: {s_: int(np.sum(rate_status[i] == s_)) for s_ in STATUS} for i, m in enumerate(models)},
+            "status_counts": {m: {s_: int(np.sum(rate_status[i] == s_)) for s_ in STATUS}
+                              for i, m in enumerate(models)},
             # cells whose exponent is positive (negative) by more than 2 standard errors, of the defined ones
             "significance": sig,
             "positive_fraction": {m: (sig[m]["positive"] / sig[m]["defined"]) if sig[m]["defined"] else None

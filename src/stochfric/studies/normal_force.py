@@ -22,6 +22,7 @@ from .base import Study, StudyResult, warning_counts
 from .config import NormalForceConfig
 from .executors import Executor, SweepStats
 from .grids import window_mask
+from .names import NORMAL_FORCE_LAYOUT, ordered
 from .stats import sample_summary, std_ratio
 from .tasks import TaskSpec, runs_for
 
@@ -38,10 +39,10 @@ class NormalForceStudy(Study):
         super().__init__(config)
         sp = self.setup.preset.study_parameters
         self.forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
-        self.dampings = config.damping_ratio or (float(sp["damping_undamped"]), float(sp["damping_damped"]))
+        self.damping_ratio = config.damping_ratio or (float(sp["damping_undamped"]), float(sp["damping_damped"]))
 
     def axes(self) -> dict[str, Sequence[Any]]:
-        return {"model": self.config.models, "damping_ratio": self.dampings}
+        return {"model": self.config.models, "damping_ratio": self.damping_ratio}
 
     def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
         runs = runs_for(point["model"], self.config.runs)
@@ -51,7 +52,7 @@ class NormalForceStudy(Study):
 
     def assemble(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]], stats: SweepStats,
                  checkpoint_hash: str | None, executor: Executor | None) -> StudyResult:
-        config, setup, forces, dampings = self.config, self.setup, self.forces, self.dampings
+        config, setup, forces, dampings = self.config, self.setup, self.forces, self.damping_ratio
         models = list(config.models)
         nm, nd, nn, nr = len(models), len(dampings), len(forces), config.runs
         x_gh = self.stack(tasks, results, "x_gh")
@@ -76,7 +77,7 @@ class NormalForceStudy(Study):
             table[mi, di, ni] = [float(getattr(s, f)) for f in _SE_FIELDS]
         coords, data, d5 = self.event_variables({
             "damping_ratio": ("damping_ratio", np.asarray(dampings), {"units": "1"}),
-            "normal_force": ("normal_force", np.asarray(forces, float), {"units": "N"})}, x_gh, t_gh, inwin)
+            "normal_force_n": ("normal_force_n", np.asarray(forces, float), {"units": "N"})}, x_gh, t_gh, inwin)
         data["stick_count"] = (d5[:4], sc, {"units": "1"})
         names = {"mean": "x_gh_mean", "std": "x_gh_std", "vark": "vark", "n": "n_events",
                  "n_runs": "n_runs_with_events"}
@@ -90,20 +91,21 @@ class NormalForceStudy(Study):
             data["trajectory"] = ((*d5[:3], "phase_run", "sample", "component"), traj,
                                   {"units": "1", "long_name": "decimated (tau, x1, x2)"})
             coords["component"] = ["tau", "x1", "x2"]
-        ds = self.dataset(data, coords, executor, checkpoint_hash, stick_window=config.stick_window)
+        # tasks are per (model, D), all N in one call; the dataset and tables in the glossary's order (model, N, D)
+        ds = ordered(self.dataset(data, coords, executor, checkpoint_hash, stick_window=config.stick_window))
 
         def tab(field: str) -> dict[str, list[list[float]]]:
             j = _SE_FIELDS.index(field)
-            return {m: table[i, ..., j].tolist() for i, m in enumerate(models)}
+            return {m: table[i, ..., j].T.tolist() for i, m in enumerate(models)}
 
         summary: dict[str, Any] = {
-            **self.summary_head(forces, {"normal_force": list(forces), "damping": list(dampings)}),
+            **self.summary_head(forces, {"normal_force_n": list(forces), "damping_ratio": list(dampings)}),
             "stick_window": [config.stick_window * setup.tau_end, setup.tau_end],
             "x_gh_mean": tab("mean"), "x_gh_std": tab("std"), "varK": tab("vark"),
             "x_gh_mean_se": tab("se_mean_boot"), "x_gh_std_se": tab("se_std_boot"), "varK_se": tab("se_vark_boot"),
             "x_gh_mean_se_iid": tab("se_mean_iid"), "x_gh_std_se_iid": tab("se_std_iid"),
             "varK_se_iid": tab("se_vark_iid"), "n_events": tab("n"),
-            "layout": "model -> [damping][normal_force]",
+            "layout": NORMAL_FORCE_LAYOUT,
             **_sigma_ratio(models, xw, nd, nn, nr, config.seed),
             "warnings": warning_counts(self.warnings(tasks, results)),
             "versions": package_versions(),
@@ -117,7 +119,7 @@ normal_force_study = NormalForceStudy.study
 
 def _sigma_ratio(models: Sequence[str], xw: Any, nd: int, nn: int, nr: int, seed: int) -> dict[str, Any]:
     """σ(X_gh) contact / white per (D, N) with delta-method SE and 95 % bootstrap interval (runs
-    resampled, fixed seed); empty without both models.  Layout [damping][normal_force]."""
+    resampled, fixed seed); empty without both models.  Layout [normal_force][damping_ratio]."""
     if not ("white" in models and "contact" in models):
         return {}
     ci, cw = models.index("contact"), models.index("white")
@@ -129,4 +131,4 @@ def _sigma_ratio(models: Sequence[str], xw: Any, nd: int, nn: int, nr: int, seed
             row.append(std_ratio([xw[ci, di, ni, r] for r in range(nr)], [xw[cw, di, ni, r] for r in range(nr)],
                                  rng=g).to_dict())
         out.append(row)
-    return {"sigma_ratio_contact_white": out}
+    return {"sigma_ratio_contact_white": [list(col) for col in zip(*out, strict=True)]}  # [N][D]

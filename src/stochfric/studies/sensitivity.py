@@ -76,8 +76,8 @@ def lyapunov_sensitivity(preset: str = "brake", seed: int = 2013, runs: int = 10
         row: dict[str, Any] = {"perturbation": delta}
         for m in s["models"]:
             row[f"positive_{m}"] = s["positive_fraction"][m]
-            row[f"merged_{m}"] = s["counts"][m]["merged"]
-            row[f"undefined_{m}"] = sum(v for k, v in s["counts"][m].items() if k != "ok")
+            row[f"merged_{m}"] = s["status_counts"][m]["merged"]
+            row[f"undefined_{m}"] = sum(v for k, v in s["status_counts"][m].items() if k != "ok")
         rows.append(row)
     return rows
 

@@ -47,9 +47,9 @@ def _lyapunov_result() -> StudyResult:
     status = np.where(np.isfinite(lam), "ok", "merged")
     status[0, 0, 1, 0] = "nonlinear"
     ds = xr.Dataset(
-        {"lyapunov": (("model", "forcing_q", "normal_force", "eta"), lam, {"units": "1"}),
-         "status": (("model", "forcing_q", "normal_force", "eta"), status)},
-        coords={"model": models, "forcing_q": [5e-5], "normal_force": forces, "eta": eta},
+        {"lyapunov": (("model", "forcing_q", "normal_force_n", "eta"), lam, {"units": "1"}),
+         "status": (("model", "forcing_q", "normal_force_n", "eta"), status)},
+        coords={"model": models, "forcing_q": [5e-5], "normal_force_n": forces, "eta": eta},
         attrs={"config_json": json.dumps({"runs": 2, "eta": [1.0, 1.5, 2.0]}),
                "setup_json": json.dumps({"gamma0": 1.41e-3, "process": {"secret": "not shown"}}),
                "seed_entropy": "20131234", "seed_rule": "task k uses SeedSequence(seed, spawn_key=(k,))",
@@ -57,7 +57,7 @@ def _lyapunov_result() -> StudyResult:
     )
     summary: dict[str, Any] = {
         "preset": "brake", "models": models, "perturbation": 1e-6, "tau_end": 200.0,
-        "counts": {"deterministic": {"ok": 4, "merged": 1, "too-few-transitions": 0, "nonlinear": 1},
+        "status_counts": {"deterministic": {"ok": 4, "merged": 1, "too-few-transitions": 0, "nonlinear": 1},
                    "white": {"ok": 5, "merged": 1, "too-few-transitions": 0, "nonlinear": 0}},
         "significance": {"deterministic": {"positive": 2, "negative": 0, "defined": 4},
                          "white": {"positive": 1, "negative": 1, "defined": 5}},
@@ -126,8 +126,9 @@ def test_provenance_is_shown_without_the_process_internals(page: tuple[Path, str
 
 
 def _damping_summary(det: list[float | None], white: list[float | None]) -> dict[str, Any]:
-    return {"preset": "brake", "normal_force": [1000.0, 2000.0, 3000.0], "damping": [0.05, 0.1, 0.15, 0.2, 0.25],
-            "d_hopf": [0.02, 0.04, 0.06], "d_max_deterministic": det, "phase": {"normal_force": 2000.0},
+    return {"preset": "brake", "normal_force_n": [1000.0, 2000.0, 3000.0],
+            "damping_ratio": [0.05, 0.1, 0.15, 0.2, 0.25],
+            "d_hopf": [0.02, 0.04, 0.06], "d_max_deterministic": det, "phase": {"normal_force_n": 2000.0},
             "d_max_stochastic": {"white": [{"value": v, "interval": [v, None]} for v in white]}}
 
 
@@ -168,9 +169,9 @@ def test_forcing_reading_pairs_each_q_with_its_median_and_interval() -> None:
 
 
 def test_normal_force_headline_names_the_forces_with_stick_slip() -> None:
-    summary = {"preset": "sheet", "normal_force": [400.0, 880.0], "damping": [5e-6, 0.17],
-               "models": ["deterministic", "contact"],
-               "n_events": {"deterministic": [[12, 9], [0, 3]], "contact": [[10, 8], [None, 0]]}}
+    summary = {"preset": "sheet", "normal_force_n": [400.0, 880.0], "damping_ratio": [5e-6, 0.17],
+               "models": ["deterministic", "contact"],  # tables [normal_force_n][damping_ratio]
+               "n_events": {"deterministic": [[12, 0], [9, 3]], "contact": [[10, None], [8, 0]]}}
     assert normal_force_headline(summary) == (
         "sheet, N = 400, 880 N: at D = 5e-06 stick-slip at every force in every model; at D = 0.17 stick-slip "
         "deterministic 880 N; contact nowhere.")
@@ -180,7 +181,7 @@ def test_reproduction_modes_are_labelled_as_such() -> None:
     """docs/oscillator.md: the printed-(4.31) intensity and the position read mode are reproduction modes
     only, and must say so wherever they are used."""
     default = model_choices_text({"path_coordinate": "mass", "white_intensity": "sigma_mu",
-                                  "sigma_zeta": [0.0742, 0.08], "normal_force": [5600.0, 8000.0]})
+                                  "sigma_zeta": [0.0742, 0.08], "normal_force_n": [5600.0, 8000.0]})
     assert "REPRODUCTION MODE" not in default
     assert "σ_ζ of the white model = 0.0742 (N = 5600 N), 0.08 (N = 8000 N)." in default
     repro = model_choices_text({"path_coordinate": "position", "white_intensity": "thesis",

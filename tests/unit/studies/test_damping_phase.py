@@ -49,8 +49,8 @@ def test_phase_trajectories_in_dataset(small: xr.Dataset, tmp_path: Path) -> Non
     assert tr.dims == ("model", "phase_damping", "phase_run", "sample", "component")
     assert tr.attrs["units"] == "1"
     assert ds["phase_damping"].attrs["units"] == "1"
-    assert ds["phase_normal_force"].attrs["units"] == "N"
-    assert float(ds["phase_normal_force"]) == 5600.0  # the brake's damping-study force is on the grid
+    assert ds["phase_normal_force_n"].attrs["units"] == "N"
+    assert float(ds["phase_normal_force_n"]) == 5600.0  # the brake's damping-study force is on the grid
     assert ds["component"].values.tolist() == ["tau", "x1", "x2"]
     assert ds.attrs["phase_damping_rule"] == "auto"
     pd = ds["phase_damping"].values
@@ -67,12 +67,12 @@ def test_phase_trajectories_in_dataset(small: xr.Dataset, tmp_path: Path) -> Non
     # the deterministic phase run at a grid D repeats the grid result (no randomness)
     for k, d in enumerate(pd):
         assert ds["phase_has_cycle"].sel(model="deterministic").values[k, 0] == \
-            ds["has_cycle"].sel(model="deterministic", normal_force=5600.0, damping_ratio=d).values[0]
+            ds["has_cycle"].sel(model="deterministic", normal_force_n=5600.0, damping_ratio=d).values[0]
     # NetCDF round trip keeps dims and units
     p = tmp_path / "d.nc"
     ds.to_netcdf(p, engine="h5netcdf")
     with xr.open_dataset(p, engine="h5netcdf") as back:
-        assert back["phase_trajectory"].dims == tr.dims and back["phase_normal_force"].attrs["units"] == "N"
+        assert back["phase_trajectory"].dims == tr.dims and back["phase_normal_force_n"].attrs["units"] == "N"
 
 
 def test_phase_figure(small: xr.Dataset, tmp_path: Path) -> None:
@@ -94,7 +94,7 @@ def test_phase_given_damping_and_force() -> None:
                            "phase_runs": 2})
     res = damping_study(cfg)
     ds = res.to_dataset()
-    assert float(ds["phase_normal_force"]) == 3000.0
+    assert float(ds["phase_normal_force_n"]) == 3000.0
     assert ds["phase_damping"].values.tolist() == [0.07, 0.2]
     assert ds.attrs["phase_damping_rule"] == "given"
     assert res.to_json_dict()["phase"]["runs"]["white"] == 2
