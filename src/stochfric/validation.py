@@ -1,6 +1,6 @@
 """Validators of scalar inputs shared by the parameter classes (SI values; messages say what to change).
 
-Every validator returns the value as a ``float`` (:func:`finite_tuple`: a tuple of floats) or
+Every validator returns the value as a ``float`` (:func:`count`: an ``int``; :func:`finite_tuple`: a tuple of floats) or
 raises ``error`` (default :class:`ValueError`; callers pass their own subclass, e.g.
 :class:`stochfric.oscillator.parameters.ParameterError`) with a message that names the quantity,
 the allowed range with its unit, and the value given.
@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["finite", "finite_tuple", "non_negative", "positive"]
+__all__ = ["count", "finite", "finite_tuple", "non_negative", "positive"]
 
 
 def finite(name: str, value: float, *, error: type[ValueError] = ValueError) -> float:
@@ -52,3 +52,10 @@ def finite_tuple(name: str, values: Any, *, error: type[ValueError] = ValueError
     if arr.ndim != 1 or arr.size == 0 or not np.all(np.isfinite(arr)):
         raise error(f"{name} must be a non-empty 1-D sequence of finite numbers")
     return tuple(float(v) for v in arr)
+
+
+def count(name: str, value: Any, low: int = 1, *, error: type[ValueError] = ValueError) -> int:
+    """An integer (Python or NumPy, not bool) >= ``low`` as an ``int``, or ``error``."""
+    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < low:
+        raise error(f"{name} must be an integer >= {low}, got {value!r}")
+    return int(value)

@@ -14,6 +14,7 @@ from stochfric.contact.asperity import ContactError
 from stochfric.process.ensemble import SurrogateOptions
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.surface.synthesis import DEFAULT_AMPLITUDE
+from stochfric.validation import count
 
 __all__ = ["AnalysisConfig"]
 
@@ -47,12 +48,8 @@ class AnalysisConfig:
 
     def __post_init__(self) -> None:
         for name in ("realizations", "long_surfaces", "window_shift_points", "pdf_bins", "check_realizations"):
-            v = getattr(self, name)
-            if isinstance(v, bool) or not isinstance(v, int) or v < 1:
-                raise ContactError(f"{name} must be an integer >= 1, got {v!r}")
-        v = self.length_factor
-        if isinstance(v, bool) or not isinstance(v, int) or v < 2:
-            raise ContactError(f"length_factor must be an integer >= 2, got {v!r}")
+            object.__setattr__(self, name, count(name, getattr(self, name), error=ContactError))
+        object.__setattr__(self, "length_factor", count("length_factor", self.length_factor, 2, error=ContactError))
         if self.realizations < 2:
             raise ContactError("realizations must be >= 2 (a standard deviation needs two)")
         if self.long_surfaces < 3:

@@ -50,6 +50,7 @@ from stochfric.random import SeedLike, spawn_generators
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import find_summits
 from stochfric.surface.synthesis import AMPLITUDE_METHODS, DEFAULT_AMPLITUDE, SURROGATE_METHODS, similar_surface
+from stochfric.validation import count
 
 __all__ = [
     "DEFAULT_SHIFT_FRACTION",
@@ -143,9 +144,7 @@ class ContactSamples(BowdenTabor):
 
 
 def _check_count(name: str, value: int, low: int = 1) -> int:
-    if isinstance(value, bool) or not isinstance(value, int | np.integer) or value < low:
-        raise ContactError(f"{name} must be an integer >= {low}, got {value!r}")
-    return int(value)
+    return count(name, value, low, error=ContactError)
 
 
 def _approach(approach_m: npt.ArrayLike) -> FloatArray:

@@ -107,6 +107,18 @@ def test_surrogate_options_and_keywords_are_the_same(fine: Surface) -> None:
         AnalysisConfig(surrogate="x")
 
 
+def test_counts_share_one_validator() -> None:
+    """Counts of the analysis settings and of the window functions: int (NumPy ints too), never bool."""
+    cfg = AnalysisConfig(realizations=np.int64(4))
+    assert cfg.realizations == 4 and type(cfg.realizations) is int
+    with pytest.raises(ContactError, match="realizations must be an integer >= 1, got True"):
+        AnalysisConfig(realizations=True)
+    with pytest.raises(ContactError, match="length_factor must be an integer >= 2, got 1"):
+        AnalysisConfig(length_factor=1)
+    with pytest.raises(ContactError, match="shift_points must be an integer >= 1, got 0"):
+        window_starts(10, 4, 0)
+
+
 def test_large_surface_many_windows_equal_naive() -> None:
     """Windows with thousands of summits each (the old blocked path crashed on any real file)."""
     rng = np.random.default_rng(0)
