@@ -277,13 +277,14 @@ def _fill_pair(
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _lane_candidates(
     a1: float, a2: float, gam: float, c2: float, limb: float, vscale: float, p0: float,
-    p1: float, p2: float, p3: float, dt: float,
+    p1: float, p2: float, p3: float, dt: float, forced: bool, fq_next: float,
 ) -> tuple[float, bool, float, float, float, float]:  # pragma: no cover
     """Fast pass, one lane: the stick candidate ``x1s`` and whether it holds (4.2), and for the
     slip candidate ``v_rel``, ``s``, ``|v_rel|`` and μ_k in rational form (the arithmetic of
-    :func:`_advance`)."""
+    :func:`_advance`); ``fq_next = q cos x3(τ_k + Δτ)`` where the lane is ``forced``."""
     x1s = a1 + gam * dt
-    ok_stick = abs(x1s + c2) <= limb
+    f = x1s + c2
+    ok_stick = abs(f - fq_next if forced else f) <= limb
     vr = gam - a2
     s = 1.0 if vr > 0.0 else -1.0
     avr = abs(vr)
@@ -308,6 +309,33 @@ def _lane_commit(
     return 0 if good else 1
 
 
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _forcing_terms(
+    k: int, dt: float, ng: int, cforced: npt.NDArray[np.float64], cqq: npt.NDArray[np.float64],
+    cx30: npt.NDArray[np.float64], ceta: npt.NDArray[np.float64], fq_now: npt.NDArray[np.float64],
+    fq_next: npt.NDArray[np.float64],
+) -> None:  # pragma: no cover
+    """The forcing ``q cos(x30 + η τ)`` of every forced lane of a group at ``τ = kΔτ`` (slip step,
+    4.7) and ``τ = kΔτ + Δτ`` (end of a stick step, 4.2): the same arguments and the same ``cos``
+    as :func:`_advance`, so the numbers are those of the full step.  The cosine is evaluated once
+    per distinct ``(q, x30, η)`` of neighbouring lanes (the runs of one parameter set), and the
+    end-of-step value is carried to the next step where ``(k+1)Δτ`` and ``kΔτ + Δτ`` are the same
+    float."""
+    t0 = k * dt
+    t1 = t0 + dt
+    carry = k > 0 and t0 == (k - 1) * dt + dt
+    for jj in range(ng):
+        if cforced[jj] == 0.0:
+            continue
+        if jj > 0 and cforced[jj - 1] != 0.0 and cqq[jj] == cqq[jj - 1] and cx30[jj] == cx30[jj - 1] \
+                and ceta[jj] == ceta[jj - 1]:
+            fq_now[jj] = fq_now[jj - 1]
+            fq_next[jj] = fq_next[jj - 1]
+            continue
+        fq_now[jj] = fq_next[jj] if carry else cqq[jj] * math.cos(cx30[jj] + ceta[jj] * t0)
+        fq_next[jj] = cqq[jj] * math.cos(cx30[jj] + ceta[jj] * t1)
+
+
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _fast_pass_contact(
     ng: int, dt: float, vx1: npt.NDArray[np.float64], vx2: npt.NDArray[np.float64],
@@ -317,7 +345,8 @@ def _fast_pass_contact(
     cp1: npt.NDArray[np.float64], cp2: npt.NDArray[np.float64], cp3: npt.NDArray[np.float64],
     cd2: npt.NDArray[np.float64], cn: npt.NDArray[np.float64], cpdx: npt.NDArray[np.float64],
     pseg: npt.NDArray[np.float64], pv0: npt.NDArray[np.float64], pv1: npt.NDArray[np.float64],
-    position: bool, mass_path: bool,
+    position: bool, mass_path: bool, cforced: npt.NDArray[np.float64], fq_now: npt.NDArray[np.float64],
+    fq_next: npt.NDArray[np.float64],
 ) -> int:  # pragma: no cover
     """Branch-free fast pass of :func:`run_fixed_step_batch` for a group with the contact
     process (no white noise): μ = μ_k + μ̂, μ̂ interpolated from the lane's cached segment
@@ -330,8 +359,10 @@ def _fast_pass_contact(
         a1 = vx1[jj]
         a2 = vx2[jj]
         gam = cg[jj]
+        forced = cforced[jj] != 0.0
         x1s, ok_stick, vr, s, avr, mu = _lane_candidates(a1, a2, gam, cc2[jj], vlimb[jj], cvs[jj],
-                                                         cp0[jj], cp1[jj], cp2[jj], cp3[jj], dt)
+                                                         cp0[jj], cp1[jj], cp2[jj], cp3[jj], dt, forced,
+                                                         fq_next[jj])
         path = vpath[jj]  # loaded unconditionally: a load inside the select below kept the
         u = (a1 if position else path) / cpdx[jj]  # loop from vectorising (4.6 vs 1.1 ns/step)
         fl = math.floor(u)
@@ -339,6 +370,7 @@ def _fast_pass_contact(
         hit = fl == pseg[jj]
         mu += lerp(w, pv0[jj], pv1[jj])
         drift = slip_drift(a1, a2, cd2[jj], cn[jj], mu, s)
+        drift = drift + fq_now[jj] if forced else drift
         x1n = a1 + a2 * dt
         x2n = a2 + drift * dt
         ok_slip = (vr != 0.0) & ((gam - x2n) * s > 0.0)
@@ -582,8 +614,10 @@ def run_fixed_step_batch(
     and then the full step :func:`_advance` for the lanes where an event happened.  With the
     contact process, each lane keeps the process values at the ends of its current grid
     segment, so the fast pass interpolates without gathers; a lane that enters another
-    segment takes the full step, after which the segment is reloaded.  Groups with forcing or
-    a tabulated law take a scalar fast pass instead (the cosine and table look-ups do not
+    segment takes the full step, after which the segment is reloaded.  With forcing, the terms
+    ``q cos x3`` at ``τ_k`` and ``τ_k + Δτ`` are computed before the pass, once per distinct
+    ``(q, x30, η)`` of neighbouring lanes (:func:`_forcing_terms`: the cosine does not vectorise).
+    Groups with a tabulated law take a scalar fast pass instead (its table look-ups do not
     vectorise).  The numbers of a trajectory do not depend on the grouping or the batching.
     Releases the GIL, so batches run in parallel threads.
     """
@@ -606,7 +640,8 @@ def run_fixed_step_batch(
         fs = np.empty((_NF, ng))
         ist = np.zeros((_NI, ng), dtype=np.int64)
         cs = np.zeros((_NC, ng))
-        vector = True
+        vector = True  # every law of the group in rational form: the vectorised fast pass
+        forcing = False  # a lane with q ≠ 0 in the group
         for jj in range(ng):
             j = g0 + jj
             row = prm[j]
@@ -630,7 +665,7 @@ def run_fixed_step_batch(
             cs[_C_MUK0, jj] = mu_k0
             cs[_C_FORCED, jj] = 1.0 if row[P_Q] != 0.0 else 0.0
             if row[P_Q] != 0.0:
-                vector = False
+                forcing = True
             if shapes[j] == SHAPE_RATIONAL:
                 cs[_C_P0, jj] = lawp[j, 0]
                 cs[_C_P1, jj] = lawp[j, 1]
@@ -697,6 +732,10 @@ def run_fixed_step_batch(
                 _load_segment(jj, g0 + jj, vx1[jj] if position else vpath[jj], cpdx[jj], proc,
                               n_proc, pseg, pv0, pv1)
         wodd = np.zeros(ng)  # ΔW_{k+1}, from the same Philox block as ΔW_k
+        # q cos x3 of the forced lanes at τ_k (slip) and τ_k + Δτ (stick), per step
+        fq_now = np.zeros(ng)
+        fq_next = np.zeros(ng)
+        cfz = cs[_C_FORCED]
         gkeys = keys[g0:g1] if philox else keys[:0]
         for k in range(nsteps):
             if white:
@@ -709,6 +748,8 @@ def run_fixed_step_batch(
                 else:
                     # one Philox block per lane gives ΔW_k and ΔW_{k+1}: branch-free, vectorised
                     _fill_pair(gkeys, np.uint64(k >> 1), sqdt, wk, wodd)
+            if forcing:
+                _forcing_terms(k, dt, ng, cfz, cs[_C_QQ], cs[_C_X30], cs[_C_ETA], fq_now, fq_next)
             nmiss = 0  # lanes the fast pass could not complete
             if vector and not contact:
                 # fast pass, branch-free: both candidates, then a select per lane
@@ -716,10 +757,12 @@ def run_fixed_step_batch(
                     a1 = vx1[jj]
                     a2 = vx2[jj]
                     gam = cg[jj]
+                    forced = cfz[jj] != 0.0
                     x1s, ok_stick, vr, s, avr, mu = _lane_candidates(
                         a1, a2, gam, cc2[jj], vlimb[jj], cvs[jj], cp0[jj], cp1[jj], cp2[jj],
-                        cp3[jj], dt)
+                        cp3[jj], dt, forced, fq_next[jj])
                     drift = slip_drift(a1, a2, cd2[jj], cn[jj], mu, s)
+                    drift = drift + fq_now[jj] if forced else drift
                     x1n = a1 + a2 * dt
                     if white:
                         x2n = white_velocity_step(a2, drift, s, cito[jj], cn[jj], csig[jj], avr, wk[jj], dt,
@@ -738,18 +781,19 @@ def run_fixed_step_batch(
                 # coordinate left its segment takes the full step
                 nmiss += _fast_pass_contact(ng, dt, vx1, vx2, vstk, vs, vpath, vlimb, vdone, cg,
                                             cc2, cvs, cp0, cp1, cp2, cp3, cd2, cn, cpdx, pseg, pv0,
-                                            pv1, position, mass_path)
+                                            pv1, position, mass_path, cfz, fq_now, fq_next)
             else:
-                # scalar fast pass (forcing or a tabulated law in the group)
+                # scalar fast pass (a tabulated law in the group)
                 for jj in range(ng):
                     j = g0 + jj
                     done = False
+                    forced = cfz[jj] != 0.0
                     if vstk[jj] != 0.0:
                         gam = cg[jj]
                         x1n = vx1[jj] + gam * dt
-                        fn = _stick_force_hoisted(x1n, k * dt + dt, cc2[jj], cs[_C_QQ, jj],
-                                                  cs[_C_X30, jj], cs[_C_ETA, jj],
-                                                  cs[_C_FORCED, jj] != 0.0)
+                        fn = x1n + cc2[jj]
+                        if forced:
+                            fn -= fq_next[jj]
                         if abs(fn) <= vlimb[jj]:
                             vx1[jj] = x1n
                             vx2[jj] = gam
@@ -769,8 +813,8 @@ def run_fixed_step_batch(
                                 mu += process_value_row(proc, j, n_proc[j], cs[_C_PDX, jj],
                                                         a1 if position else path)
                             drift = slip_drift(a1, a2, cd2[jj], nn, mu, s)
-                            if cs[_C_FORCED, jj] != 0.0:
-                                drift += cs[_C_QQ, jj] * math.cos(cs[_C_X30, jj] + cs[_C_ETA, jj] * (k * dt))
+                            if forced:
+                                drift += fq_now[jj]
                             x1n = a1 + a2 * dt
                             if white:
                                 x2n = white_velocity_step(a2, drift, s, cito[jj], nn, csig[jj], avr, wk[jj], dt,
