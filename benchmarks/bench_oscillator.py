@@ -60,6 +60,7 @@ import numpy as np
 import numpy.typing as npt
 import scipy
 
+from stochfric import vector_width
 from stochfric.oscillator import kernels as _k
 from stochfric.oscillator import philox as _ph
 from stochfric.oscillator import reference
@@ -543,6 +544,9 @@ def before_after(ref: str, cfg: dict[str, Any], rounds: int = 3,
         subprocess.run(["tar", "-x", "-C", tmp], input=arch, check=True)
         env = dict(os.environ, PYTHONPATH=os.path.join(tmp, "src"),
                    NUMBA_CACHE_DIR=os.path.join(tmp, "numba-cache"))
+        if vector_width.applied is not None and env.get("NUMBA_CPU_FEATURES") == vector_width.applied:
+            # the other revision as it ran: its own vector-width rule (none before it existed)
+            del env["NUMBA_CPU_FEATURES"]
         for r in range(rounds):
             say(f"  before/after round {r + 1}/{rounds} (revision {ref} in a subprocess) ...")
             res = subprocess.run([sys.executable, "-c", _BEFORE_SNIPPET, str(runs), str(tau),
@@ -567,6 +571,7 @@ def machine_info() -> dict[str, Any]:
         "processor": platform.processor() or platform.machine(),
         "python": sys.version.split()[0],
         "numpy": np.__version__, "numba": numba.__version__, "scipy": scipy.__version__,
+        "vector_width": "512 (stochfric.vector_width)" if vector_width.applied else "numba's default",
     }
     try:
         with open("/proc/cpuinfo") as fh:
@@ -695,7 +700,7 @@ def format_report(rep: Report) -> str:
     lines = [f"stochfric oscillator benchmarks ({rep.size}); "
              f"{rep.machine.get('cpu_count')} cores, {rep.machine.get('cpu_model', '')}; "
              f"Python {rep.machine['python']}, numpy {rep.machine['numpy']}, "
-             f"numba {rep.machine['numba']}; load avg "
+             f"numba {rep.machine['numba']}; vector width {rep.machine.get('vector_width', '?')}; load avg "
              f"{rep.machine.get('loadavg_start', float('nan')):.2f} -> "
              f"{rep.machine.get('loadavg_end', float('nan')):.2f}", ""]
     head = (f"{'group':9s} {'case':6s} {'configuration':34s} {'runs':>6s} {'steps':>10s} "

@@ -18,6 +18,7 @@ PACKAGE = Path(__file__).resolve().parents[2] / "src" / "stochfric"
 #: Layer of each top-level module or sub-package of stochfric, lowest first.
 LAYERS: dict[str, int] = {
     "units": 0, "random": 0, "validation": 0, "io_utils": 0, "plotting": 0, "progress": 0, "__init__": 0, "data": 0,
+    "vector_width": 0,
     "surface": 1,
     "contact": 2,
     "process": 3,
