@@ -34,7 +34,7 @@ def main() -> None:
         for m in s["models"]:
             lam = np.array(s["lyapunov"][m], dtype=float)
             sep = np.array(s["separation_index_443"][m], dtype=float)
-            c = s["counts"][m]
+            c = s["status_counts"][m]
             sig = s["significance"][m]
             med = f"{np.nanmedian(lam):+.3f}" if np.isfinite(lam).any() else "—"
             print(f"| {d:g} | {m} | {c['ok']} / {c['nonlinear']} / {c['merged']} / {c['too-few-transitions']} | "

@@ -52,16 +52,16 @@ def run_normal_force(preset: str, runs: int, seed: int) -> dict[str, dict[str, A
 def table(preset: str, res: dict[str, dict[str, Any]]) -> list[str]:
     lines = []
     for name, s in res.items():
-        for ni, nf in enumerate(s["normal_force"]):
+        for ni, nf in enumerate(s["normal_force_n"]):
             cells = []
             for m in ("deterministic", "white", "contact"):
-                e, se = s["x_gh_mean"][m][0][ni], s["x_gh_mean_se"][m][0][ni]
-                sd, ses = s["x_gh_std"][m][0][ni], s["x_gh_std_se"][m][0][ni]
+                e, se = s["x_gh_mean"][m][ni][0], s["x_gh_mean_se"][m][ni][0]
+                sd, ses = s["x_gh_std"][m][ni][0], s["x_gh_std_se"][m][ni][0]
                 if m == "deterministic":
                     cells.append(f"{e * 1e4:+.3f}")
                 else:
                     cells.append(f"{e * 1e4:+.3f} ± {(se or 0) * 1e4:.3f} | {sd * 1e4:.3f} ± {(ses or 0) * 1e4:.3f}")
-            r = s["sigma_ratio_contact_white"][0][ni]
+            r = s["sigma_ratio_contact_white"][ni][0]
             cells.append(f"{r['value']:.2f} [{r['low']:.2f}, {r['high']:.2f}]")
             lines.append(f"| {preset} | {nf:g} | {name} | " + " | ".join(cells) + " |")
     return lines
@@ -79,13 +79,13 @@ def figure(all_res: dict[str, dict[str, dict[str, Any]]], path: str) -> None:
         k = 0
         for name, s in res.items():
             for m, mk in (("white", "o"), ("contact", "s")):
-                xs = [i + (k - 4.5) * width for i in range(len(s["normal_force"]))]
-                ys = [v * 1e4 for v in s["x_gh_std"][m][0]]
-                es = [(v or 0) * 1e4 for v in s["x_gh_std_se"][m][0]]
+                xs = [i + (k - 4.5) * width for i in range(len(s["normal_force_n"]))]
+                ys = [row[0] * 1e4 for row in s["x_gh_std"][m]]
+                es = [(row[0] or 0) * 1e4 for row in s["x_gh_std_se"][m]]
                 ax.errorbar(xs, ys, yerr=es, fmt=mk, ms=4, capsize=2, label=f"{m}, {name}")
                 k += 1
-        ax.set_xticks(range(len(res["default"]["normal_force"])))
-        ax.set_xticklabels([f"{v:g} N" for v in res["default"]["normal_force"]])
+        ax.set_xticks(range(len(res["default"]["normal_force_n"])))
+        ax.set_xticklabels([f"{v:g} N" for v in res["default"]["normal_force_n"]])
         ax.set_ylabel("σ(X_gh) · 10⁴")
         ax.set_title(f"{preset}, D = 5·10⁻⁶, τ_end = 50, Δτ = 0.005, window τ > 25", fontsize=9)
         ax.grid(alpha=0.3)

@@ -20,7 +20,7 @@ from stochfric.process.presets import brake
 def brake_case() -> tuple[OscillatorParameters, object]:
     pre = brake()
     p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
-                           normal_force=5600.0, contact_area=pre.contact_area).to_dimensionless()
+                           normal_force=5600.0, contact_area=pre.contact_area_m2).to_dimensionless()
     assert p.pressure is not None
     return p, pressure_law(pre.process.mean(p.pressure))
 

@@ -80,7 +80,7 @@ def test_fig_4_15_belt_speed_reached_without_sticking() -> None:
     pre = brake()
     p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=1.0,
                            normal_force=720.0, damping_ratio=5e-6,
-                           contact_area=pre.contact_area).to_dimensionless()
+                           contact_area=pre.contact_area_m2).to_dimensionless()
     assert p.pressure is not None
     law = pressure_law(pre.process.mean(p.pressure))
     r = simulate(p, law=law, integrator="accurate", tau_end=50.0)

@@ -28,7 +28,7 @@ def _second_xgh(stream: str, force: float, seed: int) -> np.ndarray:
     pre = brake()
     p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
                            normal_force=force, damping_ratio=5e-6,
-                           contact_area=pre.contact_area).to_dimensionless()
+                           contact_area=pre.contact_area_m2).to_dimensionless()
     assert p.pressure is not None
     r = simulate(p, model="white", law=pressure_law(pre.process.mean(p.pressure)),
                  process=pre.process, runs=RUNS, seed=seed, tau_end=14.0, white_stream=stream,

@@ -262,12 +262,13 @@ def _print_summary(kind: str, s: dict[str, Any]) -> None:
         t = Table(title="largest damping with stick-slip")
         for col in ["N [N]", "D_H", "D_max^d", *[f"D_max^s {m} [lo, hi]" for m in s["d_max_stochastic"]]]:
             t.add_column(col, justify="right")
-        for i, nf in enumerate(s["normal_force"]):
+        for i, nf in enumerate(s["normal_force_n"]):
             det = s.get("d_max_deterministic")
-            row = [f"{nf:g}", f"{s['d_hopf'][i]:.4g}", report_html.dmax_text(det[i], s["damping"]) if det else "—"]
+            grid = s["damping_ratio"]
+            row = [f"{nf:g}", f"{s['d_hopf'][i]:.4g}", report_html.dmax_text(det[i], grid) if det else "—"]
             for m in s["d_max_stochastic"]:
                 e = s["d_max_stochastic"][m][i]
-                row.append(report_html.dmax_text(e["value"], s["damping"]) + (
+                row.append(report_html.dmax_text(e["value"], grid) + (
                     "" if e["value"] is None else f" [{e['interval'][0]}, {e['interval'][1] or '> grid'}]"))
             t.add_row(*row)
         con.print(t)

@@ -229,7 +229,7 @@ class CaseSetup:
         pre = self.preset
         return physical_parameters(pre.mass, pre.stiffness, pre.belt_speed, normal_force,
                                    damping_ratio=damping_ratio, forcing_amplitude=forcing_amplitude, eta=eta,
-                                   contact_area=pre.contact_area)
+                                   contact_area=pre.contact_area_m2)
 
     def case(
         self, normal_force: float, damping_ratio: float, forcing_amplitude: float = 0.0, eta: float = 0.0
@@ -243,7 +243,7 @@ class CaseSetup:
     def sigma_zeta(self, normal_force: float) -> float:
         """σ_ζ of the white-noise model at N [N] (p = N/A) under the setup's σ_ζ rule (for ``thesis``:
         the nominal σ_ζ = σ_μ(p); see :meth:`sigma_zeta_effective`)."""
-        return float(self.process.sigma_zeta(float(normal_force) / self.preset.contact_area))
+        return float(self.process.sigma_zeta(float(normal_force) / self.preset.contact_area_m2))
 
     def sigma_zeta_effective(self, normal_force: float) -> float:
         """The intensity the white-noise SDE actually uses: σ_ζ, or σ_ζ·Lω0·Δτ (L = 1 m) in ``thesis``
@@ -259,7 +259,7 @@ class CaseSetup:
             "mass_kg": pre.mass,
             "stiffness_n_per_m": pre.stiffness,
             "belt_speed_m_s": pre.belt_speed,
-            "contact_area_m2": pre.contact_area,
+            "contact_area_m2": pre.contact_area_m2,
             "omega0_rad_s": pre.omega0,
             "gamma0": pre.gamma0,
             "process_source": self.process_source,
@@ -322,7 +322,7 @@ def _parameters(
         m_ = mass if mass is not None else (pre.mass if pre else None)
         c_ = stiffness if stiffness is not None else (pre.stiffness if pre else None)
         v_ = belt_speed if belt_speed is not None else (pre.belt_speed if pre else None)
-        a_ = contact_area if contact_area is not None else (pre.contact_area if pre else None)
+        a_ = contact_area if contact_area is not None else (pre.contact_area_m2 if pre else None)
         missing = [k for k, v in (("--mass", m_), ("--stiffness", c_), ("--belt-speed", v_)) if v is None]
         if missing:
             raise CaseError(f"physical parameters need {', '.join(missing)} (or a --preset)")
@@ -332,7 +332,7 @@ def _parameters(
         elif normal_force is not None:
             nf = normal_force
         elif pre is not None:
-            nf = pre.default_normal_force
+            nf = pre.default_normal_force_n
         else:
             raise CaseError("give the normal force --normal-force N [newtons] or --n")
         if damping_ratio is None and damping_coefficient is None:

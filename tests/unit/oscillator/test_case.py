@@ -24,7 +24,7 @@ def test_input_forms_agree() -> None:
     pre = get_preset("sheet")
     a = build_case("sheet", n=1e-3, damping_ratio=0.1)
     b = build_case(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
-                   normal_force=1e-3 * pre.stiffness, damping_ratio=0.1, contact_area=pre.contact_area,
+                   normal_force=1e-3 * pre.stiffness, damping_ratio=0.1, contact_area=pre.contact_area_m2,
                    process_file=None, friction_law="III")
     assert a.params == b.params
     assert b.process is None and b.law == law_III()

@@ -75,7 +75,7 @@ def test_simulate_contact_equals_the_per_trajectory_path(path: str, preset: Any,
     process = _tabulated() if tabulated else pre.process
     base = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
                               normal_force=2000.0, damping_ratio=5e-6,
-                              contact_area=pre.contact_area).to_dimensionless()
+                              contact_area=pre.contact_area_m2).to_dimensionless()
     sets = [base, base.with_normal_force(4000.0), base.replace(q=1e-4, eta=1.3)]  # a forced set too
 
     def law(p: Any) -> Any:

@@ -19,7 +19,7 @@ def _brake(force: float = 5600.0, damping: float = 5e-6) -> tuple[OscillatorPara
     pre = brake()
     p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
                            normal_force=force, damping_ratio=damping,
-                           contact_area=pre.contact_area).to_dimensionless()
+                           contact_area=pre.contact_area_m2).to_dimensionless()
     return p, pre
 
 

@@ -184,7 +184,7 @@ def test_every_process_model_drives_the_contact_oscillator(kind: str) -> None:
         model = dataclasses.replace(model, length=0.05, dx=0.05 / round(0.05 / model.dx))  # type: ignore[arg-type]
     params = PhysicalParameters(
         mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed, normal_force=5600.0,
-        damping_ratio=5e-6, contact_area=pre.contact_area,
+        damping_ratio=5e-6, contact_area=pre.contact_area_m2,
     ).to_dimensionless()
     p = params.pressure
     assert p is not None and 0.0 < model.mean(p) < 1.0
