@@ -134,25 +134,15 @@ _as_bits = _bitcast(types.float64, types.uint64, ir.IntType(64))
 # with the C library over their whole input range.
 _LN2_HI = 6.93147180369123816490e-01
 _LN2_LO = 1.90821492927058770002e-10
-_LG1 = 6.666666666666735130e-01
-_LG2 = 3.999999999940941908e-01
-_LG3 = 2.857142874366239149e-01
-_LG4 = 2.222219843214978396e-01
-_LG5 = 1.818357216161805012e-01
-_LG6 = 1.531383769920937332e-01
-_LG7 = 1.479819860511658591e-01
-_S1 = -1.66666666666666324348e-01
-_S2 = 8.33333333332248946124e-03
-_S3 = -1.98412698298579493134e-04
-_S4 = 2.75573137070700676789e-06
-_S5 = -2.50507602534068634195e-08
-_S6 = 1.58969099521155010221e-10
-_C1 = 4.16666666666666019037e-02
-_C2 = -1.38888888888741095749e-03
-_C3 = 2.48015872894767294178e-05
-_C4 = -2.75573143513906633035e-07
-_C5 = 2.08757232129817482790e-09
-_C6 = -1.13596475577881948265e-11
+#: e_log.c Lg1 … Lg7
+_LG = (6.666666666666735130e-01, 3.999999999940941908e-01, 2.857142874366239149e-01, 2.222219843214978396e-01,
+       1.818357216161805012e-01, 1.531383769920937332e-01, 1.479819860511658591e-01)
+#: k_sin.c S1 … S6
+_S = (-1.66666666666666324348e-01, 8.33333333332248946124e-03, -1.98412698298579493134e-04,
+      2.75573137070700676789e-06, -2.50507602534068634195e-08, 1.58969099521155010221e-10)
+#: k_cos.c C1 … C6
+_C = (4.16666666666666019037e-02, -1.38888888888741095749e-03, 2.48015872894767294178e-05,
+      -2.75573143513906633035e-07, 2.08757232129817482790e-09, -1.13596475577881948265e-11)
 _MANT = np.uint64(0x000FFFFFFFFFFFFF)
 _ONE_BITS = np.uint64(0x3FF0000000000000)
 _SQRT2 = 1.4142135623730951
@@ -167,12 +157,13 @@ def log_positive(u: float) -> float:  # pragma: no cover
     big = m > _SQRT2
     m = 0.5 * m if big else m  # m in [√2/2, √2)
     e = e + 1 if big else e
+    lg1, lg2, lg3, lg4, lg5, lg6, lg7 = _LG
     f = m - 1.0
     s = f / (2.0 + f)
     z = s * s
     w = z * z
-    t1 = w * (_LG2 + w * (_LG4 + w * _LG6))
-    t2 = z * (_LG1 + w * (_LG3 + w * (_LG5 + w * _LG7)))
+    t1 = w * (lg2 + w * (lg4 + w * lg6))
+    t2 = z * (lg1 + w * (lg3 + w * (lg5 + w * lg7)))
     r = t2 + t1
     hfsq = 0.5 * f * f
     dk = float(e)
@@ -182,17 +173,19 @@ def log_positive(u: float) -> float:  # pragma: no cover
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def sin_kernel(x: float) -> float:  # pragma: no cover
     """sin x for |x| ≤ π/4 (fdlibm ``__kernel_sin`` with zero tail; < 1 ulp)."""
+    s1, s2, s3, s4, s5, s6 = _S
     z = x * x
     v = z * x
-    r = _S2 + z * (_S3 + z * (_S4 + z * (_S5 + z * _S6)))
-    return x + v * (_S1 + z * r)
+    r = s2 + z * (s3 + z * (s4 + z * (s5 + z * s6)))
+    return x + v * (s1 + z * r)
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def cos_kernel(x: float) -> float:  # pragma: no cover
     """cos x for |x| ≤ π/4 (fdlibm ``__kernel_cos`` with zero tail; < 1 ulp)."""
+    c1, c2, c3, c4, c5, c6 = _C
     z = x * x
-    r = z * (_C1 + z * (_C2 + z * (_C3 + z * (_C4 + z * (_C5 + z * _C6)))))
+    r = z * (c1 + z * (c2 + z * (c3 + z * (c4 + z * (c5 + z * c6)))))
     hz = 0.5 * z
     w = 1.0 - hz
     return w + (((1.0 - w) - hz) + z * r)
