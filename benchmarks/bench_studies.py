@@ -21,14 +21,14 @@ from stochfric.studies.damping import damping_study
 from stochfric.studies.executors import ProcessExecutor, SerialExecutor
 from stochfric.studies.reproduce import reproduce
 
-THESIS_MAP = DampingConfig(normal_forces=(1800.0, 2800.0, 3800.0, 4800.0, 5600.0, 6800.0, 8000.0),
+THESIS_MAP = DampingConfig(normal_force_n=(1800.0, 2800.0, 3800.0, 4800.0, 5600.0, 6800.0, 8000.0),
                            damping_ratio=parse_grid("0.05:0.25:41"), runs=10, seed=1)
 
 
 def bench_damping_map() -> dict[str, float]:
     """Wall time of the thesis damping map, serial (all threads) and with 2 processes."""
     out = {}
-    damping_study(THESIS_MAP.model_copy(update={"normal_forces": (5600.0,), "runs": 2}))  # compile/warm up
+    damping_study(THESIS_MAP.model_copy(update={"normal_force_n": (5600.0,), "runs": 2}))  # compile/warm up
     for name, ex in (("serial", SerialExecutor()), ("processes_2", ProcessExecutor(workers=2))):
         t = time.perf_counter()
         damping_study(THESIS_MAP, executor=ex)

@@ -96,7 +96,7 @@ def test_human_output_and_report(app: typer.Typer, tmp_path: Path) -> None:
         (["study", "lyapunov", "--path-coordinate", "global"], "path_coordinate"),
         (["study", "normal-force", "--path-coordinate", "x"], "'mass', 'relative' or 'position'"),
         (["study", "damping", "--phase-damping", "0.1,1.5"], "phase_damping"),
-        (["study", "damping", "--phase-force", "-5"], "phase_force"),
+        (["study", "damping", "--phase-force", "-5"], "phase_force_n"),
     ],
 )
 def test_errors_exit_2(app: typer.Typer, args: list[str], needle: str) -> None:
@@ -173,8 +173,8 @@ dir = "{(tmp_path / 'out').as_posix()}"
 report = true
 [[study]]
 kind = "damping"
-normal_forces = [5600]
-damping = "0.1:0.2:3"
+normal_force_n = [5600]
+damping_ratio = "0.1:0.2:3"
 white_intensity = "spectral_level"
 path_coordinate = "relative"
 phase_damping = [0.1, 0.2]

@@ -82,9 +82,9 @@ def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
     d = tmp_path_factory.mktemp("report")
     results = [
         normal_force_study(NormalForceConfig(runs=3, phase_runs=2, seed=1)),
-        damping_study(DampingConfig(normal_forces=(4000.0, 6000.0), damping_ratio="0.08:0.2:5", runs=3, seed=1)),
+        damping_study(DampingConfig(normal_force_n=(4000.0, 6000.0), damping_ratio="0.08:0.2:5", runs=3, seed=1)),
         forcing_study(ForcingConfig(eta="0.5:2:3", runs=3, seed=1)),
-        lyapunov_study(LyapunovConfig(normal_forces=(4000.0,), eta=(1.2, 2.0), runs=2, tau_end=60.0, seed=1)),
+        lyapunov_study(LyapunovConfig(normal_force_n=(4000.0,), eta=(1.2, 2.0), runs=2, tau_end=60.0, seed=1)),
     ]
     RESULTS[:] = results
     save = study_figures._save

@@ -48,12 +48,28 @@ def test_study_parameters() -> None:
     b, s = brake().study_parameters, sheet().study_parameters
     assert b["damping_undamped"] == s["damping_undamped"] == 5e-6
     assert (b["damping_damped"], s["damping_damped"]) == (0.15, 0.17)
-    assert (b["damping_study_force"], s["damping_study_force"]) == (5600.0, 1400.0)
-    assert (b["forcing_study_force"], s["forcing_study_force"]) == (4000.0, 1100.0)
-    assert b["normal_force_study_forces"] == (720.0, 2720.0, 8000.0)
-    assert s["normal_force_study_forces"] == (400.0, 880.0, 1750.0)
+    assert (b["damping_study_force_n"], s["damping_study_force_n"]) == (5600.0, 1400.0)
+    assert (b["forcing_study_force_n"], s["forcing_study_force_n"]) == (4000.0, 1100.0)
+    assert b["normal_force_study_forces_n"] == (720.0, 2720.0, 8000.0)
+    assert s["normal_force_study_forces_n"] == (400.0, 880.0, 1750.0)
     with pytest.raises(TypeError):
         b["damping_damped"] = 0.2  # type: ignore[index]
+
+
+def test_study_parameters_read_and_accept_the_keys_before_the_glossary() -> None:
+    b = brake()
+    assert set(b.study_parameters) == {"damping_undamped", "damping_damped", "damping_study_force_n",
+                                       "forcing_study_force_n", "normal_force_study_forces_n"}
+    with pytest.warns(DeprecationWarning, match="'damping_study_force' is deprecated: use 'damping_study_force_n'"):
+        assert b.study_parameters["damping_study_force"] == 5600.0
+    with pytest.warns(DeprecationWarning, match="normal_force_study_forces"):
+        assert b.study_parameters.get("normal_force_study_forces") == (720.0, 2720.0, 8000.0)
+    with pytest.warns(DeprecationWarning, match="forcing_study_force"):
+        old = replace(b, study_parameters={"forcing_study_force": 4000.0})
+    assert dict(old.study_parameters) == {"forcing_study_force_n": 4000.0}
+    assert replace(b, study_parameters=b.study_parameters) == b
+    with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match="give forcing_study_force_n only"):
+        replace(b, study_parameters={"forcing_study_force": 4000.0, "forcing_study_force_n": 4000.0})
 
 
 def test_fit_parameters_as_printed() -> None:

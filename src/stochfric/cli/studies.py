@@ -306,8 +306,8 @@ def damping_command(
 ) -> None:
     """Damping study: D_max^d, D_max^s (with interval), D_H, M_diff, M_quot, phase diagrams over D (method §6.2)."""
     _execute("damping", {**common, "stick_window": stick_window,
-                         "normal_forces": normal_force, "damping_ratio": damping, "confidence": confidence,
-                         "p_detect": p_detect, "x0": x0, "phase_force": phase_force,
+                         "normal_force_n": normal_force, "damping_ratio": damping, "confidence": confidence,
+                         "p_detect": p_detect, "x0": x0, "phase_force_n": phase_force,
                          "phase_damping": phase_damping, "phase_runs": phase_runs}, run)
 
 
@@ -324,7 +324,7 @@ def forcing_command(
 ) -> None:
     """Forcing study: bifurcation data, E[X_gh] ± σ over η, σ_contact/σ_white (method §6.3)."""
     _execute("forcing", {**common, "stick_window": stick_window,
-                         "normal_force": normal_force, "forcing_q": q, "eta": eta, "damping_ratio": damping}, run)
+                         "normal_force_n": normal_force, "forcing_q": q, "eta": eta, "damping_ratio": damping}, run)
 
 
 @option_group("common", study_options)
@@ -341,7 +341,7 @@ def lyapunov_command(
 ) -> None:
     """Largest Lyapunov exponent λ (4.43) / E[Λ] (4.44) over η and N (method §6.4)."""
     _execute("lyapunov", {**common,
-                          "normal_forces": normal_force, "forcing_q": q, "eta": eta,
+                          "normal_force_n": normal_force, "forcing_q": q, "eta": eta,
                           "perturbation": perturbation, "damping_ratio": damping}, run)
 
 
@@ -359,7 +359,7 @@ def normal_force_command(
 ) -> None:
     """Normal-force study: phase diagrams, PDFs, E[X_gh] ± σ, VarK with SEs (method §6.1)."""
     _execute("normal-force", {**common, "stick_window": stick_window,
-                              "normal_forces": normal_force, "damping_ratio": damping,
+                              "normal_force_n": normal_force, "damping_ratio": damping,
                               "phase_runs": phase_runs}, run)
 
 

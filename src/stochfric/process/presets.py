@@ -22,7 +22,8 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from collections.abc import Callable, Mapping
+import warnings
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import Any
@@ -47,6 +48,50 @@ __all__ = [
 
 #: Length scale L [m] of the dimensionless displacement x = y/L (thesis: L = 1 m).
 _LENGTH_SCALE_M = 1.0
+
+#: ``study_parameters`` keys before docs/glossary.md → their names now (still read, with a DeprecationWarning).
+RENAMED_STUDY_PARAMETERS: Mapping[str, str] = MappingProxyType({
+    "damping_study_force": "damping_study_force_n",
+    "forcing_study_force": "forcing_study_force_n",
+    "normal_force_study_forces": "normal_force_study_forces_n",
+})
+
+
+def _renamed_key(key: str) -> str:
+    new = RENAMED_STUDY_PARAMETERS.get(key)
+    if new is None:
+        return key
+    warnings.warn(f"preset study_parameters key {key!r} is deprecated: use {new!r} (docs/glossary.md)",
+                  DeprecationWarning, stacklevel=3)
+    return new
+
+
+class _StudyParameters(Mapping[str, Any]):
+    """Read-only mapping of a preset's study settings under the glossary's keys; the keys before
+    the glossary (:data:`RENAMED_STUDY_PARAMETERS`) are accepted and read with a DeprecationWarning."""
+
+    __slots__ = ("_data",)
+
+    def __init__(self, data: Mapping[str, Any]) -> None:
+        out: dict[str, Any] = {}
+        for key, value in data.items():
+            new = _renamed_key(key)
+            if new in out or (new != key and new in data):
+                raise ValueError(f"study_parameters: give {new} only ({key} is its deprecated name)")
+            out[new] = value
+        self._data = out
+
+    def __getitem__(self, key: str) -> Any:
+        return self._data[_renamed_key(key)]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self._data)
+
+    def __len__(self) -> int:
+        return len(self._data)
+
+    def __repr__(self) -> str:
+        return f"{type(self).__name__}({self._data!r})"
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -78,7 +123,9 @@ class Preset:
     study_parameters:
         The thesis's study settings (read-only mapping), forces in N:
         ``damping_undamped`` (D = 5e-6), ``damping_damped`` (D of the damped runs),
-        ``damping_study_force``, ``forcing_study_force``, ``normal_force_study_forces``.
+        ``damping_study_force_n``, ``forcing_study_force_n``, ``normal_force_study_forces_n``
+        (their names before docs/glossary.md, without ``_n``, are still accepted and read,
+        with a DeprecationWarning).
     recorded_psd_level_fit:
         The thesis's E[S](p) fit (third row of Table 3.3/3.6), **metadata only, not
         used**: its PSD normalisation is unstated (method §7.8) and incompatible with
@@ -130,7 +177,7 @@ class Preset:
             )
         if not isinstance(self.process, BandLimitedProcessModel):
             raise TypeError(f"process must be a BandLimitedProcessModel, got {self.process!r}")
-        object.__setattr__(self, "study_parameters", MappingProxyType(dict(self.study_parameters)))
+        object.__setattr__(self, "study_parameters", _StudyParameters(self.study_parameters))
 
     @property
     def omega0(self) -> float:
@@ -210,9 +257,9 @@ def brake() -> Preset:
         study_parameters={
             "damping_undamped": 5e-6,
             "damping_damped": 0.15,
-            "damping_study_force": 5600.0,
-            "forcing_study_force": 4000.0,
-            "normal_force_study_forces": (720.0, 2720.0, 8000.0),
+            "damping_study_force_n": 5600.0,
+            "forcing_study_force_n": 4000.0,
+            "normal_force_study_forces_n": (720.0, 2720.0, 8000.0),
         },
         recorded_psd_level_fit=ModelFunction(a=0.0068, b=-0.3174, c=2.4785e-5),
     )
@@ -253,9 +300,9 @@ def sheet() -> Preset:
         study_parameters={
             "damping_undamped": 5e-6,
             "damping_damped": 0.17,
-            "damping_study_force": 1400.0,
-            "forcing_study_force": 1100.0,
-            "normal_force_study_forces": (400.0, 880.0, 1750.0),
+            "damping_study_force_n": 1400.0,
+            "forcing_study_force_n": 1100.0,
+            "normal_force_study_forces_n": (400.0, 880.0, 1750.0),
         },
         recorded_psd_level_fit=ModelFunction(a=0.0223, b=-0.3174, c=-5.9154e-5),
     )

@@ -115,12 +115,13 @@ class DampingConfig(StudyConfig):
     """Damping study (method §6.2, thesis 4.2.2/4.3.2): grid D × N."""
 
     kind: Literal["damping"] = "damping"
-    normal_forces: Grid | None = None
+    normal_force_n: Grid | None = Field(default=None, description="normal forces N [N] (default: the preset's "
+                                                                    "damping-study force)")
     damping_ratio: Grid = Field(default_factory=lambda: parse_grid("0.05:0.25:41"))
     common_random_numbers: bool = True
     confidence: float = Field(default=0.95, gt=0, lt=1)
     p_detect: float = Field(default=0.1, gt=0, lt=1)
-    phase_force: float | None = Field(
+    phase_force_n: float | None = Field(
         default=None, gt=0,
         description="N [N] of the phase diagrams over D (default: the preset's damping-study force if it is "
                     "one of the normal forces, else the middle force)",
@@ -131,12 +132,22 @@ class DampingConfig(StudyConfig):
     phase_runs: int = Field(default=3, ge=0, le=1000, description="runs kept per D (stochastic models); 0: none")
     save_every: int = Field(default=10, ge=1, description="keep every k-th step of the phase trajectories")
 
-    renamed_fields = {"damping": "damping_ratio"}
+    renamed_fields = {"damping": "damping_ratio", "normal_forces": "normal_force_n", "phase_force": "phase_force_n"}
 
     @property
     def damping(self) -> tuple[float, ...]:
         """Deprecated name of :attr:`damping_ratio`."""
         return self.damping_ratio
+
+    @property
+    def normal_forces(self) -> tuple[float, ...] | None:
+        """Deprecated name of :attr:`normal_force_n`."""
+        return self.normal_force_n
+
+    @property
+    def phase_force(self) -> float | None:
+        """Deprecated name of :attr:`phase_force_n`."""
+        return self.phase_force_n
 
     @field_validator("damping_ratio")
     @classmethod
@@ -184,36 +195,56 @@ class ForcingConfig(_ForcedConfig):
     """Forcing study (method §6.3, thesis 4.2.3/4.3.3): bifurcation data over η."""
 
     kind: Literal["forcing"] = "forcing"
-    normal_force: float | None = Field(default=None, gt=0)
+    normal_force_n: float | None = Field(default=None, gt=0, description="normal force N [N] (default: the "
+                                                                          "preset's forcing-study force)")
+    renamed_fields = {**_ForcedConfig.renamed_fields, "normal_force": "normal_force_n"}
+
+    @property
+    def normal_force(self) -> float | None:
+        """Deprecated name of :attr:`normal_force_n`."""
+        return self.normal_force_n
 
 
 class LyapunovConfig(_ForcedConfig):
     """Largest Lyapunov exponent (method §6.4, eq. 4.43/4.44) over η and N."""
 
     kind: Literal["lyapunov"] = "lyapunov"
-    normal_forces: Grid | None = None
+    normal_force_n: Grid | None = Field(default=None, description="normal forces N [N] (default: the preset's "
+                                                                    "normal-force-study forces)")
     eta: Grid = Field(default_factory=lambda: parse_grid("0.1:3:30"))
     perturbation: float = Field(default=1e-6, gt=0, description="shift of the initial x1 of the comparison run")
     linearity_tolerance: float = Field(
         default=0.1, gt=0, lt=1,
         description="a pair is linear when the twin run (2δ) separates by 2w within this relative tolerance")
+    renamed_fields = {**_ForcedConfig.renamed_fields, "normal_forces": "normal_force_n"}
+
+    @property
+    def normal_forces(self) -> tuple[float, ...] | None:
+        """Deprecated name of :attr:`normal_force_n`."""
+        return self.normal_force_n
 
 
 class NormalForceConfig(StudyConfig):
     """Normal-force study (method §6.1, thesis 4.2.1/4.3.1)."""
 
     kind: Literal["normal-force"] = "normal-force"
-    normal_forces: Grid | None = None
+    normal_force_n: Grid | None = Field(default=None, description="normal forces N [N] (default: the preset's "
+                                                                    "normal-force-study forces)")
     damping_ratio: Grid | None = None
     runs: int = Field(default=30, ge=1, le=100_000)
     phase_runs: int = Field(default=5, ge=0)
     save_every: int = Field(default=10, ge=1)
-    renamed_fields = {"dampings": "damping_ratio"}
+    renamed_fields = {"dampings": "damping_ratio", "normal_forces": "normal_force_n"}
 
     @property
     def dampings(self) -> tuple[float, ...] | None:
         """Deprecated name of :attr:`damping_ratio`."""
         return self.damping_ratio
+
+    @property
+    def normal_forces(self) -> tuple[float, ...] | None:
+        """Deprecated name of :attr:`normal_force_n`."""
+        return self.normal_force_n
 
 
 AnyStudyConfig = Annotated[

@@ -24,7 +24,7 @@ variants (``x_gh_mean_nan``).  Initial state: sticking at the origin, (0, γ0), 
 
 **Phase diagrams over D at one force** (thesis Fig. 4.22/4.24/4.27 brake N = 5600 N,
 4.53/4.55/4.58 sheet N = 1400 N): after the grid, one extra task per model runs the phase
-force (``phase_force``; default the preset's damping-study force if it is one of the grid
+force (``phase_force_n``; default the preset's damping-study force if it is one of the grid
 forces, else the middle grid force) at a few D (``phase_damping``) and keeps the decimated
 trajectories (every ``save_every``-th step) of ``phase_runs`` runs (deterministic: one).
 Default D (:func:`auto_phase_damping`): 5 values evenly spaced from the lowest grid D to
@@ -128,9 +128,9 @@ class DampingStudy(Study):
     def __init__(self, config: DampingConfig) -> None:
         super().__init__(config)
         sp = self.setup.preset.study_parameters
-        self.forces: tuple[float, ...] = config.normal_forces or (float(sp["damping_study_force"]),)
-        self.phase_force = float(config.phase_force if config.phase_force is not None else default_phase_force(
-            float(sp["damping_study_force"]), tuple(self.forces)))
+        self.forces: tuple[float, ...] = config.normal_force_n or (float(sp["damping_study_force_n"]),)
+        self.phase_force_n = float(config.phase_force_n if config.phase_force_n is not None else default_phase_force(
+            float(sp["damping_study_force_n"]), tuple(self.forces)))
 
     def axes(self) -> dict[str, Sequence[Any]]:
         return {"model": self.config.models, "normal_force_n": self.forces}
@@ -142,7 +142,7 @@ class DampingStudy(Study):
 
     def phase_tasks(self, dampings: tuple[float, ...], first_index: int) -> list[TaskSpec]:
         """One task per model at the phase force: the D in ``dampings``, trajectories kept."""
-        config, nf = self.config, self.phase_force
+        config, nf = self.config, self.phase_force_n
         tasks = []
         for k, model in enumerate(config.models):
             runs = min(runs_for(model, config.runs), config.phase_runs)
@@ -157,7 +157,7 @@ class DampingStudy(Study):
     def run(self, *, executor: Executor | None = None, checkpoint: str | None = None,
             progress: Progress | None = None) -> StudyResult:
         """The grid, then the phase diagrams (progress counts both), analysed (module docstring)."""
-        config, setup, forces, phase_force = self.config, self.setup, self.forces, self.phase_force
+        config, setup, forces, phase_force = self.config, self.setup, self.forces, self.phase_force_n
         tasks = self.tasks()
         n_phase = len(config.models) if config.phase_runs > 0 else 0
         total = len(tasks) + n_phase
@@ -301,7 +301,7 @@ class DampingStudy(Study):
 def damping_tasks(config: DampingConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
     """The grid tasks of :class:`DampingStudy` and its setup, forces and phase force."""
     study = DampingStudy(config)
-    return study.tasks(), {"setup": study.setup, "forces": study.forces, "phase_force": study.phase_force}
+    return study.tasks(), {"setup": study.setup, "forces": study.forces, "phase_force_n": study.phase_force_n}
 
 
 #: Run the damping study (module docstring); ``executor``, ``checkpoint``, ``progress`` as :meth:`Study.run`.

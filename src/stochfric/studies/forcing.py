@@ -34,8 +34,8 @@ class ForcingStudy(Study):
     def __init__(self, config: ForcingConfig) -> None:
         super().__init__(config)
         sp = self.setup.preset.study_parameters
-        self.normal_force = config.normal_force if config.normal_force is not None else float(
-            sp["forcing_study_force"])
+        self.normal_force_n = config.normal_force_n if config.normal_force_n is not None else float(
+            sp["forcing_study_force_n"])
         self.damping_ratio = config.damping_ratio if config.damping_ratio is not None else float(sp["damping_undamped"])
 
     def axes(self) -> dict[str, Sequence[Any]]:
@@ -43,12 +43,12 @@ class ForcingStudy(Study):
 
     def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
         st, q = self.setup, point["forcing_q"]
-        return self.task_for(index, point, [st.parameters(self.normal_force, self.damping_ratio,
+        return self.task_for(index, point, [st.parameters(self.normal_force_n, self.damping_ratio,
                                                           q * st.preset.stiffness, eta) for eta in self.config.eta])
 
     def assemble(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]], stats: SweepStats,
                  chash: str | None, executor: Executor | None) -> StudyResult:
-        config, setup, nf = self.config, self.setup, self.normal_force
+        config, setup, nf = self.config, self.setup, self.normal_force_n
         models, qs, etas = list(config.models), list(config.forcing_q), np.asarray(config.eta)
         nm, nq, ne, nr = len(models), len(qs), len(etas), config.runs
         x_gh = self.stack(tasks, results, "x_gh")

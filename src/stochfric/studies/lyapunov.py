@@ -146,7 +146,7 @@ class LyapunovStudy(Study):
     def __init__(self, config: LyapunovConfig) -> None:
         super().__init__(config)
         sp = self.setup.preset.study_parameters
-        self.forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
+        self.forces = config.normal_force_n or tuple(float(v) for v in sp["normal_force_study_forces_n"])
         self.damping_ratio = config.damping_ratio if config.damping_ratio is not None else float(sp["damping_undamped"])
 
     def axes(self) -> dict[str, Sequence[Any]]:

@@ -38,7 +38,7 @@ class NormalForceStudy(Study):
     def __init__(self, config: NormalForceConfig) -> None:
         super().__init__(config)
         sp = self.setup.preset.study_parameters
-        self.forces = config.normal_forces or tuple(float(v) for v in sp["normal_force_study_forces"])
+        self.forces = config.normal_force_n or tuple(float(v) for v in sp["normal_force_study_forces_n"])
         self.damping_ratio = config.damping_ratio or (float(sp["damping_undamped"]), float(sp["damping_damped"]))
 
     def axes(self) -> dict[str, Sequence[Any]]:

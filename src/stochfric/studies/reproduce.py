@@ -50,17 +50,17 @@ def plan(quick: bool, seed: int = 2013) -> list[Any]:
             out += [
                 NormalForceConfig(preset=pre, runs=10, seed=seed, phase_runs=3),
                 # the lowest, the thesis's phase-diagram force (brake 5600 N, sheet 1400 N) and the highest
-                DampingConfig(preset=pre, normal_forces=(forces[0], forces[4], forces[-1]),
+                DampingConfig(preset=pre, normal_force_n=(forces[0], forces[4], forces[-1]),
                               damping_ratio=g("0.05:0.25:21"), runs=5, seed=seed),
                 ForcingConfig(preset=pre, eta=g("0:3:16"), runs=5, seed=seed),
-                LyapunovConfig(preset=pre, normal_forces=_LYAP_FORCES[pre][1:2], eta=g("0.2:3:8"), runs=4, seed=seed),
+                LyapunovConfig(preset=pre, normal_force_n=_LYAP_FORCES[pre][1:2], eta=g("0.2:3:8"), runs=4, seed=seed),
             ]
         else:
             out += [
                 NormalForceConfig(preset=pre, runs=30, seed=seed),
-                DampingConfig(preset=pre, normal_forces=forces, damping_ratio=g("0.05:0.25:41"), runs=10, seed=seed),
+                DampingConfig(preset=pre, normal_force_n=forces, damping_ratio=g("0.05:0.25:41"), runs=10, seed=seed),
                 ForcingConfig(preset=pre, eta=g("0:3:61"), runs=10, seed=seed),
-                LyapunovConfig(preset=pre, normal_forces=_LYAP_FORCES[pre], eta=g("0.1:3:30"), runs=10, seed=seed),
+                LyapunovConfig(preset=pre, normal_force_n=_LYAP_FORCES[pre], eta=g("0.1:3:30"), runs=10, seed=seed),
             ]
     return out
 

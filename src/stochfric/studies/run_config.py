@@ -18,7 +18,7 @@ Layout (every table optional except ``[[study]]``)::
 
     [[study]]
     kind = "damping"         # damping | forcing | lyapunov | normal-force
-    normal_forces = [1800, 5600, 8000]
+    normal_force_n = [1800, 5600, 8000]
     damping_ratio = "0.05:0.25:41"
 
 Errors name the place in the file (``study[0].damping_ratio: …``) and what is allowed.

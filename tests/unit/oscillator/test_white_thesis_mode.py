@@ -19,7 +19,7 @@ from stochfric.studies.common import law_for, make_setup
 @pytest.mark.parametrize("dt", [0.005, 0.002])
 def test_thesis_mode_is_ito_with_effective_intensity(preset: str, dt: float) -> None:
     st = make_setup(preset)
-    ps = [st.parameters(f, 5e-6) for f in st.preset.study_parameters["normal_force_study_forces"][:2]]
+    ps = [st.parameters(f, 5e-6) for f in st.preset.study_parameters["normal_force_study_forces_n"][:2]]
 
     def law(p):  # type: ignore[no-untyped-def]
         return law_for(st.process, p)

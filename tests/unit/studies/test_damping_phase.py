@@ -17,7 +17,7 @@ from stochfric.studies.config import DampingConfig, ForcingConfig
 from stochfric.studies.damping import auto_phase_damping, damping_study, default_phase_force
 from stochfric.studies.forcing import forcing_study
 
-SMALL = DampingConfig(normal_forces=(4000.0, 5600.0), damping_ratio="0.05:0.25:9", runs=3, seed=3, tau_end=30.0)
+SMALL = DampingConfig(normal_force_n=(4000.0, 5600.0), damping_ratio="0.05:0.25:9", runs=3, seed=3, tau_end=30.0)
 
 
 @pytest.fixture(scope="module")
@@ -90,7 +90,7 @@ def test_phase_figure(small: xr.Dataset, tmp_path: Path) -> None:
 
 
 def test_phase_given_damping_and_force() -> None:
-    cfg = DampingConfig(**{**SMALL.model_dump(), "phase_force": 3000.0, "phase_damping": "0.2,0.07",
+    cfg = DampingConfig(**{**SMALL.model_dump(), "phase_force_n": 3000.0, "phase_damping": "0.2,0.07",
                            "phase_runs": 2})
     res = damping_study(cfg)
     ds = res.to_dataset()
@@ -101,7 +101,8 @@ def test_phase_given_damping_and_force() -> None:
 
 
 def test_white_intensity_rule_changes_sigma_zeta_only() -> None:
-    base = DampingConfig(normal_forces=(5600.0,), damping_ratio="0.1:0.2:5", runs=3, seed=1, tau_end=30.0, phase_runs=1)
+    base = DampingConfig(normal_force_n=(5600.0,), damping_ratio="0.1:0.2:5", runs=3, seed=1, tau_end=30.0,
+                         phase_runs=1)
     a = damping_study(base)
     b = damping_study(base.model_copy(update={"white_intensity": "spectral_level"}))
     sa = float(a.dataset["sigma_zeta"].sel(model="white").values[0])

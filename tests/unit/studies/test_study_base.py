@@ -19,7 +19,7 @@ from stochfric.studies.store import config_hash
 
 
 def test_tasks_enumerate_the_axes_in_c_order() -> None:
-    cfg = LyapunovConfig(normal_forces=(2000.0, 4000.0), forcing_q=(5e-5, 5e-4), eta=(0.5, 1.0), runs=2)
+    cfg = LyapunovConfig(normal_force_n=(2000.0, 4000.0), forcing_q=(5e-5, 5e-4), eta=(0.5, 1.0), runs=2)
     st = LyapunovStudy(cfg)
     tasks = st.tasks()
     assert st.shape == (3, 2, 2) and [t.index for t in tasks] == list(range(12))
@@ -29,7 +29,7 @@ def test_tasks_enumerate_the_axes_in_c_order() -> None:
     assert [t.runs for t in tasks[::4]] == [1, 2, 2]  # the deterministic model runs once
     nf = NormalForceStudy(NormalForceConfig(runs=4, phase_runs=2))
     assert [t.keep_trajectory_runs for t in nf.tasks()] == [1, 1, 2, 2, 2, 2]
-    assert DampingStudy(DampingConfig(normal_forces=(5600.0,), damping_ratio=(0.1, 0.2))).shape == (3, 1)
+    assert DampingStudy(DampingConfig(normal_force_n=(5600.0,), damping_ratio=(0.1, 0.2))).shape == (3, 1)
 
 
 def test_stack_pads_events_and_leaves_missing_runs_nan() -> None:
@@ -80,8 +80,45 @@ def test_old_config_names_load_with_a_deprecation_warning() -> None:
     cfg = DampingConfig(damping_ratio=(0.1, 0.2))
     assert "damping" in cfg.hash_config() and "damping_ratio" not in cfg.hash_config()
     d = cfg.model_dump(mode="json")
-    d["damping"] = d.pop("damping_ratio")
+    for old, new in (("damping", "damping_ratio"), ("normal_forces", "normal_force_n"),
+                     ("phase_force", "phase_force_n")):
+        d[old] = d.pop(new)
     assert config_hash(cfg.hash_config()) == config_hash(d)
+
+
+#: (config class, fields under the glossary's names, the same under the names before it, the checkpoint
+#: key written before the rename, at 6f09680): a checkpoint written then must still resume.
+_RENAMED_FORCES = [
+    (DampingConfig, {"normal_force_n": (4000.0, 6000.0), "phase_force_n": 4000.0},
+     {"normal_forces": (4000.0, 6000.0), "phase_force": 4000.0}, "33ca24bfa66fe10a"),
+    (ForcingConfig, {"normal_force_n": 4000.0}, {"normal_force": 4000.0}, "447582a778574350"),
+    (LyapunovConfig, {"normal_force_n": (4000.0,)}, {"normal_forces": (4000.0,)}, "56fdf99dc0d6f058"),
+    (NormalForceConfig, {"normal_force_n": (720.0, 8000.0)}, {"normal_forces": (720.0, 8000.0)}, "6ea32df5afdb1c2c"),
+]
+
+
+@pytest.mark.parametrize(("cls", "new", "old", "key"), _RENAMED_FORCES, ids=lambda v: getattr(v, "__name__", ""))
+def test_renamed_force_fields_read_the_old_names_and_keep_the_checkpoint_key(
+        cls: Any, new: dict[str, Any], old: dict[str, Any], key: str) -> None:
+    cfg = cls(**new)
+    with pytest.warns(DeprecationWarning, match=r"is deprecated: use '(normal|phase)_force_n'"):
+        assert cls(**old) == cfg
+    for name, value in old.items():  # read-only properties under the old names
+        assert getattr(cfg, name) == value
+        with pytest.raises(ValueError, match="frozen"):
+            setattr(cfg, name, value)
+    h = cfg.hash_config()
+    assert set(old) <= set(h) and not set(new) & set(h)
+    assert config_hash(h) == key
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DeprecationWarning)
+        with pytest.raises(ValueError, match="give normal_force_n only"):
+            cls(**old, normal_force_n=new["normal_force_n"])
+
+
+def test_the_default_configs_keep_their_checkpoint_keys() -> None:
+    keys = [config_hash(c().hash_config()) for c in (DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig)]
+    assert keys == ["f0b697b65c0e5c07", "757d50d98857f456", "8c5360ccee23cc62", "b1a3344e28a5337c"]  # at 6f09680
 
 
 def test_study_error_is_the_case_error() -> None:

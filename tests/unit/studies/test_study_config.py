@@ -8,7 +8,7 @@ import pytest
 from pydantic import ValidationError
 
 from stochfric.studies.common import StudyError
-from stochfric.studies.config import DampingConfig, LyapunovConfig
+from stochfric.studies.config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
 from stochfric.studies.run_config import load_run_file, parse_run_file
 
 GOOD = """
@@ -25,7 +25,7 @@ dir = "out"
 
 [[study]]
 kind = "damping"
-normal_forces = [1400]
+normal_force_n = [1400]
 damping_ratio = "0.1:0.2:3"
 runs = 2
 
@@ -67,7 +67,7 @@ def test_defaults_and_grids(tmp_path: Path) -> None:
          "study[0].path_coordinate: Input should be 'mass', 'relative' or 'position'"),
         ("[[study]]\nkind = 'damping'\nphase_damping = [0.1, 1.1]\n", "study[0].phase_damping"),
         ("[[study]]\nkind = 'damping'\nphase_runs = -1\n", "study[0].phase_runs"),
-        ("[[study]]\nkind = 'forcing'\nphase_force = 1000\n", "study[0].phase_force: Extra inputs"),
+        ("[[study]]\nkind = 'forcing'\nphase_force_n = 1000\n", "study[0].phase_force_n: Extra inputs"),
     ],
 )
 def test_errors_are_clear(tmp_path: Path, text: str, needle: str) -> None:
@@ -98,15 +98,53 @@ def test_config_is_frozen_and_hashable_dict() -> None:
     assert h["runs"] == 2 and h["kind"] == "damping"
 
 
+def test_a_toml_file_with_the_names_before_the_glossary_still_loads(tmp_path: Path) -> None:
+    f = tmp_path / "old.toml"
+    f.write_text("""
+[defaults]
+preset = "brake"
+
+[[study]]
+kind = "damping"
+normal_forces = [4000, 5600]
+damping = "0.1:0.2:3"
+phase_force = 4000
+
+[[study]]
+kind = "forcing"
+normal_force = 4000
+damping = 0.1
+
+[[study]]
+kind = "lyapunov"
+normal_forces = [2000, 4000]
+
+[[study]]
+kind = "normal-force"
+normal_forces = [720, 8000]
+dampings = [5e-6, 0.15]
+""")
+    with pytest.warns(DeprecationWarning) as record:
+        d, fo, ly, nf = load_run_file(f).study
+    warned = {str(w.message).split("'")[1] for w in record if issubclass(w.category, DeprecationWarning)}
+    assert warned == {"normal_forces", "damping", "phase_force", "normal_force", "dampings"}
+    assert d == DampingConfig(normal_force_n=(4000.0, 5600.0), damping_ratio="0.1:0.2:3", phase_force_n=4000.0)
+    assert fo == ForcingConfig(normal_force_n=4000.0, damping_ratio=0.1)
+    assert ly == LyapunovConfig(normal_force_n=(2000.0, 4000.0))
+    assert nf == NormalForceConfig(normal_force_n=(720.0, 8000.0), damping_ratio=(5e-6, 0.15))
+    assert (d.normal_forces, d.phase_force, fo.normal_force, ly.normal_forces, nf.normal_forces) == (
+        (4000.0, 5600.0), 4000.0, 4000.0, (2000.0, 4000.0), (720.0, 8000.0))
+
+
 def test_model_choices_in_toml() -> None:
     rf = parse_run_file({"defaults": {"white_intensity": "spectral_level", "path_coordinate": "relative"},
-                         "study": [{"kind": "damping", "phase_force": 1400, "phase_damping": "0.05:0.2:4",
+                         "study": [{"kind": "damping", "phase_force_n": 1400, "phase_damping": "0.05:0.2:4",
                                     "phase_runs": 2, "save_every": 5},
                                    {"kind": "lyapunov", "white_intensity": "sigma_mu"}]})
     d, ly = rf.study
     assert isinstance(d, DampingConfig)
     assert d.white_intensity == "spectral_level" and d.path_coordinate == "relative"
-    assert d.phase_force == 1400.0 and d.phase_damping == (0.05, 0.1, 0.15, 0.2)
+    assert d.phase_force_n == 1400.0 and d.phase_damping == (0.05, 0.1, 0.15, 0.2)
     assert d.phase_runs == 2 and d.save_every == 5
     assert ly.white_intensity == "sigma_mu" and ly.path_coordinate == "relative"
     assert DampingConfig().white_intensity == "sigma_mu" and DampingConfig().path_coordinate == "mass"

@@ -43,7 +43,7 @@ def _as_before_the_glossary(res: StudyResult) -> tuple[dict[str, Any], xr.Datase
 @pytest.fixture(scope="module")
 def normal_force_result() -> StudyResult:
     return normal_force_study(NormalForceConfig(runs=3, seed=4, phase_runs=1, tau_end=20.0,
-                                                normal_forces=(720.0, 8000.0)))
+                                                normal_force_n=(720.0, 8000.0)))
 
 
 def test_the_normal_force_study_is_in_the_glossary_order(normal_force_result: StudyResult) -> None:
