@@ -46,8 +46,10 @@ DtOpt = Annotated[float | None, typer.Option("--dt", help="Time step Δτ (defau
 IntOpt = Annotated[str, typer.Option("--integrator", help="euler | accurate (deterministic, contact).")]
 WinOpt = Annotated[float, typer.Option("--stick-window", help="Stick window: τ > w·τ_end counts (default 0.5).")]
 ForceListOpt = Annotated[str | None, typer.Option("--normal-force", help="N [N] list (default: preset).")]
-ForcingQOpt = Annotated[str, typer.Option("--q", help="Forcing amplitudes q = Q/(cL), list.")]
-EtaOpt = Annotated[str, typer.Option("--eta", help="η = Ω/ω0 grid START:STOP:NUM or list.")]
+ForcingQOpt = Annotated[str | None, typer.Option(
+    "--q", help="Forcing amplitudes q = Q/(cL), list (default 5e-5,5e-4).")]
+EtaOpt = Annotated[str | None, typer.Option(
+    "--eta", help="η = Ω/ω0 grid START:STOP:NUM or list (default: forcing 0:3:61, lyapunov 0.1:3:30).")]
 PhaseRunsOpt = Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for the phase diagrams (0: none).")]
 ExecOpt = Annotated[str, typer.Option("--executor", help="serial | processes (local) ; see --scheduler.")]
 WorkersOpt = Annotated[int | None, typer.Option("--workers", help="Processes (or threads for serial).")]
@@ -185,6 +187,12 @@ def study_options(
     return d
 
 
+def forced_options(q: ForcingQOpt = None, eta: EtaOpt = None, damping: ForcedDampingOpt = None) -> dict[str, Any]:
+    """The forcing grid of the forced-oscillator studies (forcing, Lyapunov); options left out take the
+    study config's defaults."""
+    return {"forcing_q": q, "eta": eta, "damping_ratio": damping}
+
+
 @dataclass(frozen=True)
 class ExecutionOptions:
     """Where a study command runs and what it writes (never changes the numbers)."""
@@ -312,37 +320,32 @@ def damping_command(
 
 
 @option_group("common", study_options)
+@option_group("forced", forced_options)
 @option_group("run", execution_options)
 def forcing_command(
     common: dict[str, Any] = GROUP,
     normal_force: Annotated[float | None, typer.Option("--normal-force", help="N [N] (default: preset).")] = None,
-    q: ForcingQOpt = "5e-5,5e-4",
-    eta: EtaOpt = "0:3:61",
-    damping: ForcedDampingOpt = None,
+    forced: dict[str, Any] = GROUP,
     stick_window: WinOpt = 0.5,
     run: ExecutionOptions = GROUP,
 ) -> None:
     """Forcing study: bifurcation data, E[X_gh] ± σ over η, σ_contact/σ_white (method §6.3)."""
-    _execute("forcing", {**common, "stick_window": stick_window,
-                         "normal_force_n": normal_force, "forcing_q": q, "eta": eta, "damping_ratio": damping}, run)
+    _execute("forcing", {**common, **forced, "stick_window": stick_window, "normal_force_n": normal_force}, run)
 
 
 @option_group("common", study_options)
+@option_group("forced", forced_options)
 @option_group("run", execution_options)
 def lyapunov_command(
     common: dict[str, Any] = GROUP,
     normal_force: ForceListOpt = None,
-    q: ForcingQOpt = "5e-5,5e-4",
-    eta: EtaOpt = "0.1:3:30",
+    forced: dict[str, Any] = GROUP,
     perturbation: Annotated[float, typer.Option("--perturbation", help="δ added to x1(0) of the comparison run.")
                             ] = 1e-6,
-    damping: ForcedDampingOpt = None,
     run: ExecutionOptions = GROUP,
 ) -> None:
     """Largest Lyapunov exponent λ (4.43) / E[Λ] (4.44) over η and N (method §6.4)."""
-    _execute("lyapunov", {**common,
-                          "normal_force_n": normal_force, "forcing_q": q, "eta": eta,
-                          "perturbation": perturbation, "damping_ratio": damping}, run)
+    _execute("lyapunov", {**common, **forced, "normal_force_n": normal_force, "perturbation": perturbation}, run)
 
 
 @option_group("common", study_options)
