@@ -408,8 +408,9 @@ def run_command(
 
 
 def reproduce_command(
-    quick: Annotated[bool, typer.Option("--quick", help="Coarse grids and few runs (less than half the time of "
-                                                        "the full run; measured times in the README).")] = False,
+    quick: Annotated[bool, typer.Option("--quick", help="Coarse grids and few runs (the studies in a "
+                                                        "fifth of the time; the report takes as long; measured times "
+                                                        "in the README).")] = False,
     out: Annotated[Path, typer.Option("--out", help="Output directory.")] = Path("reproduce"),
     seed: SeedOpt = 2013,
     executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None,
