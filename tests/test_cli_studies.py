@@ -86,17 +86,17 @@ def test_human_output_and_report(app: typer.Typer, tmp_path: Path) -> None:
     ("args", "needle"),
     [
         (["study", "damping", "--damping", "0.3:0.1:x"], "START and STOP"),
-        (["study", "damping", "--runs", "0"], "runs"),
-        (["study", "damping", "--models", "white,pink"], "models"),
+        (["study", "damping", "--runs", "0"], "--runs"),
+        (["study", "damping", "--models", "white,pink"], "--models"),
         (["study", "forcing", "--preset", "car"], "preset"),
         (["study", "damping", "--process", "/nonexistent/model.json"], "cannot read"),
         (["study", "damping", "--executor", "mpi"], "unknown executor"),
-        (["study", "damping", "--white-intensity", "pink"], "white_intensity"),
+        (["study", "damping", "--white-intensity", "pink"], "--white-intensity"),
         (["study", "forcing", "--white-intensity", "sigma"], "'sigma_mu', 'spectral_level' or 'thesis'"),
-        (["study", "lyapunov", "--path-coordinate", "global"], "path_coordinate"),
+        (["study", "lyapunov", "--path-coordinate", "global"], "--path-coordinate"),
         (["study", "normal-force", "--path-coordinate", "x"], "'mass', 'relative' or 'position'"),
-        (["study", "damping", "--phase-damping", "0.1,1.5"], "phase_damping"),
-        (["study", "damping", "--phase-force", "-5"], "phase_force_n"),
+        (["study", "damping", "--phase-damping", "0.1,1.5"], "--phase-damping"),
+        (["study", "damping", "--phase-force", "-5"], "--phase-force:"),
     ],
 )
 def test_errors_exit_2(app: typer.Typer, args: list[str], needle: str) -> None:

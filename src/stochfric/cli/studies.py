@@ -214,13 +214,23 @@ def execution_options(
     return ExecutionOptions(executor, workers, scheduler, checkpoint, out, report, json_out)
 
 
+#: Config fields whose command-line flag is not ``--`` + the field name with dashes.
+_FLAGS = {"normal_force_n": "--normal-force", "phase_force_n": "--phase-force", "forcing_q": "--q",
+          "process_file": "--process"}
+
+
+def _flag(field: str) -> str:
+    """The command-line flag that fills the study-config field ``field``."""
+    return _FLAGS.get(field, "--" + field.replace("_", "-"))
+
+
 def _validate(kind: str, fields: dict[str, Any]) -> Any:
     cls = {"damping": c.DampingConfig, "forcing": c.ForcingConfig, "lyapunov": c.LyapunovConfig,
            "normal-force": c.NormalForceConfig}[kind]
     try:
         return cls(**{k: v for k, v in fields.items() if v is not None})
     except ValidationError as exc:
-        raise StudyError(run_config._format_errors(exc)) from None
+        raise StudyError(run_config._format_errors(exc, _flag)) from None
 
 
 def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:

@@ -27,6 +27,7 @@ Errors name the place in the file (``study[0].damping_ratio: …``) and what is 
 from __future__ import annotations
 
 import tomllib
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any, Literal
 
@@ -64,11 +65,15 @@ class RunFile(BaseModel):
     study: list[AnyStudyConfig] = Field(min_length=1)
 
 
-def _format_errors(exc: ValidationError) -> str:
+def _format_errors(exc: ValidationError, names: Callable[[str], str] | None = None) -> str:
+    """Every problem of ``exc`` on one line; ``names`` renames the field a location starts with
+    (the command line shows its flag, e.g. ``--normal-force`` for ``normal_force_n``)."""
     lines = []
     for e in exc.errors():
         loc = ""
-        for part in e["loc"]:
+        for i, part in enumerate(e["loc"]):
+            if i == 0 and names is not None and isinstance(part, str):
+                part = names(part)
             if isinstance(part, int):
                 loc += f"[{part}]"
             elif part in ("damping", "forcing", "lyapunov", "normal-force") and loc.endswith("]"):
