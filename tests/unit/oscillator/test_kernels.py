@@ -312,3 +312,26 @@ def test_single_trajectory_wrapper_equals_the_batch_kernel() -> None:
     assert diag[K.D_X1] == out["x1"][0] and diag[K.D_X2] == out["x2"][0]
     # law II cycle (undamped): X_gh → n(2μ_k − μ_s) = 1 with Euler's O(Δτ) error (−4.68 Δτ)
     assert xgh[0] == pytest.approx(1.0, abs=0.1)
+
+
+# --- the forcing terms of a lock-step group -----------------------------------------------------
+
+
+def test_forcing_terms_are_q_cos_x3_at_both_ends_of_the_step() -> None:
+    """``_forcing_terms``: q cos(x30 + η kΔτ) and q cos(x30 + η (kΔτ + Δτ)) for every forced lane,
+    bit for bit the full step's values, whether computed, copied from an equal neighbour or carried
+    from the previous step; unforced lanes untouched (zero)."""
+    q = np.array([0.0, 2e-4, 2e-4, 5e-4, 0.0, 5e-4, 5e-4])
+    x30 = np.array([0.0, 0.0, 0.0, 0.3, 0.0, 0.3, 0.0])
+    eta = np.array([0.0, 1.3, 1.3, 0.7, 0.0, 0.7, 0.7])
+    forced = (q != 0.0).astype(float)
+    dt = 0.005
+    now, nxt = np.zeros(7), np.zeros(7)
+    for k in range(0, 400):
+        K._forcing_terms(k, dt, 7, forced, q, x30, eta, now, nxt)
+        for j in range(7):
+            if q[j] == 0.0:
+                assert now[j] == 0.0 and nxt[j] == 0.0
+            else:
+                assert now[j] == q[j] * math.cos(x30[j] + eta[j] * (k * dt))
+                assert nxt[j] == q[j] * math.cos(x30[j] + eta[j] * (k * dt + dt))

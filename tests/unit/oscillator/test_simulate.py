@@ -176,21 +176,46 @@ def test_event_buffer_overflow_is_reported() -> None:
     assert r.stick_count[0, 0] == 6 and np.isfinite(r.x_gh[0, 0]).sum() == 2
 
 
+@pytest.mark.parametrize("neighbour", ["forced", "tabulated"])
 @pytest.mark.parametrize(("model", "integrator"), [("deterministic", "euler"), ("white", "euler"),
                                                    ("white", "milstein"), ("contact", "euler")])
-def test_vector_and_scalar_fast_passes_give_identical_numbers(model: str, integrator: str) -> None:
-    """The batch kernel's SIMD fast pass (unforced groups) and its scalar fast pass (a forced
-    lane in the group) share the arithmetic of the full step: same trajectory, same bits.
-    (Contact: the SIMD pass reads μ̂ from per-lane segment caches, the scalar pass gathers.)"""
+def test_fast_passes_give_identical_numbers(model: str, integrator: str, neighbour: str) -> None:
+    """The batch kernel's fast passes share the arithmetic of the full step: an unforced lane gives
+    the same bits alone (SIMD pass, no forcing terms), in a group with forced lanes (SIMD pass with
+    the forcing terms q cos x3 of kernels._forcing_terms) and in a group with a tabulated law (scalar
+    pass).  (Contact: the SIMD pass reads μ̂ from per-lane segment caches, the scalar pass gathers.)"""
+    from stochfric.oscillator.friction_laws import tabulated_law
     from stochfric.oscillator.kernels import LOCKSTEP
 
     p, pre = _brake(2720.0)
     runs = LOCKSTEP // 2
-    forced = p.replace(q=1e-4, eta=1.3)
-    kw = dict(model=model, law=_law, process=pre.process, integrator=integrator, runs=runs, seed=9,
+    other = p.replace(q=1e-4, eta=1.3) if neighbour == "forced" else p.replace(eta=0.5)  # a marker
+    table = tabulated_law("measured", [0.0, 0.5, 2.0], [0.45, 0.35, 0.3], static=0.5)
+
+    def law(q: OscillatorParameters) -> object:
+        return table if (neighbour == "tabulated" and q.eta == 0.5) else _law(q)
+
+    kw = dict(model=model, law=law, process=pre.process, integrator=integrator, runs=runs, seed=9,
               tau_end=20.0, workers=1, save_trajectory=True)
-    alone = simulate([p], **kw)  # one group of unforced lanes: vector pass
-    mixed = simulate([p, forced], batch_size=2 * runs, **kw)  # shares its group with forced lanes
+    alone = simulate([p], **kw)
+    mixed = simulate([p, other], batch_size=2 * runs, **kw)  # shares its lock-step group with `other`
     np.testing.assert_array_equal(alone.x_gh[0], mixed.x_gh[0])
     np.testing.assert_array_equal(alone.trajectory[0], mixed.trajectory[0])
     assert alone.stick_count.sum() > 0
+    assert mixed.stick_count[1].sum() > 0
+
+
+@pytest.mark.parametrize("model", ["deterministic", "white", "contact"])
+def test_forced_ensembles_do_not_depend_on_the_grouping(model: str) -> None:
+    """Forcing terms are computed once per distinct (q, x30, η) of neighbouring lanes and carried
+    from step to step: the numbers of a forced multi-η ensemble are the same whether its
+    trajectories share lock-step groups (default batches) or run one per batch."""
+    p, pre = _brake(4000.0)
+    sets = [p.replace(q=1e-4, eta=eta) for eta in (0.3, 0.9, 0.9, 1.7)] + [p]
+    kw = dict(model=model, law=_law, process=pre.process, runs=7, seed=5, tau_end=30.0, dt=0.003,
+              save_trajectory=True, save_every=25)
+    a = simulate(sets, workers=1, **kw)
+    b = simulate(sets, workers=2, batch_size=1, **kw)
+    np.testing.assert_array_equal(a.x_gh, b.x_gh)
+    np.testing.assert_array_equal(a.trajectory, b.trajectory)
+    assert a.stick_count.sum() > 0
