@@ -412,7 +412,7 @@ def simulate(
     runner = _BatchRunner(
         plan=plan, model=model, integrator=integrator, process=process, root=root, runs=runs,
         common_random_numbers=common_random_numbers, path_mode=PATH_COORDINATES[path_coordinate],
-        white_stream=white_stream, dt=dt, tau_end=tau_end, save_every=save_every,
+        white_stream=white_stream, dt=dt, save_every=save_every,
         accurate=_acc.AccurateSettings(float(tau_end), min(dt, max_step), max_step, rtol, atol,
                                        save_every * dt),
         out=out,
@@ -536,7 +536,6 @@ class _BatchRunner:
     path_mode: int
     white_stream: str
     dt: float
-    tau_end: float
     save_every: int
     accurate: _acc.AccurateSettings
     out: _k.KernelOutput
