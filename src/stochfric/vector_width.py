@@ -13,7 +13,8 @@ numba compiles anything, through numba's own setting ``NUMBA_CPU_FEATURES`` (the
 list plus ``-prefer-256-bit``).  The width changes no number: the loops are element-wise across
 trajectories and are compiled without fast-math, so every lane computes the same IEEE operations
 in the same order (tested: the same X_gh bit for bit).  It is applied when ``stochfric`` is
-imported and affects every numba function compiled later in the process.
+imported and affects every numba function compiled later in the process, and, being an environment
+variable, the processes it starts (the local process pool of the studies uses it that way).
 
 ``STOCHFRIC_VECTOR_WIDTH``: ``auto`` (default: full width on :data:`FULL_WIDTH_CPUS`), ``512`` (on
 any x86 CPU with AVX-512, e.g. Ice Lake, whose 512-bit clock penalty is small) or ``native``
