@@ -736,6 +736,9 @@ def run_fixed_step_batch(
         fq_now = np.zeros(ng)
         fq_next = np.zeros(ng)
         cfz = cs[_C_FORCED]
+        cqq = cs[_C_QQ]
+        cx30 = cs[_C_X30]
+        ceta = cs[_C_ETA]
         gkeys = keys[g0:g1] if philox else keys[:0]
         for k in range(nsteps):
             if white:
@@ -749,7 +752,7 @@ def run_fixed_step_batch(
                     # one Philox block per lane gives ΔW_k and ΔW_{k+1}: branch-free, vectorised
                     _fill_pair(gkeys, np.uint64(k >> 1), sqdt, wk, wodd)
             if forcing:
-                _forcing_terms(k, dt, ng, cfz, cs[_C_QQ], cs[_C_X30], cs[_C_ETA], fq_now, fq_next)
+                _forcing_terms(k, dt, ng, cfz, cqq, cx30, ceta, fq_now, fq_next)
             nmiss = 0  # lanes the fast pass could not complete
             if vector and not contact:
                 # fast pass, branch-free: both candidates, then a select per lane
