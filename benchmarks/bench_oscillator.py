@@ -64,6 +64,7 @@ from stochfric import vector_width
 from stochfric.oscillator import kernels as _k
 from stochfric.oscillator import philox as _ph
 from stochfric.oscillator import reference
+from stochfric.oscillator import ziggurat as _zig
 from stochfric.oscillator.case import build_case
 from stochfric.oscillator.friction_laws import FrictionLaw, law_III
 from stochfric.oscillator.integrate import pack_rows, simulate
@@ -296,11 +297,11 @@ CONFIGS = (
 def _white_increments(case: Case, runs: int, tau_end: float, seed: int = 1
                       ) -> npt.NDArray[np.float64]:
     """The increments ``simulate`` draws for runs ``0..runs-1`` of parameter set 0 (its default
-    Philox stream, :func:`stochfric.oscillator.philox.step_normals`)."""
+    stream, :func:`stochfric.oscillator.ziggurat.step_normals_ziggurat`)."""
     nsteps = round(tau_end / DT)
     keys = _ph.trajectory_keys(np.random.SeedSequence(seed), np.zeros(runs, dtype=np.int64),
                                np.arange(runs))
-    return np.stack([_ph.step_normals(k, nsteps) for k in keys]).reshape(runs, nsteps) * math.sqrt(DT)
+    return np.stack([_zig.step_normals_ziggurat(k, nsteps) for k in keys]).reshape(runs, nsteps) * math.sqrt(DT)
 
 
 def _kernel_only(case: Case, dw: npt.NDArray[np.float64], noise: int) -> Callable[[], None]:
@@ -356,9 +357,21 @@ def _philox_normals(keys: npt.NDArray[np.uint64], npairs: int, out: npt.NDArray[
             out[0, j], out[1, j] = _ph.pair_normals(keys[j], c)
 
 
+@numba.njit(error_model="numpy")
+def _ziggurat_normals(keys: npt.NDArray[np.uint64], npairs: int, out: npt.NDArray[np.float64],
+                      miss: npt.NDArray[np.uint64]) -> None:
+    """Philox4x32-10 + ziggurat: the default stream's normals, as the kernel draws them (the
+    lane-parallel fast path, then the slow path for the lanes that need it)."""
+    for p in range(npairs):
+        c = np.uint64(p)
+        if _zig.fill_pair_ziggurat(keys, c, 1.0, out[0], out[1], miss):
+            _zig.finish_pair_ziggurat(keys, c, 1.0, out[0], out[1], miss)
+
+
 def _generator_rates(rep: Report, cfg: dict[str, Any]) -> None:
-    """ns per normal: Philox blocks alone, Philox + Box–Muller (32 lock-step lanes, compiled
-    loop), and numpy's ``Generator(PCG64).standard_normal`` into a buffer."""
+    """ns per normal: Philox blocks alone, Philox + ziggurat and Philox + Box–Muller (32
+    lock-step lanes, compiled loop), and numpy's ``Generator(PCG64).standard_normal`` into a
+    buffer."""
     lanes = _k.LOCKSTEP
     npairs = max(1, int(cfg["runs"]) * round(float(cfg["tau_end"]) / DT) // (2 * lanes) // 8)
     keys = _ph.trajectory_keys(np.random.SeedSequence(1), np.zeros(lanes, dtype=np.int64),
@@ -367,9 +380,12 @@ def _generator_rates(rep: Report, cfg: dict[str, Any]) -> None:
     normals = np.zeros((2, lanes))
     _philox_words(keys, 1, words)
     _philox_normals(keys, 1, normals)
+    miss = np.zeros((2, lanes), dtype=np.uint64)
+    _ziggurat_normals(keys, 1, normals, miss)
     n = 2 * lanes * npairs
     reps = int(cfg["repeats"])
     for what, fn in (("Philox4x32-10 words", lambda: _philox_words(keys, npairs, words)),
+                     ("Philox4x32-10 + ziggurat", lambda: _ziggurat_normals(keys, npairs, normals, miss)),
                      ("Philox4x32-10 + Box–Muller", lambda: _philox_normals(keys, npairs, normals))):
         wall, cpu = _time(fn, reps)
         rep.entries.append(Entry("generator", "-", what, lanes, n, wall, cpu, n / wall,
@@ -416,6 +432,10 @@ def _case_rates(rep: Report, case: Case, cfg: dict[str, Any]) -> None:
                                         white_stream="pcg64"), reps)
     rep.entries.append(Entry("rate", case.name, "white euler, pcg64 buffer", runs, steps, wall,
                              cpu, steps / wall, "numbers of versions before issue 13"))
+    wall, cpu = _time(functools.partial(_sim, case, "white", "euler", runs, tau,
+                                        white_stream="philox-boxmuller"), reps)
+    rep.entries.append(Entry("rate", case.name, "white euler, Box–Muller", runs, steps, wall,
+                             cpu, steps / wall, "the in-kernel stream before the ziggurat"))
     if case.process is not None:
         wall, cpu = _time(functools.partial(_sim, dataclasses.replace(
             case, process=_PerTrajectory(case.process)), "contact", "euler", runs, tau), reps)
@@ -682,6 +702,8 @@ def run_benchmarks(size: str = "quick", *, log: Callable[[str], None] | None = N
         rep.targets[f"brake: {what} end to end <= {target:g} ns/step"] = {"value": v, "met": v <= target}
     rep.ratios["brake: white euler, pcg64 buffer / Philox in kernel (time)"] = (
         ns("white euler, pcg64 buffer") / ns("white euler"))
+    rep.ratios["brake: white euler, Box–Muller / ziggurat (time)"] = (
+        ns("white euler, Box–Muller") / ns("white euler"))
     rep.ratios["brake: contact euler, generate per run / per batch (time)"] = (
         ns("contact euler, generate per run") / ns("contact euler"))
     rep.ratios["brake: white euler / deterministic euler (time)"] = ns("white euler") / ns("deterministic euler")

@@ -8,8 +8,10 @@ stream, the child with spawn key ``(i, r)`` of the root seed
 ``(0, r)`` for every set, so run ``r`` sees the same noise at every parameter set.  The
 numbers of a trajectory therefore do not depend on the number of threads, the batch
 size or the order of execution.  White noise: the child's first 64 bits key the Philox
-stream drawn inside the compiled kernel (``white_stream="philox"``, default) or seed numpy's
-PCG64 (``"pcg64"``, the numbers of earlier versions).  Contact process: the child seeds
+stream drawn inside the compiled kernel, turned into normals by the ziggurat
+(``white_stream="philox-ziggurat"``, default) or by Box–Muller (``"philox-boxmuller"``, the
+default before the ziggurat, formerly called ``"philox"``), or seed numpy's
+PCG64 (``"pcg64"``, the numbers of versions before the in-kernel stream).  Contact process: the child seeds
 numpy's PCG64 for the phases of the spectral representation (computed in compiled code for
 the package's process models, bit for bit).
 
@@ -23,6 +25,7 @@ from __future__ import annotations
 
 import math
 import os
+import warnings
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -55,7 +58,9 @@ INTEGRATORS = ("euler", "milstein", "accurate")
 #: trajectory's spawned seed (:mod:`stochfric.oscillator.philox`); ``pcg64`` is the stream of
 #: versions before issue 13: numpy's ``Generator(PCG64(seed)).standard_normal`` per trajectory,
 #: drawn into a buffer (the same numbers as then, about 4× slower end to end).
-WHITE_STREAMS = ("philox", "pcg64")
+WHITE_STREAMS = ("philox-ziggurat", "philox-boxmuller", "pcg64")
+#: old names of white-noise streams (same numbers)
+WHITE_STREAM_ALIASES = {"philox": "philox-boxmuller"}
 PATH_COORDINATES = {"mass": _k.PATH_MASS, "relative": _k.PATH_RELATIVE, "position": _k.PATH_POSITION}
 
 #: Above this Δτ the Euler methods are refused: fewer than ~25 steps per natural period
@@ -341,7 +346,7 @@ def simulate(
     common_random_numbers: bool = False,
     progress: Callable[[int, int], None] | None = None,
     white_increment: str = "ito",
-    white_stream: str = "philox",
+    white_stream: str = "philox-ziggurat",
 ) -> SimulationResult:
     """Simulate the friction oscillator for every parameter set and run.
 
@@ -391,15 +396,24 @@ def simulate(
         with the dimensional relative velocity: σ_ζ,eff = σ_ζ · L ω0 · Δτ, see
         :func:`thesis_sigma_zeta`; a Δτ-dependent reproduction mode, white model only).
     white_stream:
-        Where the normals R_k of the white-noise model come from: ``philox`` (default, drawn
-        in the kernel from the Philox4x32-10 stream keyed by the trajectory's spawned seed,
-        :mod:`stochfric.oscillator.philox`) or ``pcg64`` (numpy's PCG64 stream of the same
-        seed, the numbers of versions before issue 13).  Both are exact N(0, 1) streams, one
-        per trajectory; they give different realisations.
+        Where the normals R_k of the white-noise model come from.  ``philox-ziggurat``
+        (default): drawn in the kernel from the Philox4x32-10 stream keyed by the trajectory's
+        spawned seed, turned into normals by a 1024-layer ziggurat
+        (:mod:`stochfric.oscillator.ziggurat`).  ``philox-boxmuller``: the same Philox blocks
+        through Box–Muller (:mod:`stochfric.oscillator.philox`; the default before the
+        ziggurat, then called ``philox``, a name still accepted).  ``pcg64``: numpy's PCG64
+        stream of the same seed drawn into a buffer (the numbers before the in-kernel
+        streams).  All three are exact N(0, 1) streams, one per trajectory; they give
+        different realisations of the same statistics (tests/statistical/test_white_stream.py).
     """
     plist = [params] if isinstance(params, OscillatorParameters) else list(params)
     if not plist:
         raise ParameterError("no parameter set given")
+    if white_stream in WHITE_STREAM_ALIASES:
+        new = WHITE_STREAM_ALIASES[white_stream]
+        warnings.warn(f"white_stream={white_stream!r} is now called {new!r} (the same numbers); "
+                      f"the default is 'philox-ziggurat'", DeprecationWarning, stacklevel=2)
+        white_stream = new
     _check_options(model, integrator, white_increment, white_stream, path_coordinate, runs, save_every)
     warn_list = check_time_step(dt, tau_end, integrator, plist)
     law_spec: LawSpec = law_III() if law is None else law
@@ -549,7 +563,9 @@ class _BatchRunner:
         self.rows = pack_rows(self.plan.params, self.plan.laws, self.plan.sigma_eff,
                               self.process.dx if contact else 1.0)  # type: ignore[union-attr]
         self.x0 = np.array(self.plan.x0, dtype=np.float64).reshape(len(self.plan.params), 2)
-        self.philox = self.noise == _k.NOISE_WHITE and self.white_stream == "philox"
+        self.philox = self.noise == _k.NOISE_WHITE and self.white_stream != "pcg64"
+        self.white_source = (_k.WHITE_ZIGGURAT if self.white_stream == "philox-ziggurat"
+                             else _k.WHITE_PHILOX if self.philox else _k.WHITE_GIVEN)
         self.spectral = (_SpectralBatch(self.process) if self.noise == _k.NOISE_PROCESS
                          and getattr(type(self.process), "generate", None) in _SPECTRAL_GENERATE else None)
 
@@ -606,7 +622,7 @@ class _BatchRunner:
             _k.run_fixed_step_batch(
                 rows, out, _k.FixedStepGrid(self.plan.nsteps, self.dt, self.save_every), self.scheme,
                 self.noise, self.path_mode,
-                _k.WhiteInput(_k.WHITE_PHILOX if self.philox else _k.WHITE_GIVEN, dw, keys),
+                _k.WhiteInput(self.white_source, dw, keys),
             )
 
 

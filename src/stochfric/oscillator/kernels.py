@@ -3,10 +3,10 @@
 Pure numerical code: arrays in, arrays out; no I/O, no global random state.  The
 random input comes from the trajectory's own stream, so a trajectory's numbers never
 depend on which thread or process ran it: one friction-process realisation, or the Wiener
-increments ``ΔW_k``, is passed in by the caller, or (white noise, ``WHITE_PHILOX``) the
-increments are drawn inside the kernel from the counter-based Philox4x32-10 stream keyed by
-the trajectory (:mod:`stochfric.oscillator.philox`; counter = step, so no buffer and no
-sequential state).
+increments ``ΔW_k``, is passed in by the caller, or (white noise, ``WHITE_ZIGGURAT`` and
+``WHITE_PHILOX``) the increments are drawn inside the kernel from the counter-based
+Philox4x32-10 stream keyed by the trajectory (:mod:`stochfric.oscillator.ziggurat`,
+:mod:`stochfric.oscillator.philox`; counter = step, so no buffer and no sequential state).
 
 State and equations (dimensionless, eq. 4.6/4.7): ``x1 = y/L``, ``x2 = dx1/dτ``,
 ``x3 = x30 + ητ`` (carried analytically), and a path coordinate for the
@@ -49,6 +49,7 @@ import numpy.typing as npt
 
 from .friction_laws import SHAPE_CONSTANT, SHAPE_RATIONAL, mu_kinetic_row, mu_rational
 from .philox import pair_normals
+from .ziggurat import fill_pair_ziggurat, finish_pair_ziggurat
 
 # --- codes -------------------------------------------------------------------
 SCHEME_EULER = 0
@@ -65,10 +66,13 @@ PATH_RELATIVE = 1  # relative sliding distance: grows by |γ0 − x2| Δτ
 PATH_POSITION = 2
 
 #: Where the white-noise increments come from: given by the caller (``dw``) or drawn inside the
-#: kernel from the counter-based Philox4x32-10 stream of each trajectory's key (``keys``,
-#: :mod:`stochfric.oscillator.philox`), ``ΔW_k = R_k √Δτ``.
+#: kernel from the counter-based Philox4x32-10 stream of each trajectory's key (``keys``),
+#: ``ΔW_k = R_k √Δτ``, with the normals R_k by the ziggurat (``WHITE_ZIGGURAT``, the default
+#: stream, :mod:`stochfric.oscillator.ziggurat`) or by Box–Muller (``WHITE_PHILOX``, the stream of
+#: versions before the ziggurat, :mod:`stochfric.oscillator.philox`).
 WHITE_GIVEN = 0
 WHITE_PHILOX = 1
+WHITE_ZIGGURAT = 2
 
 class KernelRows(NamedTuple):
     """Per-trajectory inputs of both integrators; row ``i`` belongs to trajectory ``i``
@@ -102,7 +106,8 @@ class FixedStepGrid(NamedTuple):
 
 class WhiteInput(NamedTuple):
     """Where the white-noise increments come from: ``source`` ``WHITE_GIVEN`` (``dw[i]``, the
-    increments ΔW_k of row ``i``) or ``WHITE_PHILOX`` (drawn in the kernel from ``keys[i]``)."""
+    increments ΔW_k of row ``i``), ``WHITE_ZIGGURAT`` or ``WHITE_PHILOX`` (drawn in the kernel
+    from ``keys[i]``)."""
 
     source: int
     dw: npt.NDArray[np.float64]
@@ -602,10 +607,11 @@ def run_fixed_step_batch(
     times in ``x_gh[i]``/``t_gh[i]`` (as many as fit), every ``decimate``-th grid state
     (``τ, x1, x2``) in ``traj[i]`` when it has rows, diagnostics in ``diag[i]``.  ``dw[i]``
     holds the Wiener increments ``ΔW_k`` (``N(0, dt)``) for white noise when
-    ``white_source == WHITE_GIVEN``; with ``WHITE_PHILOX`` they are drawn inside the kernel,
-    ``ΔW_k = R_k √dt`` with ``R_k`` the step-``k`` normal of the Philox4x32-10 stream of
-    ``keys[i]`` (:mod:`stochfric.oscillator.philox`), so no increment buffer is written or read
-    and the numbers are the same as giving ``dw[i] = step_normals(keys[i], nsteps) · √dt``.
+    ``white_source == WHITE_GIVEN``; with ``WHITE_ZIGGURAT`` (``WHITE_PHILOX``) they are drawn
+    inside the kernel, ``ΔW_k = R_k √dt`` with ``R_k`` the step-``k`` normal of the
+    Philox4x32-10 stream of ``keys[i]`` by the ziggurat (Box–Muller), so no increment buffer is
+    written or read and the numbers are the same as giving
+    ``dw[i] = step_normals_ziggurat(keys[i], nsteps) · √dt`` (``step_normals``).
     ``proc[i]`` is the process realisation (``n_proc[i]`` points) for the contact model.
 
     Trajectories are advanced in groups of :data:`LOCKSTEP`, step by step.  Every step first
@@ -626,7 +632,8 @@ def run_fixed_step_batch(
     nsteps, dt, decimate = grid
     white_source, dw, keys = white_input
     white = noise == NOISE_WHITE
-    philox = white and white_source == WHITE_PHILOX
+    philox = white and white_source != WHITE_GIVEN
+    ziggurat = white_source == WHITE_ZIGGURAT
     sqdt = math.sqrt(dt)
     contact = noise == NOISE_PROCESS
     milstein = scheme == SCHEME_MILSTEIN
@@ -732,6 +739,7 @@ def run_fixed_step_batch(
                 _load_segment(jj, g0 + jj, vx1[jj] if position else vpath[jj], cpdx[jj], proc,
                               n_proc, pseg, pv0, pv1)
         wodd = np.zeros(ng)  # ΔW_{k+1}, from the same Philox block as ΔW_k
+        zmiss = np.zeros((2, ng), dtype=np.uint64)  # ziggurat draws left to the slow path
         # q cos x3 of the forced lanes at τ_k (slip) and τ_k + Δτ (stick), per step
         fq_now = np.zeros(ng)
         fq_next = np.zeros(ng)
@@ -750,7 +758,10 @@ def run_fixed_step_batch(
                         wk[jj] = wodd[jj]
                 else:
                     # one Philox block per lane gives ΔW_k and ΔW_{k+1}: branch-free, vectorised
-                    _fill_pair(gkeys, np.uint64(k >> 1), sqdt, wk, wodd)
+                    if not ziggurat:
+                        _fill_pair(gkeys, np.uint64(k >> 1), sqdt, wk, wodd)
+                    elif fill_pair_ziggurat(gkeys, np.uint64(k >> 1), sqdt, wk, wodd, zmiss):
+                        finish_pair_ziggurat(gkeys, np.uint64(k >> 1), sqdt, wk, wodd, zmiss)
             if forcing:
                 _forcing_terms(k, dt, ng, cfz, cqq, cx30, ceta, fq_now, fq_next)
             nmiss = 0  # lanes the fast pass could not complete

@@ -22,8 +22,10 @@ Stream layout used by the oscillator kernels (method §5.1, docs/performance.md)
   (:func:`trajectory_keys` computes the same hash in compiled code);
 * grid steps ``2p`` and ``2p + 1`` share the block ``philox(ctr = (p mod 2³², p div 2³², 0, 0))``:
   its words ``w0 = c1·2³² + c0`` and ``w1 = c3·2³² + c2`` give the pair ``(R_{2p}, R_{2p+1})``
-  by the Box–Muller transform (:func:`box_muller`).  Counter words 2 and 3 are free for
-  further streams of the same trajectory.
+  by the Box–Muller transform (:func:`box_muller`; ``white_stream="philox-boxmuller"``) or,
+  in the default stream, by the ziggurat (:mod:`stochfric.oscillator.ziggurat`), whose rare
+  slow-path draws use the counters ``(p mod 2³², p div 2³², a, 1 + h)``, ``a ≥ 1``.  Counter
+  word 3 values ≥ 3 are free for further streams of the same trajectory.
 
 Normal deviates: Box–Muller on 53-bit uniforms, exact in distribution up to that resolution
 and to the < 1-ulp errors of its logarithm, sine and cosine, which are written here as
