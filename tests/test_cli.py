@@ -8,6 +8,8 @@ import pytest
 from typer.testing import CliRunner
 
 from stochfric.cli import app
+from stochfric.cli.options import WhiteStreamChoice
+from stochfric.oscillator.integrate import WHITE_STREAMS
 from stochfric.oscillator.result import load_result
 
 runner = CliRunner()
@@ -125,6 +127,21 @@ def test_simulate_white_intensity_rules() -> None:
     assert level["process"]["sigma_zeta_rule"] == "spectral_level"
     res = runner.invoke(app, [*base, "--white-intensity", "spectral_level", "--sigma-zeta", "0.1"])
     assert res.exit_code == 2 and "not both" in res.output
+
+
+def test_simulate_white_streams() -> None:
+    """``--white-stream``: the default is the ziggurat stream; Box–Muller (the earlier default) and
+    numpy's PCG64 give other realisations; the stream is recorded in the JSON."""
+    base = ["simulate", "--preset", "brake", "--model", "white", "--runs", "3", "--seed", "1",
+            "--tau-end", "10", "--json"]
+    got = {s: _json([*base, "--white-stream", s]) for s in ("philox-ziggurat", "philox-boxmuller", "pcg64")}
+    default = _json(base)
+    assert default["x_gh"] == got["philox-ziggurat"]["x_gh"]
+    assert len({json.dumps(d["x_gh"]) for d in got.values()}) == 3
+    for name, d in got.items():
+        assert d["white_stream"] == name
+    assert runner.invoke(app, [*base, "--white-stream", "mt19937"]).exit_code == 2
+    assert tuple(c.value for c in WhiteStreamChoice) == WHITE_STREAMS  # the CLI offers every stream
 
 
 def test_simulate_white_intensity_thesis_mode() -> None:

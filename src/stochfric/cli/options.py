@@ -23,7 +23,8 @@ GROUP: Any = None
 __all__ = [
     "GROUP", "AmplitudeChoice", "IntegratorChoice", "LawChoice", "MethodChoice", "ModelChoice", "PathChoice",
     "PresetChoice", "PressureRuleChoice", "ProcessLevelChoice", "SigmaZetaChoice", "SummitRuleChoice",
-    "SurrogateChoice", "VarianceRuleChoice", "WhiteIntensityChoice", "fail", "option_group",
+    "SurrogateChoice", "VarianceRuleChoice", "WhiteIntensityChoice", "WhiteStreamChoice", "fail",
+    "option_group",
 ]  # fmt: skip
 
 # simulate (method §5)
@@ -34,6 +35,9 @@ PresetChoice = StrEnum("PresetChoice", "brake sheet")
 WhiteIntensityChoice = StrEnum("WhiteIntensityChoice", "sigma_mu spectral_level thesis")
 ProcessLevelChoice = StrEnum("ProcessLevelChoice", "sigma_mu psd_level")
 PathChoice = StrEnum("PathChoice", "mass relative position")
+WhiteStreamChoice = StrEnum(
+    "WhiteStreamChoice", [("philox-ziggurat", "philox-ziggurat"), ("philox-boxmuller", "philox-boxmuller"),
+                          ("pcg64", "pcg64")])  # oscillator.integrate.WHITE_STREAMS
 # surface, contact (method §1–§2)
 SummitRuleChoice = StrEnum("SummitRuleChoice", [("thesis", "thesis"), ("eight", "8-neighbour")])
 MethodChoice = StrEnum("MethodChoice", "asperity halfspace")

@@ -31,6 +31,7 @@ from .options import (
     PresetChoice,
     ProcessLevelChoice,
     WhiteIntensityChoice,
+    WhiteStreamChoice,
     fail,
 )
 
@@ -131,6 +132,13 @@ def simulate(
     path_coordinate: Annotated[
         PathChoice, typer.Option(help="Where the contact process is read (method §7.7).")
     ] = PathChoice.mass,
+    white_stream: Annotated[
+        WhiteStreamChoice,
+        typer.Option(help="Normals of the white-noise model: philox-ziggurat (default), philox-boxmuller "
+                     "(the default before the ziggurat, recorded as 'philox' in older results) or pcg64 "
+                     "(numpy's stream, the numbers before the in-kernel streams); same statistics, "
+                     "different realisations."),
+    ] = WhiteStreamChoice["philox-ziggurat"],
     process_level: Annotated[
         ProcessLevelChoice | None,
         typer.Option(help="Variance of the contact process: sigma_mu (σ_μ(p)², default) or psd_level "
@@ -196,7 +204,7 @@ def simulate(
             result = integrate.simulate(
                 case.params, **case.simulate_kwargs(model.value),
                 x0=(float(x0[0]), float(x0[1])) if x0 else None, integrator=integrator.value, runs=runs,
-                seed=seed, path_coordinate=path_coordinate.value,
+                seed=seed, path_coordinate=path_coordinate.value, white_stream=white_stream.value,
                 save_trajectory=plot is not None or out is not None, save_every=save_every,
                 workers=workers, progress=cb,
             )

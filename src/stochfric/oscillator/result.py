@@ -169,6 +169,7 @@ class SimulationResult:
             "friction_law": self.laws[param_set],
             "sigma_zeta": self.sigma_zeta[param_set],
             "white_increment": self.settings.get("white_increment", "ito"),
+            "white_stream": self.settings.get("white_stream"),
             "sigma_zeta_effective": list(self.settings.get("sigma_zeta_effective", self.sigma_zeta))[param_set],
             "process": self.process,
             "diagnostics": {
