@@ -297,11 +297,11 @@ CONFIGS = (
 def _white_increments(case: Case, runs: int, tau_end: float, seed: int = 1
                       ) -> npt.NDArray[np.float64]:
     """The increments ``simulate`` draws for runs ``0..runs-1`` of parameter set 0 (its default
-    stream, :func:`stochfric.oscillator.ziggurat.step_normals_ziggurat`)."""
+    stream, :func:`stochfric.oscillator.ziggurat.step_normals`)."""
     nsteps = round(tau_end / DT)
     keys = _ph.trajectory_keys(np.random.SeedSequence(seed), np.zeros(runs, dtype=np.int64),
                                np.arange(runs))
-    return np.stack([_zig.step_normals_ziggurat(k, nsteps) for k in keys]).reshape(runs, nsteps) * math.sqrt(DT)
+    return np.stack([_zig.step_normals(k, nsteps) for k in keys]).reshape(runs, nsteps) * math.sqrt(DT)
 
 
 def _kernel_only(case: Case, dw: npt.NDArray[np.float64], noise: int) -> Callable[[], None]:

@@ -25,7 +25,7 @@ X = np.array(Z._X_TABLE)
 
 
 def _z() -> np.ndarray:
-    return Z.step_normals_ziggurat(KEY, N)
+    return Z.step_normals(KEY, N)
 
 
 def test_moments_tails_and_ks_of_one_stream() -> None:
@@ -66,7 +66,7 @@ def test_independence_between_steps_and_keys() -> None:
     assert abs(np.corrcoef(a, b)[0, 1]) < 4 / math.sqrt(a.size)
     m = 200_000
     keys = [np.uint64(k) for k in (1, 2, 3, 2**32, 2**32 + 1, int(KEY) + 1)]
-    zs = np.stack([Z.step_normals_ziggurat(k, m) for k in keys])
+    zs = np.stack([Z.step_normals(k, m) for k in keys])
     c = np.corrcoef(zs)
     off = c[~np.eye(len(keys), dtype=bool)]
     assert np.abs(off).max() < 4 / math.sqrt(m)

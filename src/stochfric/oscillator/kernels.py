@@ -611,7 +611,7 @@ def run_fixed_step_batch(
     inside the kernel, ``ΔW_k = R_k √dt`` with ``R_k`` the step-``k`` normal of the
     Philox4x32-10 stream of ``keys[i]`` by the ziggurat (Box–Muller), so no increment buffer is
     written or read and the numbers are the same as giving
-    ``dw[i] = step_normals_ziggurat(keys[i], nsteps) · √dt`` (``step_normals``).
+    ``dw[i] = ziggurat.step_normals(keys[i], nsteps[, box_muller=True]) · √dt``.
     ``proc[i]`` is the process realisation (``n_proc[i]`` points) for the contact model.
 
     Trajectories are advanced in groups of :data:`LOCKSTEP`, step by step.  Every step first

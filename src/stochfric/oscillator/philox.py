@@ -63,7 +63,6 @@ __all__ = [
     "pair_normals",
     "pcg64_uniform_for_children",
     "philox4x32_10",
-    "step_normals",
     "trajectory_key",
     "trajectory_keys",
 ]
@@ -233,16 +232,6 @@ def pair_normals(key: np.uint64, pair: np.uint64) -> tuple[float, float]:  # pra
     o0, o1, o2, o3 = philox4x32_10(pair & _MASK32, pair >> _S32, zero, zero, key & _MASK32,
                                    key >> _S32)
     return box_muller((o1 << _S32) | o0, (o3 << _S32) | o2)
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def step_normals(key: np.uint64, nsteps: int) -> npt.NDArray[np.float64]:  # pragma: no cover
-    """The normals ``R_0 … R_{nsteps−1}`` the kernels draw for the trajectory with ``key``
-    (same numbers; for tests and for giving the increments explicitly, ``ΔW_k = R_k √Δτ``)."""
-    out = np.empty(nsteps + 1)
-    for p in range((nsteps + 1) // 2):
-        out[2 * p], out[2 * p + 1] = pair_normals(key, np.uint64(p))
-    return out[:nsteps]
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")

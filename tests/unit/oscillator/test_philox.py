@@ -123,7 +123,7 @@ def test_box_muller_is_the_textbook_transform_in_every_quadrant() -> None:
 
 def test_step_normals_are_philox_blocks_through_box_muller() -> None:
     key = np.uint64(0x0123456789ABCDEF)
-    z = P.step_normals(key, 7)
+    z = Z.step_normals(key, 7, True)
     for p in range(4):
         o = P.philox4x32_10_array(np.array([p, 0, 0, 0], dtype=np.uint64),
                                   np.array([int(key) & 0xFFFFFFFF, int(key) >> 32], dtype=np.uint64))
@@ -134,7 +134,7 @@ def test_step_normals_are_philox_blocks_through_box_muller() -> None:
         if 2 * p + 1 < 7:
             assert z[2 * p + 1] == b[0]
     # a prefix of a longer stream: the numbers of step k do not depend on how many are drawn
-    np.testing.assert_array_equal(P.step_normals(key, 1000)[:7], z)
+    np.testing.assert_array_equal(Z.step_normals(key, 1000, True)[:7], z)
 
 
 @pytest.mark.parametrize("root", [
@@ -167,14 +167,14 @@ def _prm(sigma: float) -> np.ndarray:
 @pytest.mark.parametrize("scheme", [K.SCHEME_EULER, K.SCHEME_MILSTEIN])
 def test_kernel_draws_equal_the_same_numbers_given_as_increments(scheme: int, source: str) -> None:
     """``WHITE_ZIGGURAT`` / ``WHITE_PHILOX`` draw R_k inside the kernel; giving ΔW_k = R_k √Δτ
-    from :func:`step_normals_ziggurat` / :func:`step_normals` to the ``WHITE_GIVEN`` path must
+    from :func:`ziggurat.step_normals` (``box_muller`` false / true) to the ``WHITE_GIVEN`` path must
     reproduce it bit for bit (odd and even step counts, so both halves of a Philox block are
     used at the end; 40 lanes, so two lock-step groups, and with the ziggurat ≈ 1000 draws that
     take its slow path in the middle of a group)."""
     law = law_III()
     dt = 0.005
-    kernel_source, draw = ((K.WHITE_ZIGGURAT, Z.step_normals_ziggurat) if source == "ziggurat"
-                           else (K.WHITE_PHILOX, P.step_normals))
+    kernel_source, draw = ((K.WHITE_ZIGGURAT, Z.step_normals) if source == "ziggurat"
+                           else (K.WHITE_PHILOX, lambda k, n: Z.step_normals(k, n, True)))
     for nsteps in (3001, 3000):
         keys = np.concatenate([np.array([0xDEADBEEF12345678, 7, 2**63 + 11], dtype=np.uint64),
                                np.arange(37, dtype=np.uint64) * np.uint64(0x9E3779B97F4A7C15)])
@@ -227,8 +227,8 @@ def test_simulate_white_streams() -> None:
         return P.trajectory_key(trajectory_seed(root, 0, r))
 
     draws = {
-        "philox-ziggurat": lambda r: Z.step_normals_ziggurat(key(r), nsteps),
-        "philox-boxmuller": lambda r: P.step_normals(key(r), nsteps),
+        "philox-ziggurat": lambda r: Z.step_normals(key(r), nsteps),
+        "philox-boxmuller": lambda r: Z.step_normals(key(r), nsteps, True),
         "pcg64": lambda r: np.random.Generator(np.random.PCG64(trajectory_seed(root, 0, r))).standard_normal(nsteps),
     }
     for name, draw in draws.items():
