@@ -342,10 +342,7 @@ def _philox_words(keys: npt.NDArray[np.uint64], npairs: int, out: npt.NDArray[np
     for p in range(npairs):
         c = np.uint64(p)
         for j in range(keys.shape[0]):
-            k = keys[j]
-            o0, o1, o2, o3 = _ph.philox4x32_10(c, zero, zero, zero, k & _ph._MASK32, k >> _ph._S32)
-            out[0, j] = (o1 << _ph._S32) | o0
-            out[1, j] = (o3 << _ph._S32) | o2
+            out[0, j], out[1, j] = _ph.block_words(keys[j], c, zero, zero)
 
 
 @numba.njit(error_model="numpy")

@@ -58,8 +58,10 @@ __all__ = [
     "PHILOX_M1",
     "PHILOX_W0",
     "PHILOX_W1",
+    "block_words",
     "box_muller",
     "child_states",
+    "open_unit",
     "pair_normals",
     "pcg64_uniform_for_children",
     "philox4x32_10",
@@ -197,6 +199,22 @@ _HALF_PI_2M51 = 0.5 * math.pi / 2.0**51  # (π/2) 2^-51
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def block_words(
+    key: np.uint64, pair: np.uint64, c2: np.uint64, c3: np.uint64
+) -> tuple[np.uint64, np.uint64]:  # pragma: no cover
+    """The two 64-bit words ``w0 = c1·2³² + c0``, ``w1 = c3·2³² + c2`` of the Philox4x32-10 block
+    of counter ``(pair mod 2³², pair div 2³², c2, c3)`` under ``key`` (the stream layout above)."""
+    o0, o1, o2, o3 = philox4x32_10(pair & _MASK32, pair >> _S32, c2, c3, key & _MASK32, key >> _S32)
+    return (o1 << _S32) | o0, (o3 << _S32) | o2
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def open_unit(w: np.uint64) -> float:  # pragma: no cover
+    """``(⌊w/2¹¹⌋ + 1) 2⁻⁵³ ∈ (0, 1]``: a 53-bit uniform that is never 0 (a logarithm follows)."""
+    return float(np.int64((w >> np.uint64(11)) + np.uint64(1))) * _TWO_M53
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def box_muller(w0: np.uint64, w1: np.uint64) -> tuple[float, float]:  # pragma: no cover
     """Two independent standard normals from two 64-bit words (Box & Muller 1958).
 
@@ -207,8 +225,7 @@ def box_muller(w0: np.uint64, w1: np.uint64) -> tuple[float, float]:  # pragma: 
     distribution up to the 53-bit resolution of the uniforms (largest |z| = √(106 ln 2) ≈ 8.57)
     and the < 1-ulp errors of the elementary functions.  Branch-free: vectorises.
     """
-    u1 = float(np.int64((w0 >> np.uint64(11)) + np.uint64(1))) * _TWO_M53
-    r = math.sqrt(-2.0 * log_positive(u1))
+    r = math.sqrt(-2.0 * log_positive(open_unit(w0)))
     a = np.int64(w1 >> np.uint64(11))  # U2 = a 2^-53; 4 U2 = a 2^-51 quarter turns
     q = (a + np.int64(1 << 50)) >> np.int64(51)  # nearest quarter turn, 0..4
     rho = float(a - (q << np.int64(51))) * _HALF_PI_2M51  # in [-π/4, π/4)
@@ -229,9 +246,8 @@ def pair_normals(key: np.uint64, pair: np.uint64) -> tuple[float, float]:  # pra
     """The normals ``(R_{2p}, R_{2p+1})`` of steps ``2p`` and ``2p + 1`` of the trajectory with
     ``key``: Box–Muller on the two 64-bit words of the block ``philox(ctr = (p, 0, 0, 0))``."""
     zero = np.uint64(0)
-    o0, o1, o2, o3 = philox4x32_10(pair & _MASK32, pair >> _S32, zero, zero, key & _MASK32,
-                                   key >> _S32)
-    return box_muller((o1 << _S32) | o0, (o3 << _S32) | o2)
+    w0, w1 = block_words(key, pair, zero, zero)
+    return box_muller(w0, w1)
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")

@@ -58,7 +58,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from .philox import _MASK32, _S32, log_positive, pair_normals, philox4x32_10
+from .philox import _TWO_M53, block_words, log_positive, open_unit, pair_normals
 
 __all__ = [
     "ZIGGURAT_LAYERS",
@@ -87,7 +87,6 @@ def _read_tables() -> tuple[float, float, tuple[float, ...], tuple[float, ...]]:
 
 
 ZIGGURAT_R, ZIGGURAT_V, _X_TABLE, _F_TABLE = _read_tables()
-_TWO_M53 = 2.0**-53
 
 
 def _fast_tables() -> tuple[npt.NDArray[np.float64], npt.NDArray[np.int64], npt.NDArray[np.float64]]:
@@ -121,21 +120,6 @@ def ziggurat_fast(w: np.uint64) -> tuple[float, bool]:  # pragma: no cover
     return z, u < _KI[idx]
 
 
-@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _words(
-    key: np.uint64, pair: np.uint64, c2: np.uint64, c3: np.uint64
-) -> tuple[np.uint64, np.uint64]:  # pragma: no cover
-    """The two 64-bit words of the Philox block of counter ``(pair mod 2³², pair div 2³², c2, c3)``."""
-    o0, o1, o2, o3 = philox4x32_10(pair & _MASK32, pair >> _S32, c2, c3, key & _MASK32, key >> _S32)
-    return (o1 << _S32) | o0, (o3 << _S32) | o2
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _open_unit(w: np.uint64) -> float:  # pragma: no cover
-    """``(⌊w/2¹¹⌋ + 1) 2⁻⁵³ ∈ (0, 1]`` (never 0: a logarithm follows)."""
-    return float(np.int64((w >> np.uint64(11)) + np.uint64(1))) * _TWO_M53
-
-
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def ziggurat_slow(key: np.uint64, pair: np.uint64, half: np.uint64, w: np.uint64) -> float:  # pragma: no cover
     """The normal of step ``2·pair + half`` whose first word ``w`` may have left the fast path:
@@ -151,17 +135,17 @@ def ziggurat_slow(key: np.uint64, pair: np.uint64, half: np.uint64, w: np.uint64
         if u < _KI[idx]:
             return -x if neg else x
         a += np.uint64(1)
-        u0, u1 = _words(key, pair, a, c3)
+        u0, u1 = block_words(key, pair, a, c3)
         if idx == 0:
             # the tail x > r (Marsaglia 1964): one block per try
             while True:
-                ta = -log_positive(_open_unit(u0)) / ZIGGURAT_R
-                tb = -log_positive(_open_unit(u1))
+                ta = -log_positive(open_unit(u0)) / ZIGGURAT_R
+                tb = -log_positive(open_unit(u1))
                 if tb + tb > ta * ta:
                     z = ZIGGURAT_R + ta
                     return -z if neg else z
                 a += np.uint64(1)
-                u0, u1 = _words(key, pair, a, c3)
+                u0, u1 = block_words(key, pair, a, c3)
         # wedge of layer idx: y uniform on [f(x_idx), f(x_idx+1)), accept if y < f(x)
         y = _FI[idx] + float(np.int64(u0 >> np.uint64(11))) * _TWO_M53 * (_FI[idx + 1] - _FI[idx])
         if log_positive(y) < -0.5 * x * x:
@@ -173,7 +157,7 @@ def ziggurat_slow(key: np.uint64, pair: np.uint64, half: np.uint64, w: np.uint64
 def pair_normals_ziggurat(key: np.uint64, pair: np.uint64) -> tuple[float, float]:  # pragma: no cover
     """The normals ``(R_{2p}, R_{2p+1})`` of steps ``2p`` and ``2p + 1`` (``pair = p``) of the
     trajectory with ``key`` (scalar; the kernels compute the same numbers lane-parallel)."""
-    w0, w1 = _words(key, pair, np.uint64(0), np.uint64(0))
+    w0, w1 = block_words(key, pair, np.uint64(0), np.uint64(0))
     z0, ok0 = ziggurat_fast(w0)
     z1, ok1 = ziggurat_fast(w1)
     if not ok0:
@@ -212,7 +196,7 @@ def fill_pair_ziggurat(
     nmiss = 0
     zero = np.uint64(0)
     for jj in range(keys.shape[0]):
-        w0, w1 = _words(keys[jj], pair, zero, zero)
+        w0, w1 = block_words(keys[jj], pair, zero, zero)
         z0, ok0 = ziggurat_fast(w0)
         z1, ok1 = ziggurat_fast(w1)
         wk[jj] = z0 * sqdt
