@@ -207,9 +207,15 @@ def _shared(name: str) -> Path:
 
 @pytest.mark.parametrize("name", ALL_SHARED)
 def test_every_shared_file_runs_surface_and_contact(app: typer.Typer, name: str) -> None:
-    """surface + contact (brake-pad, dc04) on each real file; the default range is sensible."""
+    """surface + contact (brake-pad, dc04) on each real file; the default range is sensible; frt-1, a
+    part outline, is refused by both as not a rough surface."""
     path = str(_shared(name))
     code, out, err = _run(app, "surface", path, "--fill-undefined", "--material", "brake-pad", "--json")
+    if name.startswith("frt-1"):
+        assert code == 2 and "not a rough surface (part outline" in err
+        code, out, err = _run(app, "contact", path, "--fill-undefined", "--material", "dc04", "--json")
+        assert code == 2 and "not a rough surface" in err
+        return
     assert code == 0, err
     s = json.loads(out)
     assert s["n_summits"] >= 10 and s["summit_height_std_m"] > 0
@@ -220,9 +226,10 @@ def test_every_shared_file_runs_surface_and_contact(app: typer.Typer, name: str)
         d = json.loads(out)
         mu = np.array(d["mu"], dtype=float)
         assert np.all(np.isfinite(mu)) and np.all(mu > 0)
-        # the surface-derived default range starts at a few contacts and reaches the bulk of
-        # the summits (>= 10 contacts) even where the highest summit is an outlier
-        assert d["n_contacts"][0] >= 1 and d["n_contacts"][-1] >= 10
+        # the surface-derived default range starts at 20 contacts and ends inside the
+        # non-interaction range (A_c/A_nom <= 0.1) or at half the summits
+        assert d["n_contacts"][0] == 20 and d["n_contacts"][-1] > 20
+        assert max(d["area_fraction"]) <= 0.1 * (1 + 1e-9)
         assert np.all(np.array(d["area_fraction"]) <= 1.0)
         codes = {w["code"] for w in d["warnings"]}
         # every warning is on stderr too, one line each
@@ -232,14 +239,16 @@ def test_every_shared_file_runs_surface_and_contact(app: typer.Typer, name: str)
 
 
 def test_contact_warnings_of_issue_9(app: typer.Typer) -> None:
-    """plu-1 with the pad: μ ≫ 1; mnt-1: few contacts; the default surface pushed 100–200 µm: A_c > A_nom."""
+    """plu-1 with the pad: μ ≫ 1; mnt-1 at approaches below its 20-contact default start: few contacts;
+    the default surface pushed 100–200 µm: A_c > A_nom."""
     code, out, err = _run(app, "contact", str(_shared("plu-1.plu")), "--material", "brake-pad", "--json")
     assert code == 0
     d = json.loads(out)
     assert max(d["mu"]) > 1
     assert "mu-above-one" in {w["code"] for w in d["warnings"]}
     assert "warning: [mu-above-one] plu-1.plu: mu > 1" in err
-    code, out, err = _run(app, "contact", str(_shared("mnt-1.mnt")), "--material", "brake-pad", "--json")
+    code, out, err = _run(app, "contact", str(_shared("mnt-1.mnt")), "--material", "brake-pad", "--json",
+                          "--approach-um", "0.001:0.01:4")
     d = json.loads(out)
     few = [w for w in d["warnings"] if w["code"] == "few-contacts"]
     assert few and all(d["n_contacts"][i] < 10 for i in few[0]["indices"])

@@ -26,7 +26,8 @@ from stochfric.contact.validity import plasticity_validity, result_validity
 from stochfric.io_utils import OutputPathError, check_output_path
 from stochfric.surface.figures import write_surface_figures
 from stochfric.surface.io import Surface, SurfaceError, default_surface_path, read_surface
-from stochfric.surface.preprocess import Preparation, prepare
+from stochfric.surface.prepare_checks import MAX_UNDEFINED_DEFAULT, OUTLIER_K, OUTLIER_SQ
+from stochfric.surface.preprocess import Preparation, prepare_with_report
 from stochfric.surface.statistics import (
     height_moments,
     plasticity_index,
@@ -90,10 +91,22 @@ class SurfaceOptions:
     summit_rule: str
     size_um: str | None
     height_unit: str | None
+    cutoff_um: float | None = None
+    outliers: bool = True
+    outlier_k: float = OUTLIER_K
+    outlier_sq: float = OUTLIER_SQ
+    quantised: str = "warn"
+    max_undefined: float = MAX_UNDEFINED_DEFAULT
+    rough_check: bool = True
 
     def preparation(self) -> Preparation:
-        """Detrend, median filter and coarsening (SurfaceError for invalid values)."""
-        return Preparation(detrend=self.detrend, median_radius=self.median_radius, step=self.step)
+        """Every preparation step (docs/surface_contact.md, "Preparation"); SurfaceError for invalid
+        values."""
+        cutoff = None if self.cutoff_um is None else float(self.cutoff_um) * MICROMETRE
+        return Preparation(detrend=self.detrend, median_radius=self.median_radius, step=self.step, cutoff_m=cutoff,
+                           outliers=self.outliers, outlier_k=self.outlier_k, outlier_sq=self.outlier_sq,
+                           quantised=self.quantised, max_undefined=self.max_undefined,
+                           rough_check=self.rough_check)  # fmt: skip
 
     def load(self, file: Path | None) -> tuple[Surface, Surface, Surface, Summits, Summits, dict[str, Any]]:
         """Read ``file`` (default: the shipped surface), prepare it and find the summits: raw, fine and
@@ -115,7 +128,7 @@ def _load_and_prepare(
     path = default_surface_path() if file is None else file
     size = parse_size_um(size_um) if size_um is not None else None
     raw = read_surface(path, physical_size_m=size, height_unit=height_unit, fill_undefined=fill_undefined)
-    fine, coarse = prepare(raw, preparation)
+    fine, coarse, report = prepare_with_report(raw, preparation)
     fine_summits = summits_of(fine, rule=summit_rule)
     coarse_summits = fine_summits if coarse is fine else summits_of(coarse, rule=summit_rule)
     record: dict[str, Any] = {
@@ -123,10 +136,13 @@ def _load_and_prepare(
         "default_surface": file is None,
         "sha256": raw.info.get("sha256"),
         "reader": raw.info.get("reader"),
-        **preparation.to_dict(),
+        **preparation.settings(),
+        "detrend": report["form"]["applied"],
+        "detrend_requested": preparation.detrend,
         "fill_undefined": fill_undefined,
         "n_undefined_filled": raw.n_undefined_filled,
         "summit_rule": summit_rule,
+        "preparation_report": report,
     }
     return raw, fine, coarse, fine_summits, coarse_summits, record
 
@@ -186,7 +202,45 @@ FileArg = Annotated[
 ]
 MedianOpt = Annotated[int, typer.Option("--median-radius", help="Median filter radius r, window (2r+1)²; 0 = off.")]
 StepOpt = Annotated[int, typer.Option("--step", help="Coarsening: keep every k-th point; 1 = off.")]
-DetrendOpt = Annotated[str, typer.Option("--detrend", help="none | mean | plane | quadratic (default plane).")]
+DetrendOpt = Annotated[
+    str,
+    typer.Option(
+        "--detrend",
+        help="Form removal: auto (default: plane, raised to quadratic, poly3 while the next degree removes "
+        "more than 25 % of the remaining variance) | none | mean | plane | quadratic | poly3 | gaussian | "
+        "robust-gaussian (ISO 16610-61 / -71 L-filter, needs --cutoff-um).",
+    ),
+]
+CutoffOpt = Annotated[
+    float | None,
+    typer.Option("--cutoff-um", help="Nesting index λc [µm] of the Gaussian L-filter (--detrend gaussian or "
+                 "robust-gaussian); between 5 grid spacings and the larger map side."),
+]  # fmt: skip
+OutliersOpt = Annotated[
+    bool,
+    typer.Option("--outliers/--no-outliers", help="Replace isolated spikes/pits (|z - 5x5 median| > max(k·σ_r, "
+                 "m·S)) by harmonic interpolation; count and positions are reported."),
+]  # fmt: skip
+OutlierKOpt = Annotated[
+    float, typer.Option("--outlier-k", help="Outlier rule: multiple k of the robust residual scale σ_r (>= 3).")
+]
+OutlierSqOpt = Annotated[
+    float, typer.Option("--outlier-sq", help="Outlier rule: multiple m of the robust height scale S (>= 2).")
+]
+QuantisedOpt = Annotated[
+    str,
+    typer.Option("--quantised", help="Quantised heights (more than 2 % tied neighbour pairs): warn (default) | "
+                 "dither (add uniform noise of one height quantum)."),
+]  # fmt: skip
+MaxUndefinedOpt = Annotated[
+    float,
+    typer.Option("--max-undefined", help="Largest fraction of undefined points filled (0 < F <= 1; default 0.05)."),
+]
+RoughCheckOpt = Annotated[
+    bool,
+    typer.Option("--rough-check/--no-rough-check", help="Refuse maps that are no rough surface (a step or "
+                 "two-level map, a part outline)."),
+]  # fmt: skip
 FillOpt = Annotated[
     bool,
     typer.Option("--fill-undefined", help="Fill undefined points by harmonic interpolation (else refuse)."),
@@ -213,10 +267,19 @@ def surface_options(
     summit_rule: RuleOpt = SummitRuleChoice.thesis,
     size_um: SizeOpt = None,
     height_unit: UnitOpt = None,
+    cutoff_um: CutoffOpt = None,
+    outliers: OutliersOpt = True,
+    outlier_k: OutlierKOpt = OUTLIER_K,
+    outlier_sq: OutlierSqOpt = OUTLIER_SQ,
+    quantised: QuantisedOpt = "warn",
+    max_undefined: MaxUndefinedOpt = MAX_UNDEFINED_DEFAULT,
+    rough_check: RoughCheckOpt = True,
 ) -> SurfaceOptions:
     """The reading and preparation options of a command (:func:`~stochfric.cli.options.option_group`)."""
     return SurfaceOptions(median_radius=median_radius, step=step, detrend=detrend, fill_undefined=fill_undefined,
-                          summit_rule=SummitRuleChoice(summit_rule).value, size_um=size_um, height_unit=height_unit)
+                          summit_rule=SummitRuleChoice(summit_rule).value, size_um=size_um, height_unit=height_unit,
+                          cutoff_um=cutoff_um, outliers=outliers, outlier_k=outlier_k, outlier_sq=outlier_sq,
+                          quantised=quantised, max_undefined=max_undefined, rough_check=rough_check)
 
 
 PlotOpt = Annotated[Path | None, typer.Option("--plot", help="Write PNG figures into this directory.")]
@@ -267,7 +330,7 @@ def surface_command(
             "fine": fine_stats,
             "coarse": coarse_stats,
         }
-        warn = _surface_warnings(raw)
+        warn = _surface_warnings(fine)
         if mat is not None:
             g_coarse = _gamma(mat, coarse_stats)
             g_fine = _gamma(mat, fine_stats)
@@ -294,8 +357,15 @@ def surface_command(
     um = MICROMETRE
     typer.echo(f"surface   {record['file']}")
     typer.echo(
-        f"prepared  detrend={prep.detrend} median_radius={prep.median_radius} step={prep.step} "
+        f"prepared  detrend={record['detrend']} median_radius={prep.median_radius} step={prep.step} "
         f"summit_rule={surf.summit_rule} filled={raw.n_undefined_filled}"
+    )
+    rep = record["preparation_report"]
+    sq_deg = ", ".join(f"{v / um:.4g}" for v in rep["form"]["sq_by_degree_m"])
+    typer.echo(
+        f"form      {rep['form']['requested']} -> {rep['form']['applied']} (Sq after degree 1, 2, 3: {sq_deg} µm); "
+        f"outliers replaced {rep['outliers']['count']}; tied pairs {100 * rep['quantisation']['tie_fraction']:.3g} %; "
+        f"undefined {100 * rep['undefined']['fraction']:.3g} %"
     )
     for label, st in (("fine", fine_stats), ("coarse", coarse_stats)):
         typer.echo(
@@ -374,7 +444,7 @@ def contact_command(
     try:
         mat = load_material(material)
         approach = parse_approach_um(approach_um) if approach_um is not None else None
-        raw, _fine, coarse, _fs, cs, record = surf.load(file)
+        _raw, fine, coarse, _fs, cs, record = surf.load(file)
         record["approach"] = "given" if approach is not None else "default: sigma_S/4..3 sigma_S"
         gw = asperity_contact(coarse, cs, mat, approach, preparation=record)
         results: list[ContactResult] = [gw]
@@ -401,7 +471,7 @@ def contact_command(
             }
         gamma = _summit_gamma(mat, cs)
         payload["plasticity_index"] = gamma
-        payload["warnings"] = _surface_warnings(raw) + [
+        payload["warnings"] = _surface_warnings(fine) + [
             w.to_dict() for w in result_validity(gw, plasticity_index=gamma, name=Path(record["file"]).name)
         ]
         if output is not None:

@@ -518,8 +518,12 @@ def _finish(
     mask = np.ma.getmaskarray(masked)
     n_undefined = int(np.count_nonzero(mask))
     info["n_undefined"] = n_undefined
+    info["undefined_fraction"] = n_undefined / mask.size if mask.size else 0.0
     name = Path(source).name if source != "array" else "the height map"
     if n_undefined:
+        from stochfric.surface.prepare_checks import undefined_border_fraction
+
+        info["undefined_border_fraction"] = undefined_border_fraction(mask)
         fraction = n_undefined / mask.size
         if not fill_undefined:
             raise SurfaceError(
@@ -530,7 +534,6 @@ def _finish(
         if n_undefined == mask.size:
             raise SurfaceError(f"{name} has no defined point at all")
         filled = _fill_harmonic(masked, physical_size_m)
-        info["undefined_fraction"] = fraction
     else:
         filled = np.ma.getdata(masked).astype(np.float64)
     return Surface(

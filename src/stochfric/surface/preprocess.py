@@ -1,51 +1,81 @@
-"""Preparing a measured surface for the contact analysis (method §1.1–1.2, thesis 3.2.1).
+"""Preparing a measured surface for the contact analysis (method §1.1–1.2, thesis 3.2.1),
+in the vocabulary of ISO 25178-2 / ISO 16610 (rules and numbers: :mod:`stochfric.surface.prepare_checks`
+and docs/surface_contact.md, "Preparation").
 
-Steps, each optional and recorded in :class:`Preparation` (and from there in every result):
+Steps, in this order, each chosen by the user or by a stated rule and recorded in the
+preparation report (``fine.info["preparation"]``, :func:`prepare_with_report`):
 
-1. **detrend** — remove a least-squares polynomial: ``"none"``, ``"mean"`` (the mean height),
-   ``"plane"`` (best-fit plane; SurfaceTopography calls it ``"height"``) or ``"quadratic"``
-   (full second-order polynomial in x and y; SurfaceTopography's ``"curvature"``).
-   Measured data nearly always carry a tilt (``al3d-1``: Sq 7.7 µm raw, 0.29 µm without the
-   plane), so ``"plane"`` is the default.
-2. **median filter** of radius ``r``: window of ``(2r+1) × (2r+1)`` points (the thesis uses
+1. **undefined points** — the fraction filled on reading is reported; above ``max_undefined``
+   (default 5 %) the map is refused (a harmonic fill carries no summit).
+2. **quantisation check** on the heights as read (tie fraction, height quantum), before any
+   step breaks the ties.
+3. **outlier removal** (default on) — isolated spikes/pits, ``|z − median₅ₓ₅ z| > max(6 σ_r,
+   5 S)``, replaced by harmonic interpolation; count, fraction and positions reported.
+4. **form removal** (``detrend``) — ``"none"``, ``"mean"``, a least-squares polynomial
+   ``"plane"`` (SurfaceTopography's ``"height"``), ``"quadratic"`` (``"curvature"``),
+   ``"poly3"`` (full third order), the rule ``"auto"`` (default: the highest degree ≤ 3 whose
+   extra terms remove more than 25 % of the variance left by the degree below), or the Gaussian
+   L-filter of ISO 16610-61 ``"gaussian"`` / robust ISO 16610-71 ``"robust-gaussian"`` with
+   nesting index ``cutoff_m`` (λc; a plane is removed first).
+5. **rough-surface check** on the form-removed map — a step / two-level map (Otsu) or a part
+   outline (undefined surround) is refused.
+6. **quantisation treatment** — ``"warn"`` (default) or ``"dither"`` (uniform noise of one
+   quantum).
+7. **median filter** of radius ``r``: window of ``(2r+1) × (2r+1)`` points (the thesis uses
    Matlab ``median2`` with r = 5 for the brake pad, r = 6 for the sheet); at the edges the data
    are mirrored (``scipy.ndimage.median_filter(mode="reflect")``), so no artificial zeros
    enter. ``r = 0`` switches it off.
-3. **coarse discretisation** — keep every k-th point in both directions (thesis k = 10): the
+8. **coarse discretisation** — keep every k-th point in both directions (thesis k = 10): the
    finest asperities are flattened plastically at first contact, the next scale deforms
    elastically.  The kept point ``i·k`` stands for a cell of ``k`` fine points, so the coarse
    spacing is exactly ``kΔ`` and the coarse physical size ``⌈n/k⌉·kΔ`` (equal to the measured
    size when ``k`` divides ``n``, at most ``(k−1)Δ`` larger otherwise).
 
-The order is always detrend → median filter → coarsen.  The *fine* surface of the thesis's
-figures is the filtered one (after steps 1–2), the *coarse* one the result of step 3.
+Outliers go before the form (a spike of 50 Sq would otherwise weigh in the fit and in the
+``auto`` rule's Sq), the rough-surface check after it (a step is judged on the form-removed
+heights), the median filter and coarsening last as in the thesis.  The *fine* surface of the
+thesis's figures is the result of steps 1–7, the *coarse* one of step 8.
 """
 
 from __future__ import annotations
 
-from dataclasses import asdict, dataclass
+import math
+from dataclasses import asdict, dataclass, fields
+from pathlib import Path
 from typing import Any, Literal
 
 import numpy as np
 import numpy.typing as npt
 from scipy import ndimage
 
-from stochfric.surface.io import MIN_GRID_POINTS, Surface, SurfaceError
+from stochfric.surface import prepare_checks as pc
+from stochfric.surface.io import MIN_GRID_POINTS, Surface, SurfaceError, _fill_harmonic
 
 __all__ = [
     "DETREND_MODES",
+    "FORM_FILTERS",
+    "QUANTISED_TREATMENTS",
     "DetrendMode",
     "Preparation",
     "coarsen",
     "detrend",
     "median_filter",
+    "preparation_report",
     "prepare",
+    "prepare_with_report",
 ]
 
-DetrendMode = Literal["none", "mean", "plane", "quadratic"]
-DETREND_MODES: tuple[str, ...] = ("none", "mean", "plane", "quadratic")
-#: SurfaceTopography's names for the same modes.
-_ALIASES = {"center": "mean", "height": "plane", "curvature": "quadratic"}
+DetrendMode = Literal["none", "mean", "plane", "quadratic", "poly3", "auto", "gaussian", "robust-gaussian"]
+#: Polynomial modes and their degree (``mean`` is degree 0).
+_DEGREES = {"mean": 0, "plane": 1, "quadratic": 2, "poly3": 3}
+FORM_FILTERS: tuple[str, ...] = ("gaussian", "robust-gaussian")
+DETREND_MODES: tuple[str, ...] = ("none", "mean", "plane", "quadratic", "poly3", "auto", *FORM_FILTERS)
+QUANTISED_TREATMENTS: tuple[str, ...] = ("warn", "dither")
+#: SurfaceTopography's names for the same modes, and degree-named aliases.
+_ALIASES = {"center": "mean", "height": "plane", "curvature": "quadratic", "poly1": "plane", "poly2": "quadratic"}
+_BY_DEGREE = {1: "plane", 2: "quadratic", 3: "poly3"}
+#: Seed of the dither noise (fixed: the same map is prepared the same way every time).
+DITHER_SEED = 0
 
 FloatArray = npt.NDArray[np.float64]
 
@@ -55,29 +85,66 @@ def _normalise_mode(mode: str) -> str:
     if m not in DETREND_MODES:
         raise SurfaceError(
             f"unknown detrend mode {mode!r}; use one of {', '.join(DETREND_MODES)} "
-            f"(or SurfaceTopography's {', '.join(_ALIASES)})"
+            f"(or SurfaceTopography's {', '.join(list(_ALIASES)[:3])})"
         )
     return m
 
 
+def _positive_float(
+    name: str, value: Any, *, low: float = 0.0, high: float = math.inf, inclusive: bool = False
+) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float | np.integer | np.floating):
+        raise SurfaceError(f"{name} must be a number, got {value!r}")
+    v = float(value)
+    if not math.isfinite(v) or v <= 0.0:
+        raise SurfaceError(f"{name} must be a finite number > 0, got {value!r}")
+    if v < low or v > high or (not inclusive and v == low and low > 0):
+        rng = f"in {low:g} … {high:g}" if math.isfinite(high) else f">= {low:g}"
+        raise SurfaceError(f"{name} must be {rng}, got {value!r}")
+    return v
+
+
 @dataclass(frozen=True, kw_only=True)
 class Preparation:
-    """How a surface was prepared; recorded with every result.
+    """How a surface is prepared; recorded with every result (module doc for the order).
 
     Attributes
     ----------
     detrend:
-        ``"none"``, ``"mean"``, ``"plane"`` (default) or ``"quadratic"``
-        (aliases ``"center"``, ``"height"``, ``"curvature"`` are accepted and normalised).
+        Form removal: ``"auto"`` (default, the stated rule), ``"none"``, ``"mean"``, ``"plane"``,
+        ``"quadratic"``, ``"poly3"``, ``"gaussian"``, ``"robust-gaussian"`` (aliases ``"center"``,
+        ``"height"``, ``"curvature"``, ``"poly1"``, ``"poly2"`` are accepted and normalised).
+    cutoff_m:
+        Nesting index λc [m] of the Gaussian L-filter; required for the two filter modes and
+        refused otherwise.  Must lie between 5 grid spacings and the larger map side.
     median_radius:
         Median filter radius r >= 0 [grid points]; window (2r+1)×(2r+1); 0 = off.
     step:
         Coarsening step k >= 1: keep every k-th point; 1 = off.
+    outliers:
+        Remove isolated spikes/pits (default True).
+    outlier_k:
+        Multiple k of the robust residual scale σ_r (default 6, at least 3).
+    outlier_sq:
+        Multiple m of the robust height scale S (default 5, at least 2).
+    quantised:
+        Treatment of quantised heights: ``"warn"`` (default) or ``"dither"``.
+    max_undefined:
+        Largest fraction of undefined (filled) points accepted, in (0, 1] (default 0.05).
+    rough_check:
+        Refuse maps that are not a rough surface (step, part outline); default True.
     """
 
-    detrend: str = "plane"
+    detrend: str = "auto"
     median_radius: int = 0
     step: int = 1
+    cutoff_m: float | None = None
+    outliers: bool = True
+    outlier_k: float = pc.OUTLIER_K
+    outlier_sq: float = pc.OUTLIER_SQ
+    quantised: str = "warn"
+    max_undefined: float = pc.MAX_UNDEFINED_DEFAULT
+    rough_check: bool = True
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "detrend", _normalise_mode(str(self.detrend)))
@@ -87,35 +154,67 @@ class Preparation:
             if value < low:
                 raise SurfaceError(f"{name} must be >= {low}, got {value}")
             object.__setattr__(self, name, int(value))
+        if self.detrend in FORM_FILTERS:
+            if self.cutoff_m is None:
+                raise SurfaceError(f"detrend {self.detrend!r} needs the nesting index λc (cutoff, --cutoff-um)")
+            object.__setattr__(
+                self, "cutoff_m", _positive_float("the cutoff λc [m] (--cutoff-um × 1e-6)", self.cutoff_m)
+            )
+        elif self.cutoff_m is not None:
+            raise SurfaceError(f"a cutoff λc applies only to detrend gaussian or robust-gaussian, not {self.detrend!r}")
+        object.__setattr__(
+            self, "outlier_k", _positive_float("outlier_k (--outlier-k)", self.outlier_k, low=3.0, inclusive=True)
+        )
+        object.__setattr__(
+            self, "outlier_sq", _positive_float("outlier_sq (--outlier-sq)", self.outlier_sq, low=2.0, inclusive=True)
+        )
+        object.__setattr__(
+            self,
+            "max_undefined",
+            _positive_float("max_undefined (--max-undefined)", self.max_undefined, high=1.0, inclusive=True),
+        )
+        if str(self.quantised) not in QUANTISED_TREATMENTS:
+            raise SurfaceError(
+                f"quantised (--quantised) must be one of {', '.join(QUANTISED_TREATMENTS)}, got {self.quantised!r}"
+            )
+        object.__setattr__(self, "quantised", str(self.quantised))
+        for name in ("outliers", "rough_check"):
+            if not isinstance(getattr(self, name), bool | np.bool_):
+                raise SurfaceError(f"{name} must be True or False, got {getattr(self, name)!r}")
+            object.__setattr__(self, name, bool(getattr(self, name)))
 
     def to_dict(self) -> dict[str, Any]:
-        """Plain dictionary (JSON / netCDF attributes)."""
+        """Plain dictionary (JSON / netCDF attributes): ``detrend``, ``median_radius``, ``step``
+        and every other field that differs from its default, so that ``Preparation(**d)`` gives
+        the same preparation back (:meth:`settings` has all fields)."""
+        full = asdict(self)
+        keep = {"detrend", "median_radius", "step"}
+        return {f.name: full[f.name] for f in fields(self) if f.name in keep or full[f.name] != f.default}
+
+    def settings(self) -> dict[str, Any]:
+        """Every field (the complete record)."""
         return asdict(self)
 
 
 def detrend(heights: npt.ArrayLike, mode: str = "plane") -> FloatArray:
     """Subtract the least-squares polynomial of ``mode`` from ``heights`` (same units).
 
-    The fit uses the grid indices as coordinates; for a uniform grid this gives the same
-    residual as a fit over physical positions (the polynomial spaces are the same).
+    Polynomial modes and ``"auto"`` (the degree chosen by
+    :func:`~stochfric.surface.prepare_checks.auto_degree`); the Gaussian filters need the grid
+    spacing and go through :func:`prepare`.  The fit uses the grid indices as coordinates; for a
+    uniform grid this gives the same residual as a fit over physical positions (the polynomial
+    spaces are the same).
     """
     h = np.asarray(heights, dtype=np.float64)
     m = _normalise_mode(mode)
     if m == "none":
         return h.copy()
-    if m == "mean":
-        return h - h.mean()
-    nx, ny = h.shape
-    # centred, scaled coordinates keep the least-squares system well conditioned
-    x = (np.arange(nx, dtype=np.float64) - (nx - 1) / 2) / max(nx, 1)
-    y = (np.arange(ny, dtype=np.float64) - (ny - 1) / 2) / max(ny, 1)
-    xx, yy = np.meshgrid(x, y, indexing="ij")
-    columns = [np.ones_like(xx), xx, yy]
-    if m == "quadratic":
-        columns += [xx * xx, xx * yy, yy * yy]
-    design = np.stack([c.ravel() for c in columns], axis=1)
-    coef, *_ = np.linalg.lstsq(design, h.ravel(), rcond=None)
-    return h - (design @ coef).reshape(h.shape)
+    if m == "auto":
+        degree, _ = pc.auto_degree(h)
+        return pc.polynomial_residual(h, degree)
+    if m in FORM_FILTERS:
+        raise SurfaceError(f"detrend {m!r} needs the grid spacing and a cutoff; use prepare()")
+    return pc.polynomial_residual(h, _DEGREES[m])
 
 
 def median_filter(heights: npt.ArrayLike, radius: int) -> FloatArray:
@@ -156,25 +255,201 @@ def coarsen(surface: Surface, step: int) -> Surface:
     )
 
 
-def prepare(surface: Surface, preparation: Preparation | None = None) -> tuple[Surface, Surface]:
-    """Apply ``preparation`` to ``surface``; return ``(fine, coarse)``.
+def _rms(h: FloatArray) -> float:
+    return float(np.sqrt(np.mean((h - h.mean()) ** 2)))
 
-    ``fine`` is detrended and median filtered, ``coarse`` additionally coarsened (the two
-    are the same object for ``step = 1``). The contact analysis uses ``coarse``.
+
+def _name(surface: Surface) -> str:
+    return Path(surface.source).name if surface.source != "array" else "the height map"
+
+
+def prepare_with_report(
+    surface: Surface, preparation: Preparation | None = None
+) -> tuple[Surface, Surface, dict[str, Any]]:
+    """Apply ``preparation`` to ``surface``; return ``(fine, coarse, report)``.
+
+    ``report`` says what every step did (also stored as ``fine.info["preparation"]``); the coded
+    warnings of the preparation are appended to ``fine.info["warnings"]`` after the reading's.
+
+    Raises
+    ------
+    SurfaceError
+        Too small a grid, too many undefined points, a cutoff out of range, a map that is not a
+        rough surface, a step that leaves too few points.
     """
     prep = preparation if preparation is not None else Preparation()
     nx, ny = surface.nb_grid_pts
+    name = _name(surface)
     if min(nx, ny) < MIN_GRID_POINTS:
         raise SurfaceError(
             f"the surface has only {nx}×{ny} points; at least {MIN_GRID_POINTS} per direction are needed"
         )
-    h = detrend(surface.heights_m, prep.detrend)
+    n = nx * ny
+    new_warnings: list[dict[str, Any]] = []
+    report: dict[str, Any] = {
+        "order": ["undefined", "quantisation check", "outliers", "form", "rough-surface check",
+                  "quantisation treatment", "median filter", "coarsening"],
+        "settings": prep.settings(),
+    }  # fmt: skip
+
+    # 1. undefined points
+    und_fraction = float(surface.info.get("undefined_fraction", surface.n_undefined_filled / n))
+    border_fraction = float(surface.info.get("undefined_border_fraction", 0.0))
+    report["undefined"] = {
+        "count": int(surface.n_undefined_filled),
+        "fraction": und_fraction,
+        "border_fraction": border_fraction,
+        "limit": prep.max_undefined,
+    }
+    if prep.rough_check and border_fraction > pc.OUTLINE_BORDER_FRACTION:
+        # a part outline is the more basic reason than the undefined fraction it causes
+        raise SurfaceError(
+            f"{name} is not a rough surface (part outline: {100 * border_fraction:.3g} % of the map is an undefined "
+            f"surround connected to its border, limit {100 * pc.OUTLINE_BORDER_FRACTION:g} %: the measuring field "
+            "extends past the part); crop the map to the part, or pass --no-rough-check to analyse it anyway"
+        )
+    if und_fraction > prep.max_undefined:
+        raise SurfaceError(
+            f"{name} has {100 * und_fraction:.3g} % undefined points, more than the limit "
+            f"{100 * prep.max_undefined:.3g} % (--max-undefined): the harmonic fill has no summit, so it "
+            "would bias the summit density by that fraction; crop the measurement or raise the limit"
+        )
+
+    # 2. quantisation, on the heights as read
+    h = np.array(surface.heights_m, dtype=np.float64)
+    ties = pc.tie_statistics(h)
+    q = ties["quantum"]
+    report["quantisation"] = {
+        "tie_fraction": ties["tie_fraction"],
+        "tie_fraction_x": ties["tie_fraction_x"],
+        "tie_fraction_y": ties["tie_fraction_y"],
+        "quantum_m": q,
+        "warn_above": pc.TIE_WARN,
+        "quantised": ties["tie_fraction"] > pc.TIE_WARN,
+        "treatment": prep.quantised,
+        "applied": False,
+    }
+
+    # 3. outliers
+    sq_read = _rms(pc.polynomial_residual(h, 1))
+    out: dict[str, Any] = {"enabled": prep.outliers, "count": 0, "fraction": 0.0, "positions": [],
+                           "window": pc.OUTLIER_WINDOW, "k": prep.outlier_k, "m_sq": prep.outlier_sq}  # fmt: skip
+    if prep.outliers:
+        mask, scales = pc.outlier_mask(h, k=prep.outlier_k, m_sq=prep.outlier_sq)
+        count = int(np.count_nonzero(mask))
+        ii, jj = np.nonzero(mask)
+        out.update(
+            count=count,
+            fraction=count / n,
+            positions=[[int(a), int(b)] for a, b in zip(ii[: pc.OUTLIER_POSITIONS_CAP],
+                                                         jj[: pc.OUTLIER_POSITIONS_CAP], strict=True)],
+            positions_cap=pc.OUTLIER_POSITIONS_CAP,
+            threshold_m=scales["threshold"],
+            sigma_r_m=scales["sigma_r"],
+            s_robust_m=scales["s_robust"],
+        )  # fmt: skip
+        if 0 < count < n:
+            h = _fill_harmonic(np.ma.MaskedArray(h, mask=mask), surface.physical_size_m)
+            new_warnings.append({
+                "code": "outliers-replaced", "count": count, "fraction": count / n,
+                "message": (f"{name}: {count} isolated spike/pit point(s) ({100 * count / n:.3g} % of the map) "
+                            f"more than {out['threshold_m']:.3g} m from their 5x5 median replaced by harmonic "
+                            "interpolation (--no-outliers keeps them)"),
+            })  # fmt: skip
+    report["outliers"] = out
+
+    # 4. form
+    h_before_form = h
+    degree_auto, sq_deg = pc.auto_degree(h)
+    form: dict[str, Any] = {
+        "requested": prep.detrend,
+        "sq_read_m": _rms(np.asarray(surface.heights_m)),
+        "sq_read_plane_m": sq_read,
+        "sq_by_degree_m": sq_deg,
+        "auto_degree": degree_auto,
+        "auto_rule": (f"degree 1, raised while the next degree removes more than "
+                      f"{100 * pc.AUTO_VARIANCE_GAIN:g} % of the remaining variance, up to 3"),
+    }  # fmt: skip
+    if prep.detrend in FORM_FILTERS:
+        assert prep.cutoff_m is not None
+        spacing = surface.grid_spacing_m
+        low, high = 5.0 * max(spacing), max(surface.physical_size_m)
+        if not low <= prep.cutoff_m <= high:
+            raise SurfaceError(
+                f"the cutoff λc = {prep.cutoff_m * 1e6:.4g} µm is out of range for {name}: it must lie between "
+                f"5 grid spacings ({low * 1e6:.4g} µm) and the larger map side ({high * 1e6:.4g} µm)"
+            )
+        levelled = pc.polynomial_residual(h, 1)
+        h, frec = pc.gaussian_lfilter(levelled, spacing, prep.cutoff_m, robust=prep.detrend == "robust-gaussian")
+        form.update(applied=prep.detrend, degree=None, cutoff_m=prep.cutoff_m, **frec)
+    elif prep.detrend == "none":
+        form.update(applied="none", degree=None)
+    else:
+        degree = degree_auto if prep.detrend == "auto" else _DEGREES[prep.detrend]
+        form.update(applied="mean" if degree == 0 else _BY_DEGREE[degree], degree=degree)
+        h = pc.polynomial_residual(h, degree)
+    form["sq_after_m"] = _rms(h)
+    report["form"] = form
+
+    # 5. rough-surface check
+    verdict = pc.rough_surface_verdict(h, undefined_border_fraction=border_fraction)
+    if verdict["rough"]:
+        # a higher-order form (or an L-filter) can absorb part of a step: judge the plane residual too
+        plane_verdict = pc.rough_surface_verdict(pc.polynomial_residual(h_before_form, 1))
+        if not plane_verdict["rough"]:
+            verdict = {**plane_verdict, "reason": f"{plane_verdict['reason']}, after a plane fit",
+                       "undefined_border_fraction": border_fraction}
+    verdict["checked"] = prep.rough_check
+    report["rough_surface"] = verdict
+    if prep.rough_check and not verdict["rough"]:
+        raise SurfaceError(
+            f"{name} is not a rough surface ({verdict['reason']}); crop the map to one level or to the "
+            "part, or pass --no-rough-check to analyse it anyway"
+        )
+
+    # 6. quantisation treatment
+    quant = report["quantisation"]
+    if quant["quantised"] and q is not None:
+        if prep.quantised == "dither":
+            h = pc.dither(h, q, seed=DITHER_SEED)
+            quant.update(applied=True, seed=DITHER_SEED)
+        else:
+            new_warnings.append({
+                "code": "quantised-heights", "tie_fraction": quant["tie_fraction"], "quantum_m": q,
+                "message": (f"{name}: {100 * quant['tie_fraction']:.3g} % of the neighbouring height pairs are "
+                            f"identical (height quantum {q:.3g} m, limit {100 * pc.TIE_WARN:g} %); flat tops fail "
+                            "the strict summit rule, so summits are missed - --quantised dither adds uniform "
+                            "noise of one quantum"),
+            })  # fmt: skip
+
+    # 7. median filter, 8. coarsening
     h = median_filter(h, prep.median_radius)
+    report["median_radius"] = prep.median_radius
+    report["step"] = prep.step
+    info = dict(surface.info)
+    info["warnings"] = [dict(w) for w in surface.info.get("warnings", [])] + new_warnings
+    info["preparation"] = report
     fine = Surface(
         heights_m=h,
         physical_size_m=surface.physical_size_m,
         source=surface.source,
         n_undefined_filled=surface.n_undefined_filled,
-        info=dict(surface.info),
+        info=info,
     )
-    return fine, coarsen(fine, prep.step)
+    return fine, coarsen(fine, prep.step), report
+
+
+def prepare(surface: Surface, preparation: Preparation | None = None) -> tuple[Surface, Surface]:
+    """Apply ``preparation`` to ``surface``; return ``(fine, coarse)``.
+
+    ``fine`` is the surface after steps 1–7 (module doc), ``coarse`` additionally coarsened (the
+    two are the same object for ``step = 1``). The contact analysis uses ``coarse``.  The
+    report of every step is ``fine.info["preparation"]``.
+    """
+    fine, coarse, _ = prepare_with_report(surface, preparation)
+    return fine, coarse
+
+
+def preparation_report(surface: Surface, preparation: Preparation | None = None) -> dict[str, Any]:
+    """What :func:`prepare` does to ``surface`` (the report alone; raises like :func:`prepare`)."""
+    return prepare_with_report(surface, preparation)[2]
