@@ -53,6 +53,7 @@ __all__ = [
     "SurrogateMethod",
     "amplitude_error",
     "amplitude_spectrum",
+    "checked_heights",
     "iaaft_heights",
     "iaaft_surface",
     "interpolate_amplitudes",
@@ -62,8 +63,9 @@ __all__ = [
     "similar_surface",
 ]
 
-SurrogateMethod = Literal["phase", "iaaft"]
-SURROGATE_METHODS: tuple[str, ...] = ("phase", "iaaft")
+SurrogateMethod = Literal["phase", "iaaft", "quilt"]
+#: ``"quilt"``: image quilting with gradient-domain seam repair (:mod:`stochfric.surface.quilting`).
+SURROGATE_METHODS: tuple[str, ...] = ("phase", "iaaft", "quilt")
 AmplitudeMethod = Literal["tukey", "hann", "raw"]
 #: Amplitude estimates of a measured map: ``"tukey"`` (default) and ``"hann"`` remove the edge
 #: jump, ``"raw"`` is the thesis's DFT of the map as it is.
@@ -76,10 +78,11 @@ FloatArray = npt.NDArray[np.float64]
 ComplexArray = npt.NDArray[np.complex128]
 
 
-def _heights(z: npt.ArrayLike) -> FloatArray:
+def checked_heights(z: npt.ArrayLike, what: str = "a surrogate") -> FloatArray:
+    """``z`` as a finite 2-D float64 map of at least 2×2 points (SurfaceError naming ``what`` otherwise)."""
     h = np.asarray(z, dtype=np.float64)
     if h.ndim != 2 or min(h.shape) < 2:
-        raise SurfaceError(f"a surrogate needs a 2-D height map of at least 2×2 points, got shape {h.shape}")
+        raise SurfaceError(f"{what} needs a 2-D height map of at least 2×2 points, got shape {h.shape}")
     if not np.all(np.isfinite(h)):
         raise SurfaceError("heights contain NaN or infinity; fill undefined points first")
     return h
@@ -108,7 +111,7 @@ def amplitude_spectrum(heights: npt.ArrayLike, method: str = "raw") -> FloatArra
     ensemble's spread (docs/statistical_contact.md, "Surrogates of a non-periodic map").  The DC
     element is |mean|·√(MN) for every method.
     """
-    z = _heights(heights)
+    z = checked_heights(heights)
     return np.asarray(_full_amplitudes(z, method) / np.sqrt(z.size))
 
 
@@ -171,7 +174,7 @@ def random_phase_heights(
     coefficient (to round-off), hence the same mean and variance.  With ``amplitude="raw"``
     that is the original's own DFT amplitude (thesis).
     """
-    z = _heights(heights)
+    z = checked_heights(heights)
     gen = as_generator(rng)
     half = _half_amplitudes(z, amplitude)
     return _phase_from_half_amplitudes(half, z.shape, float(z.mean()), gen)
@@ -234,7 +237,7 @@ def longer_surface(
     ``amplitude`` is the amplitude estimate of the original (:func:`amplitude_spectrum`).
     """
     factor = _check_factor(factor)
-    z = _heights(surface.heights_m)
+    z = checked_heights(surface.heights_m)
     gen = as_generator(rng)
     if method == "phase":
         if factor == 1:
@@ -245,6 +248,10 @@ def longer_surface(
             h = _phase_from_half_amplitudes(half, shape, float(z.mean()), gen)
     elif method == "iaaft":
         h = iaaft_heights(z, gen, factor=factor, max_iter=max_iter, tol=tol, amplitude=amplitude).heights
+    elif method == "quilt":
+        from stochfric.surface.quilting import quilt_heights  # quilting imports this module
+
+        h = quilt_heights(z, gen, factor=factor).heights
     else:
         raise SurfaceError(f"unknown surrogate method {method!r}; use one of {', '.join(SURROGATE_METHODS)}")
     lx, ly = surface.physical_size_m
@@ -301,7 +308,7 @@ def iaaft_heights(
     ``tol`` relative to ε, or after ``max_iter`` iterations.  The target amplitudes are the
     estimate ``amplitude`` of the map (:func:`amplitude_spectrum`).
     """
-    z = _heights(heights)
+    z = checked_heights(heights)
     factor = _check_factor(factor)
     if max_iter < 1:
         raise SurfaceError(f"max_iter must be >= 1, got {max_iter}")
@@ -373,5 +380,9 @@ def similar_surface(
     tol: float = 1e-4,
     amplitude: str = DEFAULT_AMPLITUDE,
 ) -> Surface:
-    """One stochastically similar surface of ``factor`` times the length (``"phase"`` | ``"iaaft"``)."""
+    """One stochastically similar surface of ``factor`` times the length (``"phase"`` | ``"iaaft"`` | ``"quilt"``).
+
+    ``"quilt"`` ignores ``max_iter``, ``tol`` and ``amplitude`` (its long wavelengths are a
+    random-phase surrogate with the default amplitude estimate).
+    """
     return longer_surface(surface, factor, rng, method=method, max_iter=max_iter, tol=tol, amplitude=amplitude)
