@@ -17,7 +17,9 @@ from stochfric.oscillator.parameters import PhysicalParameters
 from stochfric.process.ensemble import default_window_shift_points
 from stochfric.process.model import TabulatedProcessModel, load_process_model
 
-SMALL = ["--realizations", "8", "--long-surfaces", "3", "--length-factor", "4"]
+#: Few realisations: the checks cannot pass on so few; the mechanics tests accept the result
+#: (the gate itself: tests/test_cli_gate.py).
+SMALL = ["--realizations", "8", "--long-surfaces", "3", "--length-factor", "4", "--accept-not-credible"]
 
 
 @pytest.fixture(scope="module")

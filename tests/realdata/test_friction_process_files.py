@@ -1,8 +1,11 @@
 """Every real measured file through ``friction-process`` (issue: chapter 3 on any measurement).
 
-Reduced realisation counts (CI); the full-size run is ``benchmarks/bench_process.py --files``.
-Each file must finish with exit 0, produce finite statistics and a model file that loads, and
-report the measured-vs-surrogate check and the ergodicity verdict.
+Reduced realisation counts (CI); the full-size run is ``benchmarks/eval_files.py``.  Each rough
+file must finish with exit 0 (credible) or 3 (not credible: coded reasons, no model file), produce
+finite statistics and report the measured-vs-surrogate check, the measured-window check and the
+ergodicity verdict; with ``--accept-not-credible`` the stamped model loads.  No run exits 0 with μ
+outside 0.03 … 1.5, a contact area above the nominal area or a fit on fewer than 4 valid points
+(issue 18 acceptance).  frt-1, a part outline, is refused as not a rough surface.
 """
 
 from __future__ import annotations
@@ -17,6 +20,7 @@ import typer
 from typer.testing import CliRunner
 
 from stochfric.cli import app as main_app
+from stochfric.process.credibility import NOT_CREDIBLE_EXIT
 from stochfric.process.model import load_process_model
 
 #: The shared files (tests/conftest.py SHARED_FILES); names → has undefined points.
@@ -33,28 +37,50 @@ def app() -> typer.Typer:
     return main_app
 
 
-@pytest.mark.parametrize("name", sorted(SHARED))
+ROUGH = sorted(n for n in SHARED if n != "frt-1.frt")
+
+
+@pytest.mark.parametrize("name", ROUGH)
 def test_friction_process_runs_on_every_shared_file(
     app: typer.Typer, name: str, tmp_path: Path, shared_file: Callable[[str], Path]
 ) -> None:
     path = shared_file(name)
     fill = ["--fill-undefined"] if SHARED[name] else []
-    res = CliRunner().invoke(
-        app,
-        ["friction-process", str(path), "--material", "brake-pad", *fill, *SMALL, "--seed", "1",
-         "--out", str(tmp_path / "fp"), "--json"],
-    )  # fmt: skip
-    assert res.exit_code == 0, res.output
+    args = ["friction-process", str(path), "--material", "brake-pad", *fill, *SMALL, "--seed", "1",
+            "--out", str(tmp_path / "fp"), "--json"]
+    res = CliRunner().invoke(app, args)
+    assert res.exit_code in (0, NOT_CREDIBLE_EXIT), res.output
     data = json.loads(res.stdout)
     assert all(v is not None and math.isfinite(v) for v in data["mu_mean"])
     assert all(v is not None and v > 0 for v in data["pressure_pa"])
     check = data["surrogate_check"]
     assert set(check["z"]) == {"summit_count", "summit_radius_mean_m", "summit_height_std_m"}
     assert len(check["mu_z"]) == len(data["approach_m"])
+    assert data["window_check"] is None or len(data["window_check"]["z"]) == len(data["approach_m"])
     assert data["ergodicity"]["surfaces"] == 3 and data["ergodicity"]["windows_per_surface"] == 3
-    model = load_process_model(data["model_file"])
-    p = data["pressure_pa"][0]
-    assert math.isfinite(model.mean(p))
+    used = data["fit"]["mu_mean"]["used"]
+    if res.exit_code == 0:  # credible: every gate condition holds
+        assert data["credibility"]["credible"]
+        assert all(0.03 <= m <= 1.5 for m, u in zip(data["mu_mean"], used, strict=True) if u)
+        assert max(data["area_fraction"]) <= 1.0 and sum(used) >= 4
+        model = load_process_model(data["model_file"])
+    else:
+        codes = [r["code"] for r in data["credibility"]["reasons"]]
+        assert codes and "model_file" not in data
+        assert all(f"warning: [{c}]" in res.stderr for c in codes)
+        assert res.stderr.strip().splitlines()[-1].startswith("error: not credible")
+        forced = CliRunner().invoke(app, [*args, "--accept-not-credible"])
+        assert forced.exit_code == 0, forced.output
+        model = load_process_model(json.loads(forced.stdout)["model_file"])
+        assert model.not_credible  # type: ignore[attr-defined]
+    assert math.isfinite(model.mean(data["pressure_pa"][0]))
+
+
+def test_part_outline_is_refused_as_not_a_rough_surface(app: typer.Typer, shared_file: Callable[[str], Path]) -> None:
+    res = CliRunner().invoke(app, ["friction-process", str(shared_file("frt-1.frt")), "--material", "brake-pad",
+                                   "--fill-undefined", *SMALL])
+    assert res.exit_code == 2, res.output
+    assert "not a rough surface (part outline" in res.stderr and "Traceback" not in res.output
 
 
 def test_undefined_points_without_fill_are_refused(app: typer.Typer, shared_file: Callable[[str], Path]) -> None:

@@ -42,7 +42,7 @@ WhiteStreamChoice = StrEnum(
 SummitRuleChoice = StrEnum("SummitRuleChoice", [("thesis", "thesis"), ("eight", "8-neighbour")])
 MethodChoice = StrEnum("MethodChoice", "asperity halfspace")
 # friction-process (method §3–§4)
-SurrogateChoice = StrEnum("SurrogateChoice", "phase iaaft")
+SurrogateChoice = StrEnum("SurrogateChoice", "auto phase iaaft quilt")  # process.analysis_config
 AmplitudeChoice = StrEnum("AmplitudeChoice", "tukey hann raw")  # surface.synthesis.amplitude_spectrum
 PressureRuleChoice = StrEnum("PressureRuleChoice", "nearest interpolate")  # spectrum between analysed p
 VarianceRuleChoice = StrEnum("VarianceRuleChoice", "sigma_mu tabulated")

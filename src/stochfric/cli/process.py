@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+from enum import StrEnum
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -29,7 +30,6 @@ from stochfric.cli.options import (
     option_group,
 )
 from stochfric.cli.surface import (
-    FileArg,
     SurfaceOptions,
     _echo_warnings,
     _surface_warnings,
@@ -39,11 +39,17 @@ from stochfric.cli.surface import (
 from stochfric.contact.asperity import ContactError, default_approach_m
 from stochfric.contact.materials import MaterialError, load_material, material_names
 from stochfric.io_utils import check_output_path
+from stochfric.process.checks import WINDOW_TILES
+from stochfric.process.credibility import NOT_CREDIBLE_EXIT
 from stochfric.process.ensemble import default_window_shift_points
 from stochfric.process.figures import plot_surrogates, write_process_figures
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
+from stochfric.process.memory import iaaft_cost_seconds
 from stochfric.process.statistics import AnalysisConfig, analyse
-from stochfric.surface.io import SurfaceError
+from stochfric.surface.grid import crop_surface, resample_surface
+from stochfric.surface.io import Surface, SurfaceError
+from stochfric.surface.quilting import quilt_applicable, quilt_heights
+from stochfric.surface.summits import summits_of
 from stochfric.surface.synthesis import iaaft_heights, random_phase_heights
 from stochfric.units import MICROMETRE
 
@@ -52,8 +58,22 @@ __all__ = ["register"]
 _INPUT_ERRORS = (SurfaceError, ContactError, MaterialError)
 
 
+ApproachRuleChoice = StrEnum("ApproachRuleChoice", "contacts sigma")  # contact.asperity.APPROACH_RULES
+
 MODEL_FILE = "friction_process.json"
 STATISTICS_FILE = "friction_process_statistics.nc"
+
+
+FilesArg = Annotated[
+    list[Path] | None,
+    typer.Argument(
+        help="Height map(s): instrument files SurfaceTopography reads (x3p, sur, opd, datx, plu, mnt, al3d, frt, "
+        "…) or .npy/.txt/.csv matrices (then --size-um and --height-unit are required). Several files are "
+        "several scans of one surface, pooled into one ensemble (same pixel size, or --resample). Default: "
+        "the measured surface shipped with the package.",
+        show_default=False,
+    ),
+]
 
 
 @option_group("surf", surface_options)
@@ -62,7 +82,7 @@ def friction_process_command(
         str,
         typer.Option("--material", help=f"Pairing: {', '.join(material_names())} or a JSON file (SI units)."),
     ],
-    file: FileArg = None,
+    files: FilesArg = None,
     realizations: Annotated[int, typer.Option("--realizations", help="Similar surfaces of original size (§4a).")] = 100,
     long_surfaces: Annotated[
         int, typer.Option("--long-surfaces", help="Long surfaces for μ along the path (§4c).")
@@ -77,12 +97,37 @@ def friction_process_command(
     ] = None,
     approach_um: Annotated[
         str | None,
-        typer.Option("--approach-um", help="START:STOP:NUM in µm; default u_hi/12 … u_hi in 12 steps, "
-                     "u_hi = max(3σ_S, highest summit − mean summit height)."),
+        typer.Option("--approach-um", help="START:STOP:NUM in µm; default: 12 approaches by --approach-rule."),
     ] = None,
+    approach_rule: Annotated[
+        ApproachRuleChoice,
+        typer.Option("--approach-rule", help="Default approach range: contacts (from 20 touching summits to "
+                     "A_c/A_nom = --max-area-fraction or half the summits touching) or sigma (σ_S/4 … 3σ_S, "
+                     "stretched to the highest summit; used by reproduce)."),
+    ] = ApproachRuleChoice.contacts,
     surrogate: Annotated[
-        SurrogateChoice, typer.Option("--surrogate", help="phase (thesis, Gaussian) or iaaft (keeps the heights).")
-    ] = SurrogateChoice.phase,
+        SurrogateChoice,
+        typer.Option("--surrogate", help="auto (quilt where the map holds enough summits for patches of 16 summit "
+                     "spacings, 3 along the shorter side; phase otherwise), phase (thesis, Gaussian field), iaaft "
+                     "(Gaussian phases, measured heights) or quilt (pieces of the measurement with repaired seams: "
+                     "keeps local non-Gaussian structure)."),
+    ] = SurrogateChoice.auto,
+    window_tiles: Annotated[
+        int, typer.Option("--window-tiles", help="Measured-window check: at most N × N disjoint windows per scan "
+                          "(fewer when a window would hold < 40 summits).")
+    ] = WINDOW_TILES,
+    resample: Annotated[
+        bool, typer.Option("--resample", help="Pooled scans with different pixel sizes: resample them (linear "
+                           "interpolation) to the coarsest pixel size instead of refusing.")
+    ] = False,
+    workers: Annotated[
+        int | None, typer.Option("--workers", help="Processes for the realisations (default: all cores); the "
+                                 "numbers do not depend on it.")
+    ] = None,
+    accept_not_credible: Annotated[
+        bool, typer.Option("--accept-not-credible", help="Write the model file even when the analysis is not "
+                           "credible (exit status 3 otherwise); the model is stamped and every reader warns.")
+    ] = False,
     amplitude: Annotated[
         AmplitudeChoice,
         typer.Option("--amplitude", help="Amplitude estimate of the measured map: tukey (default) or hann "
@@ -121,10 +166,14 @@ def friction_process_command(
             check_output_path(out, option="--out")
         mat = load_material(material)
         approach = parse_approach_um(approach_um) if approach_um is not None else None
-        _raw, _fine, coarse, _fs, cs, record = surf.load(file)
+        scans, records, warnings = _load_scans(files, surf, resample=resample)
+        coarse = scans[0]
+        summit_sets = [summits_of(s, rule=surf.summit_rule) for s in scans]
+        cs = min(summit_sets, key=lambda x: x.count)
         if cs.count < 2:
             raise ContactError(f"the prepared surface has {cs.count} summit(s); at least 2 are needed")
-        u = default_approach_m(cs) if approach is None else approach
+        u = (default_approach_m(cs, rule=approach_rule.value, max_area_fraction=max_area_fraction)
+             if approach is None else approach)
         ny = coarse.nb_grid_pts[1]
         dy = coarse.grid_spacing_m[1]
         if window_shift_um is None:
@@ -143,27 +192,91 @@ def friction_process_command(
             window_shift_points=shift, surrogate=surrogate.value, amplitude=amplitude.value,
             summit_rule=surf.summit_rule, max_area_fraction=max_area_fraction,
             pressure_rule=pressure_rule.value, variance_rule=variance_rule.value,
-            sigma_zeta_rule=sigma_zeta_rule.value, seed=seed,
+            sigma_zeta_rule=sigma_zeta_rule.value, window_tiles=window_tiles, seed=seed,
         )  # fmt: skip
-        name = Path(record["file"]).stem
-        analysis = _run(coarse, mat, u, cfg, name, show_progress=not as_json)
+        if not as_json:
+            _announce_cost(coarse, cfg)
+        name = "+".join(Path(r["file"]).stem for r in records)
+        if workers is not None and workers < 1:
+            raise ContactError(f"--workers must be >= 1, got {workers}")
+        analysis = _run(scans, mat, u, cfg, name, show_progress=not as_json, workers=workers)
         payload = analysis.to_json_dict()
-        payload["warnings"] = _surface_warnings(_raw) + payload["warnings"]
-        payload["preparation"] = record
+        payload["warnings"] = warnings + payload["warnings"] + [r.to_dict() for r in analysis.credibility.reasons]
+        payload["preparation"] = records[0] if len(records) == 1 else {"scans": records}
+        payload["approach_rule"] = approach_rule.value if approach is None else "explicit"
+        credible = analysis.credibility.credible
         if out is not None:
-            payload["model_file"] = str(analysis.model.save(_mkdir(out) / MODEL_FILE))
-            payload["statistics_file"] = str(analysis.to_netcdf(out / STATISTICS_FILE))
+            if credible or accept_not_credible:
+                payload["model_file"] = str(analysis.model.save(_mkdir(out) / MODEL_FILE))
+            payload["statistics_file"] = str(analysis.to_netcdf(_mkdir(out) / STATISTICS_FILE))
         if plot and out is not None:
             payload["figures"] = [str(p) for p in _figures(analysis, coarse.heights_m, out / "figures", seed)]
     except _INPUT_ERRORS as exc:
         raise fail(str(exc)) from None
     except ValueError as exc:  # e.g. a fit without enough points
         raise fail(str(exc)) from None
+    except OSError as exc:  # disk full while writing: the previous files stay intact
+        raise fail(f"could not write the results: {exc}") from None
     _echo_warnings(payload["warnings"])
     if as_json:
         typer.echo(json.dumps(_clean(payload), indent=1, allow_nan=False))
+    else:
+        _print(payload, analysis)
+    if not credible:
+        if accept_not_credible:
+            typer.echo("warning: [not-credible-accepted] the model was written with --accept-not-credible and is "
+                       "stamped so; simulate and the studies warn when they read it", err=True)
+        else:
+            typer.echo(
+                f"error: not credible ({', '.join(analysis.credibility.codes())}): no model file written; fix the "
+                "cause named above, or give --accept-not-credible to write a stamped model", err=True)
+            raise typer.Exit(code=NOT_CREDIBLE_EXIT)
+
+
+def _load_scans(
+    files: list[Path] | None, surf: SurfaceOptions, *, resample: bool
+) -> tuple[list[Surface], list[dict[str, Any]], list[dict[str, Any]]]:
+    """Read and prepare every scan; one grid for all (resampled to the coarsest pixel size with
+    ``resample``, then cropped to the common size, both reported); the warnings of all scans."""
+    paths: list[Path | None] = list(files) if files else [None]
+    scans, records, warnings = [], [], []
+    for path in paths:
+        raw, _fine, coarse, _fs, _cs, record = surf.load(path)
+        scans.append(coarse)
+        records.append(record)
+        seen = set()
+        for w in _surface_warnings(raw) + [dict(x) for x in coarse.info.get("warnings", [])]:
+            if w["message"] not in seen:
+                seen.add(w["message"])
+                warnings.append(w)
+    if len(scans) == 1:
+        return scans, records, warnings
+    spacings = [s.grid_spacing_m for s in scans]
+    if any(not np.allclose(sp, spacings[0], rtol=1e-6, atol=0.0) for sp in spacings):
+        if not resample:
+            listing = ", ".join(f"{Path(r['file']).name}: {sp[0] * 1e6:.4g}×{sp[1] * 1e6:.4g} µm"
+                                for r, sp in zip(records, spacings, strict=True))
+            raise SurfaceError(f"pooled scans need one pixel size ({listing}); give --resample to resample them "
+                               "to the coarsest, or prepare them with --step so that they match")
+        target = (max(sp[0] for sp in spacings), max(sp[1] for sp in spacings))
+        scans = [resample_surface(s, target) for s in scans]
+        for r in records:
+            r["resampled_to_m"] = list(target)
+    shape = (min(s.nb_grid_pts[0] for s in scans), min(s.nb_grid_pts[1] for s in scans))
+    if any(s.nb_grid_pts != shape for s in scans):
+        scans = [crop_surface(s, shape) for s in scans]
+        for r in records:
+            r["cropped_to"] = list(shape)
+    return scans, records, warnings
+
+
+def _announce_cost(surface: Surface, cfg: AnalysisConfig) -> None:
+    """Say before the work what an expensive surrogate method will cost (stderr)."""
+    if cfg.surrogate != "iaaft":
         return
-    _print(payload, analysis)
+    seconds = iaaft_cost_seconds(surface.nb_grid_pts, cfg.realizations, cfg.long_surfaces, cfg.length_factor)
+    typer.echo(f"note: IAAFT surrogates iterate FFTs until the spectrum settles: about {seconds:.0f} s for "
+               f"{cfg.realizations} maps and {cfg.long_surfaces} long surfaces of this grid (estimate)", err=True)
 
 
 def _mkdir(path: Path) -> Path:
@@ -171,9 +284,9 @@ def _mkdir(path: Path) -> Path:
     return path
 
 
-def _run(coarse: Any, mat: Any, u: Any, cfg: Any, name: str, *, show_progress: bool) -> Any:
+def _run(scans: Any, mat: Any, u: Any, cfg: Any, name: str, *, show_progress: bool, workers: int | None) -> Any:
     if not show_progress:
-        return analyse(coarse, mat, u, cfg, name=name)
+        return analyse(scans, mat, u, cfg, name=name, workers=workers)
     with Progress(
         TextColumn("{task.description}"), BarColumn(), TextColumn("{task.completed}/{task.total}"),
         TimeRemainingColumn(), console=Console(stderr=True), transient=True,
@@ -185,7 +298,7 @@ def _run(coarse: Any, mat: Any, u: Any, cfg: Any, name: str, *, show_progress: b
                 tasks[stage] = prog.add_task(stage, total=total)
             prog.update(tasks[stage], completed=done)
 
-        return analyse(coarse, mat, u, cfg, name=name, progress=report)
+        return analyse(scans, mat, u, cfg, name=name, progress=report, workers=workers)
 
 
 def _figures(analysis: Any, heights: Any, directory: Path, seed: int | None) -> list[Path]:
@@ -195,6 +308,8 @@ def _figures(analysis: Any, heights: Any, directory: Path, seed: int | None) -> 
         "phase": random_phase_heights(heights, seed, amplitude=amp),
         "iaaft": iaaft_heights(heights, seed, tol=1e-3, amplitude=amp).heights,
     }
+    if quilt_applicable(heights, rule=analysis.config.summit_rule)[0]:
+        sur["quilt"] = quilt_heights(heights, seed).heights
     paths.append(plot_surrogates(heights, sur, directory / "surrogates.png"))
     return paths
 
@@ -218,7 +333,10 @@ def _num(v: Any, fmt: str) -> str:
 def _print(payload: dict[str, Any], analysis: Any) -> None:
     um = MICROMETRE
     cfg = analysis.config
-    typer.echo(f"surface   {payload['preparation']['file']}  surrogate={cfg.surrogate} seed={payload['seed_entropy']}")
+    files = [payload["preparation"]["file"]] if "file" in payload["preparation"] else [
+        r["file"] for r in payload["preparation"]["scans"]]
+    typer.echo(f"surface   {' + '.join(files)}  seed={payload['seed_entropy']}")
+    typer.echo(f"surrogate {analysis.surrogate_choice}")
     typer.echo(
         f"ensemble  {cfg.realizations} realisations; path: {cfg.long_surfaces} long surfaces × "
         f"{analysis.path.samples.mu.shape[1]} windows, a_y = {analysis.path.window_shift_m / um:.4g} µm"
@@ -230,7 +348,7 @@ def _print(payload: dict[str, Any], analysis: Any) -> None:
         typer.echo(
             f"{payload['approach_m'][k] / um:8.4g} {payload['pressure_pa'][k] / 1e6:9.4g} "
             f"{payload['area_fraction'][k]:9.3g} {payload['mu_mean'][k]:7.4f} {payload['mu_std'][k]:7.4f} "
-            f"{_num(analysis.correlation_length_m[k] / um, '10.4g')} {payload['psd_level_m'][k]:10.3g} "
+            f"{_num(analysis.correlation_length_m[k] / um, '10.4g'):>10} {payload['psd_level_m'][k]:10.3g} "
             f"{'yes' if used[k] else 'no':>4}"
         )
     for key, label in (("mu_mean", "E[μ]"), ("mu_std", "σ_μ"), ("psd_level", "E[S]")):
@@ -241,15 +359,35 @@ def _print(payload: dict[str, Any], analysis: Any) -> None:
         )
     sc = payload["surrogate_check"]
     zs = sc["z"]
+    me, em, es = sc["measured"], sc["ensemble_mean"], sc["ensemble_std"]
     typer.echo(
         f"surrogates vs measured map ({sc['surrogate']}, amplitude {sc['amplitude']}): summits "
-        f"{sc['measured']['summit_count']:.0f} vs {sc['ensemble_mean']['summit_count']:.0f} "
-        f"± {sc['ensemble_std']['summit_count']:.0f} (z {zs['summit_count']:+.1f}), β̄ "
-        f"{sc['measured']['summit_radius_mean_m'] / um:.3g} vs "
-        f"{sc['ensemble_mean']['summit_radius_mean_m'] / um:.3g} µm "
-        f"(z {zs['summit_radius_mean_m']:+.1f}), σ_S z {zs['summit_height_std_m']:+.1f}, max |z| of μ(u) "
+        f"{me['summit_count']:.0f} vs {em['summit_count']:.0f} ± {es['summit_count']:.0f} "
+        f"(z {zs['summit_count']:+.1f}), "
+        f"β̄ {me['summit_radius_mean_m'] / um:.3g} vs {em['summit_radius_mean_m'] / um:.3g} ± "
+        f"{es['summit_radius_mean_m'] / um:.2g} µm (z {zs['summit_radius_mean_m']:+.1f}), σ_S "
+        f"{me['summit_height_std_m'] / um:.4g} vs {em['summit_height_std_m'] / um:.4g} ± "
+        f"{es['summit_height_std_m'] / um:.2g} µm (z {zs['summit_height_std_m']:+.1f}), max |z| of μ(u) "
         f"{_num(sc['max_abs_mu_z'], '.1f')} → {'credible' if sc['credible'] else 'NOT credible'}"
     )
+    wc = payload.get("window_check")
+    if wc is None:
+        typer.echo("measured windows: not checked (too few summits for 2 × 2 windows)")
+    else:
+        k = int(np.argmax(np.abs(wc["z"])))
+        typer.echo(
+            f"measured windows ({wc['measured_windows']} of {wc['window_size_m'][0] / um:.4g} × "
+            f"{wc['window_size_m'][1] / um:.4g} µm vs {wc['surrogate_windows']} surrogate windows): sd of μ at "
+            f"u_{k} {wc['measured_std'][k]:.3g} [{wc['measured_std_ci95'][k][0]:.3g}, "
+            f"{wc['measured_std_ci95'][k][1]:.3g}] "
+            f"vs {wc['surrogate_std'][k]:.3g}; max |z| {wc['max_abs_z']:.2f} (threshold {wc['threshold']:.2f}) → "
+            f"{wc['verdict']}"
+        )
+    ss = payload["scan_scatter"]
+    if ss["scans"] > 1:
+        typer.echo(f"scans     {ss['scans']} pooled; sd of μ(u): between scans "
+                   + " ".join(_num(v, ".3g") for v in ss["between_scan_std"])
+                   + "; within a scan (windows) " + " ".join(_num(v, ".3g") for v in ss["within_scan_window_std"]))
     erg = payload["ergodicity"]
     typer.echo(
         f"ergodicity ({erg['surfaces']} long surfaces × {erg['windows_per_surface']} windows): max |z| = "
@@ -268,6 +406,9 @@ def _print(payload: dict[str, Any], analysis: Any) -> None:
         typer.echo(f"figure    {f}")
     for n in payload.get("notes", []):
         typer.echo(f"note      {n}")
+    cr = payload["credibility"]
+    typer.echo("verdict   " + ("credible" if cr["credible"] else
+                               "NOT credible: " + ", ".join(r["code"] for r in cr["reasons"])))
 
 
 def register(app: typer.Typer) -> None:

@@ -31,11 +31,13 @@ import numpy as np
 import numpy.typing as npt
 
 from stochfric.contact.materials import Material
+from stochfric.contact.validity import MIN_CONTACTS, NON_INTERACTION_AREA_FRACTION
 from stochfric.io_utils import write_netcdf_atomic
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import Summits
 
 __all__ = [
+    "APPROACH_RULES",
     "BowdenTabor",
     "ContactError",
     "ContactResult",
@@ -84,32 +86,75 @@ def _as_approach(approach_m: npt.ArrayLike) -> FloatArray:
     return u
 
 
-def default_approach_m(summits: Summits, num: int = DEFAULT_APPROACH_NUM) -> FloatArray:
-    """Default approaches ``linspace(u_hi/12, u_hi, num)`` [m] from the surface's own summits.
+APPROACH_RULES: tuple[str, ...] = ("contacts", "sigma")
 
-    ``u_hi = max(3 σ_S, z_s,max − z̄_s)``, σ_S the standard deviation and z̄_s the mean of the
-    summit heights.  For a Gaussian-like surface the highest of K summits lies about
-    √(2 ln K) σ_S ≈ 3 σ_S above the mean, so this is ``linspace(σ_S/4, 3σ_S, num)`` (the thesis's
-    ratio 1:12): the flat reaches down to about the mean summit height.  When the highest
-    summits stand far above the rest (a dust grain or an outlier: 8–22 σ_S on frt-1, sur-2,
-    mnt-1 of the shared files), 3 σ_S would never leave those few summits, so the range is
-    stretched to reach the mean summit height all the same.
 
-    The range follows the surface: real measurements span nm to tens of µm in roughness, so
-    the thesis's µm ranges (brake 1…12 µm, sheet 0.1…0.8 µm) are not a usable default.
+def default_approach_m(
+    summits: Summits,
+    num: int = DEFAULT_APPROACH_NUM,
+    *,
+    rule: str = "contacts",
+    max_area_fraction: float = NON_INTERACTION_AREA_FRACTION,
+) -> FloatArray:
+    """Default approaches [m] from the surface's own summits, ``num`` points, by ``rule``.
+
+    ``"contacts"`` (default): the range of contact *states* the GW model is valid for, read from
+    the measured summits with the flat referenced to the highest summit (3.11):
+
+    * ``u_lo`` — the approach at which ``2 × MIN_CONTACTS`` (20) summits touch, so that μ is a
+      statistic of many asperities from the first point on;
+    * ``u_hi`` — the approach at which the GW contact area reaches ``max_area_fraction`` of the
+      nominal area (the end of the non-interaction range, 0.1), or at which half of the summits
+      touch (the flat at the median summit height), whichever comes first;
+    * ``linspace(u_lo, u_hi, num)``; when the map is too small for that (``u_hi <= u_lo``),
+      ``linspace(u_hi/num, u_hi, num)``.
+
+    Spikes shift the whole range by their excess (the flat has to pass them, since the highest
+    summit is the reference) but never set its width, and the range never reaches A_c > A_nom.
+
+    ``"sigma"``: ``linspace(u_hi/12, u_hi, num)`` with ``u_hi = max(3 σ_S, z_s,max − z̄_s)`` (the
+    thesis's ratio 1:12 in units of the summit-height sd; used by ``reproduce`` for the shipped
+    surface).  On a map with spikes its width is set by the spike.
     """
+    if rule not in APPROACH_RULES:
+        raise ContactError(f"unknown approach rule {rule!r}; use one of {', '.join(APPROACH_RULES)}")
     if summits.count < 2:
         raise ContactError(
-            f"{summits.count} summit(s) found: the default approach range needs the summit "
-            "height spread σ_S; give an explicit range"
+            f"{summits.count} summit(s) found: the default approach range needs at least 2 summits; "
+            "give an explicit range"
         )
     z = np.asarray(summits.heights_m, dtype=np.float64)
     sigma = float(np.std(z))
     if not sigma > 0.0:
         raise ContactError("all summits have the same height (σ_S = 0); give an explicit range")
-    lo, hi = DEFAULT_APPROACH_SIGMA
-    u_hi = max(hi * sigma, float(z.max() - z.mean()))
-    return np.linspace(u_hi * lo / hi, u_hi, int(num))
+    n = int(num)
+    if rule == "sigma":
+        lo, hi = DEFAULT_APPROACH_SIGMA
+        u_top = max(hi * sigma, float(z.max() - z.mean()))
+        return np.linspace(u_top * lo / hi, u_top, n)
+    if not 0.0 < max_area_fraction <= 1.0:
+        raise ContactError(f"max_area_fraction must lie in (0, 1], got {max_area_fraction!r}")
+    order = np.argsort(z)[::-1]
+    zs = z[order]
+    beta = np.asarray(summits.radius_m, dtype=np.float64)[order]
+    depth = zs[0] - zs  # approach at which summit k starts to touch (0 for the highest)
+    u_half = float(depth[(zs.size - 1) // 2 + 1]) if zs.size > 2 else float(depth[-1])
+    # A(u) = Σ_{depth_k < u} π β_k (u − depth_k), linear between consecutive depths
+    c_beta = np.cumsum(np.pi * beta)
+    c_beta_depth = np.cumsum(np.pi * beta * depth)
+    area_at_depth = c_beta * depth - c_beta_depth  # A at u = depth[k] from summits 0..k
+    target = max_area_fraction * summits.area_m2
+    k = int(np.searchsorted(area_at_depth, target, side="right"))
+    if k >= zs.size:  # every summit touches before the area target: extrapolate linearly
+        u_area = float(depth[-1] + (target - area_at_depth[-1]) / c_beta[-1])
+    else:  # between depth[k-1] and depth[k] the summits 0..k-1 touch
+        u_area = float(depth[k - 1] + (target - area_at_depth[k - 1]) / c_beta[k - 1])
+    u_hi = min(u_area, u_half)
+    k_lo = 2 * MIN_CONTACTS
+    u_lo = float(depth[k_lo]) if zs.size > k_lo else u_hi
+    if not u_hi > u_lo:
+        return np.linspace(u_hi / n, u_hi, n)
+    return np.linspace(u_lo, u_hi, n)
 
 
 def asperity_sums(

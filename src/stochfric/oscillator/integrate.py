@@ -683,6 +683,12 @@ def _post_warnings(
             f"{over} trajectories had more than max_events = {nev} slip->stick transitions; "
             "stick_count is exact but only the first X_gh were stored — raise max_events",
         ))
+    stamp = tuple(getattr(process, "not_credible", ())) if process is not None else ()
+    if stamp and model != "deterministic":
+        out.append(SimulationWarning(
+            "process-not-credible",
+            f"the friction-process model was written with --accept-not-credible: {'; '.join(stamp)}",
+        ))
     if model == "contact" and process is not None:
         if not getattr(process, "grid_is_periodic", True):
             out.append(SimulationWarning(

@@ -7,16 +7,26 @@ surrogate settings among them are one :class:`~stochfric.process.ensemble.Surrog
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
+import numpy as np
+import numpy.typing as npt
+
 from stochfric.contact.asperity import ContactError
+from stochfric.process.checks import WINDOW_TILES
 from stochfric.process.ensemble import SurrogateOptions
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
+from stochfric.surface.quilting import quilt_applicable
 from stochfric.surface.synthesis import DEFAULT_AMPLITUDE
 from stochfric.validation import count
 
-__all__ = ["AnalysisConfig"]
+__all__ = ["AUTO_SURROGATE", "AnalysisConfig"]
+
+FloatArray = npt.NDArray[np.float64]
+
+#: The surrogate setting that picks the method from the map (:meth:`AnalysisConfig.surrogate_for`).
+AUTO_SURROGATE = "auto"
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -27,7 +37,9 @@ class AnalysisConfig:
     length in units of the original (thesis: 53 mm / 5.3 mm = 10), which is also the number of
     non-overlapping windows per long surface in the ergodicity check; ``amplitude`` the
     amplitude estimate of the measured map (``"hann"``: edge jump removed, default; ``"raw"``:
-    the thesis's DFT of the map as it is, :func:`stochfric.surface.synthesis.amplitude_spectrum`).
+    the thesis's DFT of the map as it is, :func:`stochfric.surface.synthesis.amplitude_spectrum`);
+    ``window_tiles`` the most tiles per side of the measured-window check
+    (:func:`~stochfric.process.checks.window_tiles`).
     """
 
     realizations: int = 100
@@ -44,12 +56,16 @@ class AnalysisConfig:
     sigma_zeta_rule: str = "sigma_mu"
     pdf_bins: int = 30
     check_realizations: int = 200
+    window_tiles: int = WINDOW_TILES
     seed: int | None = None
 
     def __post_init__(self) -> None:
-        for name in ("realizations", "long_surfaces", "window_shift_points", "pdf_bins", "check_realizations"):
+        for name in ("realizations", "long_surfaces", "window_shift_points", "pdf_bins", "check_realizations",
+                     "window_tiles"):
             object.__setattr__(self, name, count(name, getattr(self, name), error=ContactError))
         object.__setattr__(self, "length_factor", count("length_factor", self.length_factor, 2, error=ContactError))
+        if self.window_tiles < 2:
+            raise ContactError(f"window_tiles must be >= 2 (at least 2 x 2 windows), got {self.window_tiles}")
         if self.realizations < 2:
             raise ContactError("realizations must be >= 2 (a standard deviation needs two)")
         if self.long_surfaces < 3:
@@ -63,9 +79,23 @@ class AnalysisConfig:
 
     @property
     def surrogate_options(self) -> SurrogateOptions:
-        """The surrogate settings (``surrogate``, ``amplitude``, ``iaaft_tol``, ``summit_rule``) as one object."""
-        return SurrogateOptions(method=self.surrogate, amplitude=self.amplitude, iaaft_tol=self.iaaft_tol,
+        """The surrogate settings (``surrogate``, ``amplitude``, ``iaaft_tol``, ``summit_rule``) as one
+        object; ``"auto"`` stands here as ``"quilt"`` until :meth:`surrogate_for` resolves it for a map."""
+        method = "quilt" if self.surrogate == AUTO_SURROGATE else self.surrogate
+        return SurrogateOptions(method=method, amplitude=self.amplitude, iaaft_tol=self.iaaft_tol,
                                 rule=self.summit_rule)
+
+    def surrogate_for(self, heights: list[FloatArray]) -> tuple[SurrogateOptions, str]:
+        """The surrogate options for these maps and why: ``"auto"`` is ``"quilt"`` when every map can be
+        quilted (:func:`~stochfric.surface.quilting.quilt_applicable`), ``"phase"`` otherwise."""
+        opts = self.surrogate_options
+        if self.surrogate != AUTO_SURROGATE:
+            return opts, f"{self.surrogate} (chosen by the user)"
+        verdicts = [quilt_applicable(h, rule=self.summit_rule) for h in heights]
+        if all(ok for ok, _ in verdicts):
+            return opts, "quilt (auto: " + "; ".join(r for _, r in verdicts) + ")"
+        why = next(r for ok, r in verdicts if not ok)
+        return replace(opts, method="phase"), f"phase (auto: cannot quilt: {why})"
 
     def to_dict(self) -> dict[str, Any]:
         """Plain dictionary (JSON / netCDF attributes)."""

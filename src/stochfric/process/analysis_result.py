@@ -21,7 +21,8 @@ import xarray as xr
 from stochfric.contact.validity import ValidityWarning
 from stochfric.io_utils import package_versions, write_netcdf_atomic
 from stochfric.process.analysis_config import AnalysisConfig
-from stochfric.process.checks import ErgodicityCheck, ProcessCheck, SurrogateCheck
+from stochfric.process.checks import ErgodicityCheck, ProcessCheck, SurrogateCheck, WindowScatterCheck
+from stochfric.process.credibility import Credibility
 from stochfric.process.ensemble import ContactSamples, PathContact
 from stochfric.process.fit import ModelFit
 from stochfric.process.tabulated import TabulatedProcessModel
@@ -53,6 +54,14 @@ class StatisticalContactAnalysis:
     contact_fraction_fit: dict[str, float]
     ergodicity: ErgodicityCheck
     surrogate_check: SurrogateCheck
+    #: The measured-window check (None when the map is too small for 2 × 2 windows).
+    window_check: WindowScatterCheck | None
+    #: Between-scan, within-scan and ensemble scatter of μ (:func:`~stochfric.process.statistics.analyse`).
+    scan_scatter: dict[str, Any]
+    #: The gate: the reasons why this analysis is not credible (:mod:`stochfric.process.credibility`).
+    credibility: Credibility
+    #: The surrogate method used and why (``"auto"`` resolved by the map, or the user's choice).
+    surrogate_choice: str = ""
     # path statistics (c)
     pressure_pa: FloatArray
     area_fraction: FloatArray
@@ -62,7 +71,11 @@ class StatisticalContactAnalysis:
     mu_std_se: FloatArray
     lags_m: FloatArray
     acf: FloatArray
+    #: Integral correlation length S(0)/(4σ_μ²) along the path [m], mean over the K surfaces, and its SE.
     correlation_length_m: FloatArray
+    correlation_length_se_m: FloatArray
+    #: The thesis's correlation length: first zero crossing of the averaged ACF [m] (NaN: none).
+    zero_crossing_m: FloatArray
     frequencies: FloatArray
     psd: FloatArray
     psd_se: FloatArray
@@ -108,6 +121,9 @@ class StatisticalContactAnalysis:
             "mu_std_se": lst(self.mu_std_se),
             "psd_level_m": lst(self.psd_level),
             "correlation_length_m": lst(self.correlation_length_m),
+            "correlation_length_se_m": lst(self.correlation_length_se_m),
+            "correlation_length_rule": "integral scale S(0)/(4 sigma_mu^2) per long surface, mean and SE over them",
+            "zero_crossing_m": lst(self.zero_crossing_m),
             "correlation_length_mean_m": float(finite_cl.mean()) if finite_cl.size else None,
             "window_shift_m": self.path.window_shift_m,
             "window_length_m": self.path.window_length_m,
@@ -122,6 +138,10 @@ class StatisticalContactAnalysis:
             },
             "ergodicity": self.ergodicity.to_dict(),
             "surrogate_check": self.surrogate_check.to_dict(),
+            "window_check": None if self.window_check is None else self.window_check.to_dict(),
+            "scan_scatter": self.scan_scatter,
+            "credibility": self.credibility.to_dict(),
+            "surrogate_choice": self.surrogate_choice,
             "sigma_zeta": self.sigma_zeta_table(),
             "process_check": self.process_check.to_dict(),
             "model": self.model.to_dict(),
@@ -170,7 +190,10 @@ class StatisticalContactAnalysis:
             "mu_mean_se": var(u, self.mu_mean_se, "1", "SE of E[mu] from the K surfaces"),
             "mu_std_se": var(u, self.mu_std_se, "1", "SE of sigma_mu from the K surfaces"),
             "acf": var((*u, "lag"), self.acf, "1", "autocorrelation of normalised mu (3.17/3.18)"),
-            "correlation_length_m": var(u, self.correlation_length_m, "m", "first zero crossing of the ACF"),
+            "correlation_length_m": var(u, self.correlation_length_m, "m",
+                                        "integral correlation length S(0)/(4 sigma_mu^2), mean over surfaces"),
+            "correlation_length_se_m": var(u, self.correlation_length_se_m, "m", "SE of correlation_length_m"),
+            "zero_crossing_m": var(u, self.zero_crossing_m, "m", "first zero crossing of the averaged ACF (thesis)"),
             "psd": var((*u, "frequency"), self.psd, "m", "one-sided PSD of mu-hat (method 0), surface mean"),
             "psd_se": var((*u, "frequency"), self.psd_se, "m", "SE of psd over surfaces"),
             "psd_level": var(u, self.psd_level, "m", "low-frequency PSD level E[S] = S(f->0)"),
@@ -186,6 +209,11 @@ class StatisticalContactAnalysis:
             "fits": json.dumps({k: f.to_dict() for k, f in self.fits.items()}, sort_keys=True),
             "ergodicity": json.dumps(self.ergodicity.to_dict(), sort_keys=True),
             "surrogate_check": json.dumps(self.surrogate_check.to_dict(), sort_keys=True),
+            "window_check": json.dumps(None if self.window_check is None else self.window_check.to_dict(),
+                                       sort_keys=True),
+            "scan_scatter": json.dumps(self.scan_scatter, sort_keys=True),
+            "credibility": json.dumps(self.credibility.to_dict(), sort_keys=True),
+            "surrogate_choice": self.surrogate_choice,
             "contact_fraction_fit": json.dumps(self.contact_fraction_fit, sort_keys=True),
             "window_shift_m": self.path.window_shift_m,
             "window_length_m": self.path.window_length_m,

@@ -11,6 +11,7 @@
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
 
@@ -30,12 +31,18 @@ from stochfric.surface.summits import find_summits
 __all__ = [
     "ERGODICITY_ALPHA",
     "SURROGATE_Z_LIMIT",
+    "WINDOW_CHECK_ALPHA",
+    "WINDOW_MIN_SUMMITS",
+    "WINDOW_TILES",
     "ErgodicityCheck",
     "ProcessCheck",
     "SurrogateCheck",
+    "WindowScatterCheck",
     "check_generated_process",
     "ergodicity_check",
     "surrogate_check",
+    "window_scatter_check",
+    "window_tiles",
 ]
 
 FloatArray = npt.NDArray[np.float64]
@@ -171,6 +178,7 @@ class SurrogateCheck:
     credible: bool
     surrogate: str
     amplitude: str
+    per_scan_z: tuple[dict[str, float], ...] = ()
 
     def failures(self) -> list[str]:
         """Names of the quantities with |z| ≥ limit (μ as ``mu(u_k)``)."""
@@ -193,34 +201,55 @@ class SurrogateCheck:
             "failures": self.failures(),
             "surrogate": self.surrogate,
             "amplitude": self.amplitude,
+            "per_scan_z": [dict(z) for z in self.per_scan_z],
             "rule": "z = (measured - ensemble mean) / ensemble sd; credible if every |z| < limit",
         }
 
 
+def _worst(z: FloatArray) -> FloatArray:
+    """Per column, the entry of largest magnitude over the rows (scans)."""
+    idx = np.argmax(np.abs(np.where(np.isnan(z), 0.0, z)), axis=0)
+    return np.take_along_axis(z, idx[None, :], axis=0)[0]
+
+
 def surrogate_check(
-    surface: Surface, material: Material, ensemble: ContactSamples, *, rule: str = "thesis"
+    surface: Surface | Sequence[Surface], material: Material, ensemble: ContactSamples, *, rule: str = "thesis"
 ) -> SurrogateCheck:
-    """Compare the measured ``surface`` with its surrogate ``ensemble`` (:func:`ensemble_contact`)."""
+    """Compare the measured ``surface`` with its surrogate ``ensemble`` (:func:`ensemble_contact`).
+
+    With several scans of one surface, every scan is compared with the whole ensemble (all its
+    realisations stand for the same surface); ``measured`` holds the mean over the scans, ``z``
+    and ``mu_z`` the largest-magnitude z over the scans, ``per_scan_z`` each scan's.
+    """
     if ensemble.summit_stats is None:
         raise ValueError("the ensemble carries no summit statistics (use ensemble_contact)")
-    s = find_summits(surface.heights_m, surface.grid_spacing_m, rule=rule)
-    meas = summit_statistics(s.heights_m, s.radius_m)
+    scans = [surface] if isinstance(surface, Surface) else list(surface)
     stats = ensemble.summit_stats
     e_mean = stats.mean(axis=0)
     e_sd = stats.std(axis=0, ddof=1)
     u = ensemble.approach_m
-    if s.count:
-        area, force, _count = asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=material.e_star_pa)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            mu_meas = np.where(force > 0.0, area * material.shear_strength_pa / force, np.nan)
-    else:
-        mu_meas = np.full(u.size, np.nan)
     mu_e = ensemble.mu
-    with np.errstate(divide="ignore", invalid="ignore"):
-        mu_z = (mu_meas - np.nanmean(mu_e, axis=0)) / np.nanstd(mu_e, axis=0, ddof=1)
-        z = (meas - e_mean) / e_sd
-    z = np.where(np.isfinite(z), z, np.where(meas == e_mean, 0.0, np.inf))
-    mu_z = np.where(np.isfinite(mu_z), mu_z, np.inf)
+    metas, mus, zs, mu_zs = [], [], [], []
+    for scan in scans:
+        s = find_summits(scan.heights_m, scan.grid_spacing_m, rule=rule)
+        meas = summit_statistics(s.heights_m, s.radius_m)
+        if s.count:
+            area, force, _count = asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=material.e_star_pa)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                mu_meas = np.where(force > 0.0, area * material.shear_strength_pa / force, np.nan)
+        else:
+            mu_meas = np.full(u.size, np.nan)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            mu_z = (mu_meas - np.nanmean(mu_e, axis=0)) / np.nanstd(mu_e, axis=0, ddof=1)
+            z = (meas - e_mean) / e_sd
+        metas.append(meas)
+        mus.append(mu_meas)
+        zs.append(np.where(np.isfinite(z), z, np.where(meas == e_mean, 0.0, np.inf)))
+        mu_zs.append(np.where(np.isfinite(mu_z), mu_z, np.inf))
+    z = _worst(np.stack(zs))
+    mu_z = _worst(np.stack(mu_zs))
+    meas = np.mean(np.stack(metas), axis=0)
+    mu_meas = np.mean(np.stack(mus), axis=0)
     names = _SUMMIT_STAT_NAMES
     credible = bool(np.all(np.abs(z) < SURROGATE_Z_LIMIT) and np.all(np.abs(mu_z) < SURROGATE_Z_LIMIT))
     return SurrogateCheck(
@@ -234,7 +263,145 @@ def surrogate_check(
         credible=credible,
         surrogate=str(ensemble.info.get("surrogate", "")),
         amplitude=str(ensemble.info.get("amplitude", "")),
+        per_scan_z=tuple({n: float(v) for n, v in zip(names, zz, strict=True)} for zz in zs),
     )
+
+
+#: Family-wise false-alarm probability of the measured-window check (two-sided, Bonferroni over U).
+WINDOW_CHECK_ALPHA = 0.05
+#: Default number of tiles per side of the measured-window check (16 disjoint windows of a quarter
+#: of the map's side), reduced when the tiles would hold fewer than ``WINDOW_MIN_SUMMITS`` summits.
+WINDOW_TILES = 4
+WINDOW_MIN_SUMMITS = 20
+
+
+def window_tiles(summit_count: int, tiles: int = WINDOW_TILES, min_summits: int = WINDOW_MIN_SUMMITS) -> int | None:
+    """Tiles per side for the measured-window check: the largest n ≤ ``tiles`` with at least 2
+    whose n² tiles hold ``min_summits`` summits each on average; None if even 2 × 2 do not."""
+    for n in range(int(tiles), 1, -1):
+        if summit_count / (n * n) >= min_summits:
+            return n
+    return None
+
+
+def _variance_df(n: int, kurtosis: float) -> float:
+    """Effective degrees of freedom of a sample variance of n values with kurtosis κ:
+    Var(s²) = σ⁴(κ − (n−3)/(n−1))/n = 2σ⁴/df (n − 1 for a Gaussian sample)."""
+    return 2.0 * n / max(kurtosis - (n - 3) / (n - 1), 1e-12)
+
+
+@dataclass(frozen=True, kw_only=True)
+class WindowScatterCheck:
+    """Scatter of μ(u) across windows of size w: the measurement against its surrogates (method §3).
+
+    The prepared measurement is cut into disjoint ``tiles × tiles`` windows of size w (J windows
+    over all scans); every surrogate of original size is cut the same way (R·J' windows).  Each
+    window is analysed on its own (referenced to its own highest summit).  Per approach:
+    s_m = sd of μ over the measured windows, s_s = sd over the surrogate windows, and the
+    variance ratio F = s_m²/s_s² is referred to an F distribution with the effective degrees of
+    freedom df = 2n/(κ − (n−3)/(n−1)) of each side (Var(s²) = 2σ⁴/df; n − 1 for Gaussian μ), κ
+    the kurtosis of μ over the surrogate windows (no Gaussian assumption; under the null both
+    populations share it; an F rather than a normal approximation because J is small).  ``z`` is
+    the signed two-sided-equivalent normal deviate of that test; the CIs are the χ²(df)
+    intervals of each sd.  Consistent if every |z| ≤ Φ⁻¹(1 − α/(2U)) (two-sided, Bonferroni
+    over the U approaches, α = 0.05).  This check
+    uses the measurement itself as the reference: a surrogate method cannot pass it by
+    construction, only by making windows that scatter like the measured ones.
+    """
+
+    tiles: int
+    window_size_m: tuple[float, float]
+    measured_windows: int
+    surrogate_windows: int
+    measured_std: tuple[float, ...]
+    measured_std_ci: tuple[tuple[float, float], ...]
+    surrogate_std: tuple[float, ...]
+    surrogate_std_ci: tuple[tuple[float, float], ...]
+    measured_mean: tuple[float, ...]
+    surrogate_mean: tuple[float, ...]
+    kurtosis: tuple[float, ...]
+    z: tuple[float, ...]
+    threshold: float
+    consistent: bool
+    max_abs_z: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary."""
+        return {
+            "tiles": self.tiles,
+            "window_size_m": list(self.window_size_m),
+            "measured_windows": self.measured_windows,
+            "surrogate_windows": self.surrogate_windows,
+            "measured_std": list(self.measured_std),
+            "measured_std_ci95": [list(c) for c in self.measured_std_ci],
+            "surrogate_std": list(self.surrogate_std),
+            "surrogate_std_ci95": [list(c) for c in self.surrogate_std_ci],
+            "measured_mean": list(self.measured_mean),
+            "surrogate_mean": list(self.surrogate_mean),
+            "kurtosis": list(self.kurtosis),
+            "z": list(self.z),
+            "threshold": self.threshold,
+            "max_abs_z": self.max_abs_z,
+            "consistent": self.consistent,
+            "verdict": "consistent" if self.consistent else "NOT consistent",
+            "rule": "sd of mu over disjoint windows of the measurement vs over the same windows of the "
+            "surrogates; F test of the variance ratio with kurtosis-adjusted degrees of freedom (kurtosis from "
+            "the surrogate windows), as a two-sided z; "
+            "|z| <= Bonferroni threshold (alpha = 0.05, U approaches)",
+        }
+
+
+def window_scatter_check(
+    measured_mu: npt.ArrayLike, surrogate_mu: npt.ArrayLike, *, tiles: int, window_size_m: tuple[float, float],
+    alpha: float = WINDOW_CHECK_ALPHA,
+) -> WindowScatterCheck:
+    """The measured-window check (:class:`WindowScatterCheck`) from μ of the measured windows,
+    shape (J, U), and of the surrogate windows, shape (R, J', U) or (R·J', U)."""
+    m = np.asarray(measured_mu, dtype=np.float64)
+    s = np.asarray(surrogate_mu, dtype=np.float64)
+    s = s.reshape(-1, s.shape[-1])
+    if m.ndim != 2 or m.shape[0] < 3 or s.shape[0] < 4 or m.shape[1] != s.shape[1]:
+        raise ValueError("need mu of >= 3 measured and >= 4 surrogate windows over the same approaches")
+    n_u = m.shape[1]
+    out: dict[str, list[Any]] = {k: [] for k in ("sm", "smci", "ss", "ssci", "mm", "ms", "kap", "z")}
+    for k in range(n_u):
+        a = m[:, k][np.isfinite(m[:, k])]
+        b = s[:, k][np.isfinite(s[:, k])]
+        if a.size < 3 or b.size < 4:
+            raise ContactError(
+                "a window of the measured-window check carries no load at some approach; use larger approaches"
+            )
+        sa, sb = float(a.std(ddof=1)), float(b.std(ddof=1))
+        cb = b - b.mean()
+        kap = float(np.mean(cb**4) / np.mean(cb**2) ** 2) if sb > 0.0 else 3.0
+        df_a, df_b = _variance_df(a.size, kap), _variance_df(b.size, kap)
+        if sa > 0.0 and sb > 0.0:
+            ratio = (sa / sb) ** 2
+            p_lo = float(sps.f.cdf(ratio, df_a, df_b))
+            p_two = min(1.0, 2.0 * min(p_lo, 1.0 - p_lo))
+            z = math.copysign(float(sps.norm.isf(max(p_two, 1e-300) / 2.0)), ratio - 1.0)
+        else:
+            z = 0.0 if sa == sb else math.inf
+        ci_a = (sa * math.sqrt(df_a / sps.chi2.isf(0.025, df_a)), sa * math.sqrt(df_a / sps.chi2.isf(0.975, df_a)))
+        ci_b = (sb * math.sqrt(df_b / sps.chi2.isf(0.025, df_b)), sb * math.sqrt(df_b / sps.chi2.isf(0.975, df_b)))
+        out["sm"].append(sa)
+        out["smci"].append(ci_a)
+        out["ss"].append(sb)
+        out["ssci"].append(ci_b)
+        out["mm"].append(float(a.mean()))
+        out["ms"].append(float(b.mean()))
+        out["kap"].append(kap)
+        out["z"].append(float(z))
+    threshold = float(sps.norm.isf(alpha / (2.0 * n_u)))
+    max_abs = float(np.max(np.abs(out["z"])))
+    return WindowScatterCheck(
+        tiles=int(tiles), window_size_m=(float(window_size_m[0]), float(window_size_m[1])),
+        measured_windows=int(m.shape[0]), surrogate_windows=int(s.shape[0]),
+        measured_std=tuple(out["sm"]), measured_std_ci=tuple(out["smci"]), surrogate_std=tuple(out["ss"]),
+        surrogate_std_ci=tuple(out["ssci"]), measured_mean=tuple(out["mm"]), surrogate_mean=tuple(out["ms"]),
+        kurtosis=tuple(out["kap"]), z=tuple(out["z"]), threshold=threshold, consistent=bool(max_abs <= threshold),
+        max_abs_z=max_abs,
+    )  # fmt: skip
 
 
 @dataclass(frozen=True, kw_only=True)

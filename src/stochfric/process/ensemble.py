@@ -36,6 +36,7 @@ from __future__ import annotations
 
 import functools
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any, TypedDict, Unpack
 
@@ -45,8 +46,9 @@ import numpy.typing as npt
 
 from stochfric.contact.asperity import BowdenTabor, ContactError, FloatArray, IntArray, asperity_sums
 from stochfric.contact.materials import Material
+from stochfric.process.parallel import map_indexed
 from stochfric.progress import Progress
-from stochfric.random import SeedLike, spawn_generators
+from stochfric.random import SeedLike, spawn_seed_sequences
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import find_summits
 from stochfric.surface.synthesis import AMPLITUDE_METHODS, DEFAULT_AMPLITUDE, SURROGATE_METHODS, similar_surface
@@ -64,6 +66,8 @@ __all__ = [
     "naive_window_contact",
     "path_contact",
     "summit_statistics",
+    "tile_contact",
+    "tile_grid",
     "window_contact",
     "window_starts",
 ]
@@ -133,6 +137,8 @@ class ContactSamples(BowdenTabor):
     #: Per sample (leading axes): summit count, mean summit radius β̄ [m], summit-height
     #: standard deviation σ_S [m] — shape (..., 3); recorded by :func:`ensemble_contact`.
     summit_stats: FloatArray | None = None
+    #: GW sums of each sample's disjoint tiles (samples, tiles², U), for the measured-window check.
+    tile_samples: ContactSamples | None = None
 
     @classmethod
     def of(cls, surface: Surface, material: Material, approach_m: FloatArray, area_m2: FloatArray,
@@ -167,6 +173,49 @@ def summit_statistics(heights: FloatArray, radius: FloatArray) -> FloatArray:
     return np.array([float(n), float(radius.mean()) if n else np.nan, float(heights.std()) if n > 1 else np.nan])
 
 
+def tile_grid(shape: tuple[int, int], tiles: int) -> list[tuple[int, int, int, int]]:
+    """Disjoint ``tiles × tiles`` windows of a grid: ``(i0, i1, j0, j1)`` each, row-major.
+
+    Each side is split into ``tiles`` equal parts of ``⌊n/tiles⌋`` points (a remainder at the
+    far edge is left out), so every tile has the same size and nominal area.
+    """
+    nx, ny = shape
+    t = _check_count("tiles", tiles)
+    wx, wy = nx // t, ny // t
+    if min(wx, wy) < 5:
+        raise ContactError(f"{t} × {t} tiles of a {nx}×{ny} grid leave {wx}×{wy} points; use fewer tiles")
+    return [(a * wx, (a + 1) * wx, b * wy, (b + 1) * wy) for a in range(t) for b in range(t)]
+
+
+def tile_contact(
+    heights_m: FloatArray, spacing: tuple[float, float], material: Material, u: FloatArray, *, tiles: int,
+    rule: str,
+) -> tuple[FloatArray, FloatArray, IntArray]:
+    """GW sums of the disjoint ``tiles × tiles`` windows of one map, each window referenced to its
+    own highest summit (as if cut out and analysed on its own): ``(A_c, N, n_contacts)``, shape
+    (tiles², U).
+
+    The summits are found once on the whole map; a window analysed on its own finds exactly the
+    summits at least the rule's margin inside it, with the same radii (as in :func:`window_contact`).
+    A window without a summit gives zeros (μ undefined there).
+    """
+    if rule not in SUMMIT_MARGIN:
+        raise ContactError(f"unknown summit rule {rule!r}; use one of {', '.join(SUMMIT_MARGIN)}")
+    m = SUMMIT_MARGIN[rule]
+    s = find_summits(heights_m, spacing, rule=rule)
+    boxes = tile_grid(heights_m.shape, tiles)
+    area = np.zeros((len(boxes), u.size))
+    force = np.zeros((len(boxes), u.size))
+    count = np.zeros((len(boxes), u.size), dtype=np.int64)
+    for t, (i0, i1, j0, j1) in enumerate(boxes):
+        inside = (s.i >= i0 + m) & (s.i < i1 - m) & (s.j >= j0 + m) & (s.j < j1 - m)
+        if np.any(inside):
+            area[t], force[t], count[t] = asperity_sums(
+                s.heights_m[inside], s.radius_m[inside], u, e_star_pa=material.e_star_pa
+            )
+    return area, force, count
+
+
 def _one_surface_with_stats(
     heights: FloatArray, spacing: tuple[float, float], material: Material, u: FloatArray, rule: str
 ) -> tuple[FloatArray, FloatArray, IntArray, FloatArray]:
@@ -177,8 +226,23 @@ def _one_surface_with_stats(
     return area, force, count, summit_statistics(s.heights_m, s.radius_m)
 
 
+def _scans(surface: Surface | Sequence[Surface]) -> list[Surface]:
+    scans = [surface] if isinstance(surface, Surface) else list(surface)
+    if not scans:
+        raise ContactError("no surface given")
+    shape = scans[0].nb_grid_pts
+    spacing = scans[0].grid_spacing_m
+    for s in scans[1:]:
+        if s.nb_grid_pts != shape or not np.allclose(s.grid_spacing_m, spacing, rtol=1e-9, atol=0.0):
+            raise ContactError(
+                f"pooled scans must share the grid: {s.source} has {s.nb_grid_pts} points at "
+                f"{s.grid_spacing_m} m, {scans[0].source} {shape} at {spacing} m"
+            )
+    return scans
+
+
 def ensemble_contact(
-    surface: Surface,
+    surface: Surface | Sequence[Surface],
     material: Material,
     approach_m: npt.ArrayLike,
     *,
@@ -186,16 +250,24 @@ def ensemble_contact(
     seed: SeedLike = None,
     progress: Progress | None = None,
     options: SurrogateOptions | None = None,
+    tiles: int | None = None,
+    workers: int | None = 1,
     **surrogate: Unpack[SurrogateKeywords],
 ) -> ContactSamples:
     """Contact of R similar surfaces of original size over ``approach_m`` (method §4a).
 
-    Realisation r is :func:`~stochfric.surface.synthesis.similar_surface` with the r-th child
+    Realisation r is :func:`~stochfric.surface.synthesis.similar_surface` of scan ``r mod S``
+    (``surface`` may be one map or S scans of one surface on the same grid) with the r-th child
     stream of ``seed`` and the surrogate ``options`` (:class:`SurrogateOptions`; its fields
     ``method``, ``amplitude``, ``iaaft_tol``, ``rule`` may also be given as keywords); each is
     referenced to its own highest summit.  Shape (R, U); ``summit_stats`` (R, 3) holds every
-    realisation's summit count, β̄ and σ_S for the measured-vs-surrogate check.
+    realisation's summit count, β̄ and σ_S for the measured-vs-surrogate check, ``info["scan"]``
+    the scan of each realisation.  With ``tiles``, ``tile_samples`` holds the GW sums of every
+    realisation's disjoint ``tiles × tiles`` windows (R, tiles², U) for the measured-window check.
+    ``workers`` processes share the realisations (:func:`~stochfric.process.parallel.map_indexed`;
+    the numbers do not depend on it; ``None``: all cores).
     """
+    scans = _scans(surface)
     r_count = _check_count("realizations", realizations)
     opts = SurrogateOptions.of(options, **surrogate)
     u = _approach(approach_m)
@@ -203,17 +275,38 @@ def ensemble_contact(
     force = np.empty((r_count, u.size))
     count = np.empty((r_count, u.size), dtype=np.int64)
     stats = np.empty((r_count, 3))
-    for r, gen in enumerate(spawn_generators(seed, r_count)):
-        sim = opts.similar(surface, gen)
-        area[r], force[r], count[r], stats[r] = _one_surface_with_stats(
-            sim.heights_m, sim.grid_spacing_m, material, u, opts.rule
-        )
-        if progress is not None:
-            progress(r + 1, r_count)
+    n_tiles = 0 if tiles is None else len(tile_grid(scans[0].nb_grid_pts, tiles))
+    t_area = np.empty((r_count, n_tiles, u.size))
+    t_force = np.empty((r_count, n_tiles, u.size))
+    t_count = np.empty((r_count, n_tiles, u.size), dtype=np.int64)
+    scan_of = [r % len(scans) for r in range(r_count)]
+    seeds = spawn_seed_sequences(seed, r_count)
+
+    def one(r: int) -> tuple[FloatArray, FloatArray, IntArray, FloatArray, tuple[FloatArray, FloatArray, IntArray]]:
+        sim = opts.similar(scans[scan_of[r]], np.random.Generator(np.random.PCG64(seeds[r])))
+        a, f, c, st = _one_surface_with_stats(sim.heights_m, sim.grid_spacing_m, material, u, opts.rule)
+        t = (tile_contact(sim.heights_m, sim.grid_spacing_m, material, u, tiles=tiles, rule=opts.rule)
+             if tiles is not None else (np.empty((0, u.size)), np.empty((0, u.size)), np.empty((0, u.size), np.int64)))
+        return a, f, c, st, t
+
+    done = None if progress is None else (lambda k: progress(k, r_count))
+    for r, (a, f, c, st, t) in enumerate(map_indexed(one, r_count, workers=workers, done=done)):
+        area[r], force[r], count[r], stats[r] = a, f, c, st
+        if tiles is not None:
+            t_area[r], t_force[r], t_count[r] = t
+    info = {"kind": "ensemble", "surrogate": opts.method, "amplitude": opts.amplitude, "realizations": r_count,
+            "summit_rule": opts.rule, "scans": len(scans), "scan": scan_of}
+    tile_samples = None
+    if tiles is not None:
+        (i0, i1, j0, j1) = tile_grid(scans[0].nb_grid_pts, tiles)[0]
+        dx, dy = scans[0].grid_spacing_m
+        tile_samples = ContactSamples(
+            approach_m=u, contact_area_m2=t_area, normal_force_n=t_force, n_contacts=t_count,
+            nominal_area_m2=(i1 - i0) * dx * (j1 - j0) * dy, shear_strength_pa=material.shear_strength_pa,
+            info={"kind": "tiles", "tiles": tiles},
+        )  # fmt: skip
     return ContactSamples.of(
-        surface, material, u, area, force, count, summit_stats=stats,
-        info={"kind": "ensemble", "surrogate": opts.method, "amplitude": opts.amplitude, "realizations": r_count,
-              "summit_rule": opts.rule},
+        scans[0], material, u, area, force, count, summit_stats=stats, tile_samples=tile_samples, info=info,
     )
 
 
@@ -354,7 +447,7 @@ class PathContact:
 
 
 def _long_windows(
-    surface: Surface,
+    scans: list[Surface],
     material: Material,
     u: FloatArray,
     *,
@@ -364,22 +457,23 @@ def _long_windows(
     opts: SurrogateOptions,
     seed: SeedLike,
     progress: Progress | None,
+    workers: int | None,
 ) -> list[tuple[FloatArray, FloatArray, IntArray]]:
     """GW sums of the windows of K long surfaces, one (K, W_s, U) triple per window shift."""
-    ny = surface.nb_grid_pts[1]
-    out: list[list[tuple[FloatArray, FloatArray, IntArray]]] = [[] for _ in shifts]
-    for k, gen in enumerate(spawn_generators(seed, surfaces)):
-        long = opts.similar(surface, gen, factor)
-        for s_idx, shift in enumerate(shifts):
-            out[s_idx].append(
-                window_contact(
-                    long.heights_m, long.grid_spacing_m, material, u, window_points=ny, shift_points=shift,
-                    rule=opts.rule,
-                )
-            )
-        del long
-        if progress is not None:
-            progress(k + 1, surfaces)
+    seeds = spawn_seed_sequences(seed, surfaces)
+    ny = scans[0].nb_grid_pts[1]
+
+    def one(k: int) -> list[tuple[FloatArray, FloatArray, IntArray]]:
+        long = opts.similar(scans[k % len(scans)], np.random.Generator(np.random.PCG64(seeds[k])), factor)
+        return [
+            window_contact(long.heights_m, long.grid_spacing_m, material, u, window_points=ny, shift_points=shift,
+                           rule=opts.rule)
+            for shift in shifts
+        ]
+
+    done = None if progress is None else (lambda k: progress(k, surfaces))
+    per_surface = map_indexed(one, surfaces, workers=workers, done=done)
+    out = [[per_surface[k][s_idx] for k in range(surfaces)] for s_idx in range(len(shifts))]
     return [
         (np.stack([o[0] for o in per]), np.stack([o[1] for o in per]), np.stack([o[2] for o in per]))
         for per in out
@@ -387,7 +481,7 @@ def _long_windows(
 
 
 def path_contact(
-    surface: Surface,
+    surface: Surface | Sequence[Surface],
     material: Material,
     approach_m: npt.ArrayLike,
     *,
@@ -397,15 +491,19 @@ def path_contact(
     seed: SeedLike = None,
     progress: Progress | None = None,
     options: SurrogateOptions | None = None,
+    workers: int | None = 1,
     **surrogate: Unpack[SurrogateKeywords],
 ) -> PathContact:
     """μ(y) over K long surfaces of ``length_factor`` × the original length (method §4c).
 
     Windows of the original size are shifted by ``shift_points`` grid points (a_y) along y;
     long surface k uses the k-th child stream of ``seed`` and the surrogate ``options``
-    (:class:`SurrogateOptions`, or its fields as keywords).  The same long surfaces are also cut
-    into ``length_factor`` non-overlapping windows (``blocks``) for the ergodicity check.
+    (:class:`SurrogateOptions`, or its fields as keywords), made from scan ``k mod S`` when
+    ``surface`` is a list of S scans on one grid.  The same long surfaces are also cut into
+    ``length_factor`` non-overlapping windows (``blocks``) for the ergodicity check.
     """
+    scans = _scans(surface)
+    surface = scans[0]
     k_count = _check_count("long_surfaces", long_surfaces)
     factor = _check_count("length_factor", length_factor, 2)
     shift = _check_count("shift_points", shift_points)
@@ -413,8 +511,8 @@ def path_contact(
     u = _approach(approach_m)
     ny = surface.nb_grid_pts[1]
     (area, force, count), (b_area, b_force, b_count) = _long_windows(
-        surface, material, u, surfaces=k_count, factor=factor, shifts=(shift, ny), opts=opts, seed=seed,
-        progress=progress,
+        scans, material, u, surfaces=k_count, factor=factor, shifts=(shift, ny), opts=opts, seed=seed,
+        progress=progress, workers=workers,
     )
     dy = surface.grid_spacing_m[1]
     info = {"surrogate": opts.method, "amplitude": opts.amplitude, "long_surfaces": k_count, "length_factor": factor}

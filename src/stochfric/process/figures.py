@@ -182,7 +182,7 @@ def plot_process_check(check: ProcessCheck, path: str | Path) -> Path:
 def plot_surrogates(
     original: np.ndarray, surrogates: dict[str, np.ndarray], path: str | Path, *, unit: float = MICROMETRE
 ) -> Path:
-    """Original and surrogate height maps with their height PDFs (phase vs IAAFT)."""
+    """Original and surrogate height maps with their height PDFs (phase, IAAFT, quilt)."""
     n = 1 + len(surrogates)
     fig = new_figure(3.2 * n + 3.2, 3.2)
     axes = fig.subplots(1, n + 1)

@@ -105,6 +105,7 @@ class ModelFit:
             "b_se": num(self.b_se),
             "c_se": num(self.c_se),
             "n_points": int(sum(self.used)),
+            "used": [bool(u) for u in self.used],
             "n_excluded": int(len(self.used) - sum(self.used)),
             "chi2_reduced": num(self.chi2_reduced),
             "note": self.note,

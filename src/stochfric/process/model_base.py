@@ -43,7 +43,7 @@ SigmaZetaRule = Literal["sigma_mu", "spectral_level"]
 _SIGMA_ZETA_RULES: tuple[str, ...] = get_args(SigmaZetaRule)
 
 #: Version of the model files' schema (``"schema_version"``); :meth:`ProcessModelBase.from_dict` refuses others.
-SCHEMA_VERSION = 1
+SCHEMA_VERSION = 2
 
 #: Fraction of the band (lowest frequencies, at least one bin) over which the low-frequency
 #: level S0 of the ``"spectral_level"`` σ_ζ rule is averaged.
@@ -161,7 +161,10 @@ class ProcessModelBase:
             raise ValueError(f"not a {kind.replace('_', '-')} process model: kind = {found!r}")
         version = data.get("schema_version", SCHEMA_VERSION)
         if version != SCHEMA_VERSION:
-            raise ValueError(f"unsupported schema_version {version!r} (this version reads {SCHEMA_VERSION})")
+            raise ValueError(
+                f"unsupported schema_version {version!r} (this version reads {SCHEMA_VERSION}); "
+                "rerun `stochfric friction-process` to write the model anew"
+            )
 
     # --- statistics over pressure ------------------------------------------------------
 

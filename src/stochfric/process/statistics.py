@@ -11,7 +11,11 @@ b) the **ergodicity check** (:func:`~stochfric.process.checks.ergodicity_check`)
    realisations come from another generator — see the class docstring);
 c) **μ along the path** (:func:`~stochfric.process.ensemble.path_contact`): K long surfaces,
    windows shifted by a_y → μ(y), autocorrelation, correlation length, PSD (method §0),
-   averaged over the surfaces (Fig. 3.19–3.21);
+   averaged over the surfaces (Fig. 3.19–3.21).  The correlation length is the integral scale
+   ℓ_corr = ∫₀^∞ ρ(y) dy = S(0)/(4σ_μ²) per long surface (S(0) the low-frequency level, stable
+   between realisations), with its standard error over the K surfaces; the thesis's first zero
+   crossing of the averaged ACF is kept as ``zero_crossing_m`` (it jumps between realisations
+   and is undefined when the ACF stays positive);
 d) the **model functions** f(p) = a p^b + c for E[μ], σ_μ and the PSD level over the mean
    pressure of c), high-pressure points excluded (:mod:`stochfric.process.fit`; Fig. 3.22);
 e) the **friction-process model** (:class:`~stochfric.process.tabulated.TabulatedProcessModel`)
@@ -32,18 +36,28 @@ sample fourth central moment m4; no Gaussian assumption).
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from stochfric.contact.asperity import ContactError
+from stochfric.contact.asperity import ContactError, asperity_sums
 from stochfric.contact.materials import Material
 from stochfric.contact.validity import contact_validity
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
-from stochfric.process.checks import check_generated_process, ergodicity_check, surrogate_check
-from stochfric.process.ensemble import ensemble_contact, path_contact
+from stochfric.process.checks import (
+    WINDOW_MIN_SUMMITS,
+    check_generated_process,
+    ergodicity_check,
+    surrogate_check,
+    window_scatter_check,
+    window_tiles,
+)
+from stochfric.process.credibility import assess_credibility
+from stochfric.process.ensemble import ensemble_contact, path_contact, tile_contact, tile_grid
 from stochfric.process.estimators import linear_fit, mean_and_std_errors, mu_pdfs
 from stochfric.process.fit import fit_mask, fit_model_function
 from stochfric.process.memory import check_memory
@@ -65,23 +79,78 @@ __all__ = [
 FloatArray = npt.NDArray[np.float64]
 
 
+def _measured_tiles(scans: list[Surface], material: Material, u: FloatArray, tiles: int, rule: str) -> FloatArray:
+    """μ of the disjoint ``tiles × tiles`` windows of every scan, shape (scans·tiles², U)."""
+    rows = []
+    for scan in scans:
+        area, force, _count = tile_contact(scan.heights_m, scan.grid_spacing_m, material, u, tiles=tiles, rule=rule)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rows.append(np.where(force > 0.0, area * material.shear_strength_pa / force, np.nan))
+    return np.concatenate(rows)
+
+
+def _full_map_mu(scans: list[Surface], material: Material, u: FloatArray, rule: str) -> FloatArray:
+    """μ(u) of every whole scan (referenced to its own highest summit), shape (scans, U)."""
+    rows = []
+    for scan in scans:
+        s = find_summits(scan.heights_m, scan.grid_spacing_m, rule=rule)
+        area, force, _count = asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=material.e_star_pa)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            rows.append(np.where(force > 0.0, area * material.shear_strength_pa / force, np.nan))
+    return np.stack(rows)
+
+
+def _scan_scatter(scan_mu: FloatArray, tile_mu: FloatArray, scans: int, ensemble_mu: FloatArray) -> dict[str, Any]:
+    """Between-scan scatter (sd over the scans of the whole-map μ) beside the within-scan scatter
+    (sd over the disjoint windows of each scan, averaged over the scans) and the ensemble's scatter
+    of whole maps (sd of μ over the surrogates of original size), per approach."""
+
+    def lst(a: FloatArray) -> list[float | None]:
+        return [float(v) if math.isfinite(float(v)) else None for v in a]
+
+    n_u = scan_mu.shape[1]
+    between = scan_mu.std(axis=0, ddof=1) if scans > 1 else np.full(n_u, np.nan)
+    if tile_mu.shape[0] >= 2 * scans:
+        within = np.nanmean(np.stack([t.std(axis=0, ddof=1) for t in np.split(tile_mu, scans)]), axis=0)
+    else:
+        within = np.full(n_u, np.nan)
+    return {
+        "scans": scans,
+        "scan_mu": [lst(r) for r in scan_mu],
+        "between_scan_std": lst(between),
+        "within_scan_window_std": lst(within),
+        "ensemble_std": lst(np.nanstd(ensemble_mu, axis=0, ddof=1)),
+        "rule": "between: sd over scans of mu of each whole scan; within: sd over the disjoint windows of one "
+        "scan, mean over scans; ensemble: sd of mu over the surrogates of original size",
+    }
+
+
 def analyse(
-    surface: Surface,
+    surface: Surface | Sequence[Surface],
     material: Material,
     approach_m: npt.ArrayLike,
     config: AnalysisConfig | None = None,
     *,
     name: str | None = None,
     progress: StagedProgress | None = None,
+    workers: int | None = 1,
 ) -> StatisticalContactAnalysis:
     """Run the statistical contact analysis a)–e) of the module docstring on ``surface``.
 
-    ``surface`` is the prepared (detrended, filtered, coarsened) surface; windows run along y
-    (axis 1).  Independent child streams of ``config.seed`` drive the ensemble, the long
+    ``surface`` is the prepared (detrended, filtered, coarsened) surface, or several prepared scans
+    of one surface on the same grid (pooled: realisation / long surface k is made from scan
+    k mod S; the checks compare every scan); windows run along y (axis 1).  Independent child
+    streams of ``config.seed`` drive the ensemble, the long
     surfaces and the process check; inside each, realisation / surface k has its own child
     stream.  ``progress(stage, done, total)`` is called after every realisation / surface.
+    ``workers`` processes share the realisations and long surfaces (``None``: all cores); the
+    numbers do not depend on it.
     """
     cfg = config if config is not None else AnalysisConfig()
+    scans = [surface] if isinstance(surface, Surface) else list(surface)
+    if not scans:
+        raise ContactError("no surface to analyse")
+    surface = scans[0]
     check_memory(surface.nb_grid_pts, cfg.length_factor)
     root = as_seed_sequence(cfg.seed)
     s_ens, _s_unused, s_path, s_check = spawn_seed_sequences(root, 4)  # stream 1: retired one-surface check
@@ -92,13 +161,17 @@ def analyse(
             return None
         return lambda done, total: progress(label, done, total)
 
-    options = cfg.surrogate_options
+    options, surrogate_choice = cfg.surrogate_for([s.heights_m for s in scans])
+    measured_counts = [find_summits(s.heights_m, s.grid_spacing_m, rule=cfg.summit_rule).count for s in scans]
+    tiles = window_tiles(min(measured_counts), cfg.window_tiles)
     ens = ensemble_contact(
-        surface, material, u, realizations=cfg.realizations, seed=s_ens, progress=stage("ensemble"), options=options,
+        scans, material, u, realizations=cfg.realizations, seed=s_ens, progress=stage("ensemble"), options=options,
+        tiles=tiles, workers=workers,
     )  # fmt: skip
     path = path_contact(
-        surface, material, u, long_surfaces=cfg.long_surfaces, length_factor=cfg.length_factor,
+        scans, material, u, long_surfaces=cfg.long_surfaces, length_factor=cfg.length_factor,
         shift_points=cfg.window_shift_points, seed=s_path, progress=stage("long surfaces"), options=options,
+        workers=workers,
     )  # fmt: skip
     notes: list[str] = []
     mu_e = ens.mu
@@ -109,14 +182,23 @@ def analyse(
     e_frac = ens.contact_area_m2.mean(axis=0) / ens.nominal_area_m2
     edges, dens = mu_pdfs(mu_e, cfg.pdf_bins)
     erg_check = ergodicity_check(path.blocks.mu)
-    s_check_result = surrogate_check(surface, material, ens, rule=cfg.summit_rule)
-    if not s_check_result.credible:
-        notes.append(
-            "the measured map lies outside its surrogate ensemble (|z| >= 3) for "
-            + ", ".join(s_check_result.failures())
-            + ": the surrogates do not resemble this surface, so the statistics describe the surrogates, not it "
-            "(try --surrogate iaaft for a non-Gaussian height distribution, or check the preparation)"
+    s_check_result = surrogate_check(scans, material, ens, rule=cfg.summit_rule)
+    window_check = None
+    scan_mu = _full_map_mu(scans, material, u, cfg.summit_rule)
+    measured_tile_mu = np.empty((0, u.size))
+    if tiles is not None and ens.tile_samples is not None:
+        measured_tile_mu = _measured_tiles(scans, material, u, tiles, cfg.summit_rule)
+        i0, i1, j0, j1 = tile_grid(surface.nb_grid_pts, tiles)[0]
+        dx, dy = surface.grid_spacing_m
+        window_check = window_scatter_check(
+            measured_tile_mu, ens.tile_samples.mu, tiles=tiles, window_size_m=((i1 - i0) * dx, (j1 - j0) * dy)
         )
+    else:
+        notes.append(
+            f"the measured-window check needs at least {4 * WINDOW_MIN_SUMMITS} summits for 2 x 2 windows; "
+            f"the map has {min(measured_counts)}: the scatter across windows could not be checked"
+        )
+    scan_scatter = _scan_scatter(scan_mu, measured_tile_mu, len(scans), ens.mu)
 
     # --- path statistics (c) --------------------------------------------------------------
     mu_p = path.samples.mu  # (K, W, U)
@@ -134,8 +216,8 @@ def analyse(
     a_y = path.window_shift_m
     acfs = np.stack([autocorrelation(mu_p[:, :, k]) for k in range(n_u)])
     lags = np.arange(acfs.shape[1], dtype=np.float64) * a_y
-    corr = np.array([correlation_length(acfs[k], a_y) for k in range(n_u)])
-    psd_rows, psd_se_rows, levels, level_se = [], [], [], []
+    zero_crossing = np.array([correlation_length(acfs[k], a_y) for k in range(n_u)])
+    psd_rows, psd_se_rows, levels, level_se, corr, corr_se = [], [], [], [], [], []
     freqs: FloatArray = np.empty(0)
     for k in range(n_u):
         freqs, s_mean, s_se = mean_psd(mu_p[:, :, k], a_y)
@@ -146,11 +228,19 @@ def analyse(
             psd_level(freqs, one_sided_psd(mu_p[j, :, k], a_y)[1], path.window_length_m) for j in range(k_count)
         ]
         level_se.append(float(np.std(per_surface, ddof=1) / root_k) if k_count > 1 else math.nan)
+        # integral scale ℓ_int = S(0)/(4σ²) per surface (∫₀^∞ ρ dy; the one-sided S(0) is 4σ²∫₀^∞ ρ dy)
+        per_var = mu_p[:, :, k].var(axis=1, ddof=1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            per_len = np.asarray(per_surface) / (4.0 * per_var)
+        ok = np.isfinite(per_len)
+        corr.append(float(np.mean(per_len[ok])) if np.any(ok) else math.nan)
+        corr_se.append(float(np.std(per_len[ok], ddof=1) / math.sqrt(int(ok.sum()))) if ok.sum() > 1 else math.nan)
     psd = np.stack(psd_rows)
     psd_se = np.stack(psd_se_rows)
 
     # --- fits (d) --------------------------------------------------------------------------
     mask, mask_note = fit_mask(frac_path, p_path, max_area_fraction=cfg.max_area_fraction)
+    valid_points = int(np.count_nonzero(np.isfinite(frac_path) & (frac_path <= cfg.max_area_fraction)))
     if mask_note:
         notes.append(mask_note)
     rule = {"exclude": "mean A_c/A_nom > max_area_fraction", "max_area_fraction": cfg.max_area_fraction}
@@ -179,17 +269,28 @@ def analyse(
         psd_level=fits["psd_level"].model_function(),
         window_length_m=path.window_length_m,
     )
-    measured = find_summits(surface.heights_m, surface.grid_spacing_m, rule=cfg.summit_rule)
+    found = [find_summits(s.heights_m, s.grid_spacing_m, rule=cfg.summit_rule) for s in scans]
+    summit_heights = np.concatenate([f.heights_m for f in found])
+    summit_radii = np.concatenate([f.radius_m for f in found])
     gamma = None
-    if measured.count > 1:
+    if summit_heights.size > 1:
         gamma = plasticity_index(
             e_star_pa=material.e_star_pa, hardness_pa=material.hardness,
-            sigma_s_m=float(measured.heights_m.std()), beta_mean_m=float(measured.radius_m.mean()),
+            sigma_s_m=float(summit_heights.std()), beta_mean_m=float(summit_radii.mean()),
         )  # fmt: skip
     validity = contact_validity(
         mu=mu_mean, area_fraction=frac_path, n_contacts=path.samples.n_contacts.mean(axis=(0, 1)), approach_m=u,
         plasticity_index=gamma, max_area_fraction=cfg.max_area_fraction, name=name or "",
     )  # fmt: skip
+    credibility = assess_credibility(
+        name=name or "measured surface", approach_m=u, surrogate_ok=s_check_result.credible,
+        surrogate_failures=s_check_result.failures(),
+        window_ok=None if window_check is None else window_check.consistent,
+        window_max_z=None if window_check is None else window_check.max_abs_z,
+        mu_means=[mu_mean, e_mean], area_fractions=[frac_path, e_frac], fit_mask=mask, valid_fit_points=valid_points,
+    )  # fmt: skip
+    if not credibility.credible:
+        model = replace(model, not_credible=tuple(f"[{r.code}] {r.message}" for r in credibility.reasons))
     used_p = p_path[mask]
     check_p = np.unique(np.array([used_p.min(), float(np.exp(np.mean(np.log(used_p)))), used_p.max()]))
     try:
@@ -201,7 +302,8 @@ def analyse(
         seed_entropy=seed_entropy(root),
         material=material.to_dict(),
         surface_info={"source": surface.source, "grid": list(surface.nb_grid_pts),
-                      "physical_size_m": list(surface.physical_size_m), **surface.info},
+                      "physical_size_m": list(surface.physical_size_m), **surface.info,
+                      "scans": [s.source for s in scans]},
         ensemble=ens,
         path=path,
         ensemble_mu_mean=e_mean,
@@ -215,6 +317,10 @@ def analyse(
         contact_fraction_fit=linear_fit(e_p, e_frac),
         ergodicity=erg_check,
         surrogate_check=s_check_result,
+        window_check=window_check,
+        scan_scatter=scan_scatter,
+        credibility=credibility,
+        surrogate_choice=surrogate_choice,
         pressure_pa=p_path,
         area_fraction=frac_path,
         mu_mean=mu_mean,
@@ -223,7 +329,9 @@ def analyse(
         mu_std_se=mu_std_se,
         lags_m=lags,
         acf=acfs,
-        correlation_length_m=corr,
+        correlation_length_m=np.asarray(corr),
+        correlation_length_se_m=np.asarray(corr_se),
+        zero_crossing_m=zero_crossing,
         frequencies=freqs,
         psd=psd,
         psd_se=psd_se,

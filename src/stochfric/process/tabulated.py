@@ -94,6 +94,9 @@ class TabulatedProcessModel(ProcessModelBase):
     sigma_zeta_rule: SigmaZetaRule = "sigma_mu"
     psd_level: ModelFunction | None = None
     window_length_m: float | None = None
+    #: Why the analysis that made this model was not credible (empty: it was); a model written
+    #: with ``--accept-not-credible`` carries the reasons and every command that reads it warns.
+    not_credible: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         if self.window_length_m is not None:
@@ -202,6 +205,7 @@ class TabulatedProcessModel(ProcessModelBase):
             "sigma_zeta_rule": self.sigma_zeta_rule,
             "psd_level": None if self.psd_level is None else self.psd_level.to_dict(),
             "window_length_m": self.window_length_m,
+            "not_credible": list(self.not_credible),
             **self._dict_tail(),
         }
 
@@ -222,6 +226,7 @@ class TabulatedProcessModel(ProcessModelBase):
             pressure_rule=data.get("pressure_rule", "nearest"),
             variance_rule=data.get("variance_rule", "sigma_mu"),
             sigma_zeta_rule=data.get("sigma_zeta_rule", "sigma_mu"),
+            not_credible=tuple(str(r) for r in data.get("not_credible", ())),
             psd_level=None if level is None else ModelFunction.from_dict(level),
             window_length_m=data.get("window_length_m"),
         )

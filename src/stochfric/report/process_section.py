@@ -54,6 +54,24 @@ def friction_process_section(directory: Path, ch3: Chapter3) -> str:
         f"ensemble</td><td>max |z| = {f(max((abs(v) for v in mu_z), default=math.nan), '.2f')}</td></tr>"
     )
     verdict = "credible" if sc["credible"] else "NOT credible (" + ", ".join(sc["failures"]) + ")"
+    wc = d.get("window_check")
+    if wc is None:
+        window_html = "<p><b>Measured windows:</b> not checked (too few summits for 2 × 2 windows).</p>"
+    else:
+        k = max(range(len(wc["z"])), key=lambda i: abs(wc["z"][i]))
+        window_html = (
+            f"<p><b>Do the surrogates scatter like the measurement?</b> σ of μ over {wc['measured_windows']} "
+            f"disjoint windows of {f(wc['window_size_m'][0] * 1e6, '.3g')} × {f(wc['window_size_m'][1] * 1e6, '.3g')}"
+            f" µm cut from the measured map vs over {wc['surrogate_windows']} such windows of the surrogates; at the "
+            f"worst approach u<sub>{k}</sub>: {f(wc['measured_std'][k], '.3g')} "
+            f"[{f(wc['measured_std_ci95'][k][0], '.3g')}, {f(wc['measured_std_ci95'][k][1], '.3g')}] vs "
+            f"{f(wc['surrogate_std'][k], '.3g')}; max |z| = {f(wc['max_abs_z'], '.2f')} (threshold "
+            f"{f(wc['threshold'], '.2f')}) → <b>{html.escape(str(wc['verdict']))}</b>.</p>"
+        )
+    cr = d["credibility"]
+    gate = ("credible: the model would be written" if cr["credible"] else
+            "NOT credible (" + ", ".join(r["code"] for r in cr["reasons"]) + "): `friction-process` would exit 3 "
+            "and write no model file without --accept-not-credible")
     parts = [
         f"<p><b>Do the surrogates resemble the measured map?</b> Amplitude estimate "
         f"<code>{html.escape(str(sc['amplitude']))}</code> (edge jump of the non-periodic map removed), "
@@ -61,6 +79,8 @@ def friction_process_section(directory: Path, ch3: Chapter3) -> str:
         f"<b>{html.escape(verdict)}</b>.</p>"
         "<table><tr><th></th><th>measured map</th><th>surrogates (mean ± sd)</th><th>z</th></tr>"
         + sc_rows + "</table>",
+        window_html,
+        f"<p><b>Verdict of the gate:</b> {html.escape(gate)}.</p>",
         f"<p>Statistical contact analysis (method §3–§4) of the shipped surface, brake-pad material, "
         f"{cfg.realizations} random-phase realisations, {cfg.long_surfaces} long surfaces × "
         f"{cfg.length_factor} lengths, seed {seed}. Ergodicity (non-overlapping windows along each long "
@@ -69,7 +89,8 @@ def friction_process_section(directory: Path, ch3: Chapter3) -> str:
         f"Model file <code>{html.escape(model_path.relative_to(directory).as_posix())}</code>, statistics "
         f"<code>{html.escape(Path(nc_path).relative_to(directory).as_posix())}</code> "
         "(use with <code>stochfric simulate --model contact --process FILE</code>).</p>",
-        "<table><tr><th>p [MPa]</th><th>E[μ]</th><th>σ_μ</th><th>ℓ_corr [µm]</th><th>E[S] [m]</th></tr>"
+        "<table><tr><th>p [MPa]</th><th>E[μ]</th><th>σ_μ</th><th>ℓ_corr [µm] (integral scale)</th>"
+        "<th>E[S] [m]</th></tr>"
         + rows + "</table>",
         "<p>Model functions f(p) = a p<sup>b</sup> + c (3.21), p in Pa, ± standard errors:</p>"
         "<table><tr><th></th><th>a</th><th>b</th><th>c</th></tr>" + fits + "</table>",

@@ -7,9 +7,10 @@ friction-process model (§3–§4).  The model file and the NetCDF of all statis
 under ``directory/friction_process``.
 
 Settings (recorded in the result): the shipped surface al3d-1, plane detrend, no filter, no
-coarsening, thesis summit rule, brake-pad material (Tables 3.1/3.2), the surface-derived
-default approach range, a_y = 0.0566 × the window length; ``quick``: 30 realisations and 4 long
-surfaces instead of 100 and 10.
+coarsening, thesis summit rule, brake-pad material (Tables 3.1/3.2), random-phase surrogates, the
+approach range σ_S/4 … 3σ_S (``default_approach_m(rule="sigma")``, the thesis's ratio),
+a_y = 0.0566 × the window length; ``quick``: 30 realisations and 4 long surfaces instead of 100
+and 10.
 """
 
 from __future__ import annotations
@@ -62,12 +63,13 @@ def chapter3_analysis(directory: str | Path, *, quick: bool = False, seed: int =
     fs = summits_of(fine, rule="thesis")
     cs = fs if coarse is fine else summits_of(coarse, rule="thesis")
     material = load_material("brake-pad")
-    contact = asperity_contact(coarse, cs, material, None, preparation=prep.to_dict())
+    u = default_approach_m(cs, rule="sigma")  # the thesis's ratio 1:12 in σ_S (reproduction mode)
+    contact = asperity_contact(coarse, cs, material, u, preparation=prep.to_dict())
     cfg = AnalysisConfig(
         realizations=30 if quick else 100, long_surfaces=4 if quick else 10,
         window_shift_points=default_window_shift_points(coarse.nb_grid_pts[1]), seed=seed,
     )  # fmt: skip
-    analysis = analyse(coarse, material, default_approach_m(cs), cfg, name="shipped surface (al3d-1)")
+    analysis = analyse(coarse, material, u, cfg, name="shipped surface (al3d-1)")
     out = Path(directory) / "friction_process"
     out.mkdir(parents=True, exist_ok=True)
     return Chapter3(

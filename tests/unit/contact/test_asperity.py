@@ -101,10 +101,8 @@ def test_contact_result_quantities() -> None:
     mat = get_material("brake-pad")
     res = asperity_contact(s, sm, mat, preparation={"step": 1})
     np.testing.assert_allclose(res.approach_m, default_approach_m(sm))
-    sigma = np.std(sm.heights_m)
-    assert res.approach_m[0] == pytest.approx(sigma / 4)
-    assert res.approach_m[-1] == pytest.approx(3 * sigma)
     assert res.approach_m.size == 12
+    assert res.n_contacts[0] == 20
     np.testing.assert_allclose(res.pressure_pa, res.normal_force_n / 2e-7)
     np.testing.assert_allclose(res.area_fraction, res.contact_area_m2 / 2e-7)
     np.testing.assert_allclose(res.mu, res.contact_area_m2 * 35e6 / res.normal_force_n)
@@ -163,14 +161,54 @@ def test_default_range_reaches_the_bulk_when_the_highest_summit_is_an_outlier() 
     z = sm.heights_m
     sigma = float(np.std(z))
     assert z.max() - z.mean() < 3 * sigma  # Gaussian-like: the 3 σ_S branch
-    np.testing.assert_allclose(default_approach_m(sm), np.linspace(sigma / 4, 3 * sigma, 12))
+    np.testing.assert_allclose(default_approach_m(sm, rule="sigma"), np.linspace(sigma / 4, 3 * sigma, 12))
     h = np.array(s.heights_m)
     i, j = int(sm.i[0]), int(sm.j[0])
     h[i, j] += 30 * sigma  # one summit 30 σ_S up (a dust grain)
     sm2 = summits_of(Surface(heights_m=h, physical_size_m=s.physical_size_m))
     z2 = sm2.heights_m
-    u = default_approach_m(sm2)
+    u = default_approach_m(sm2, rule="sigma")
     assert u[-1] == pytest.approx(z2.max() - z2.mean()) and u[-1] > 3 * float(np.std(z2))
     assert u[0] == pytest.approx(u[-1] / 12)
-    res = asperity_contact(Surface(heights_m=h, physical_size_m=s.physical_size_m), sm2, get_material("dc04"))
+    res = asperity_contact(Surface(heights_m=h, physical_size_m=s.physical_size_m), sm2, get_material("dc04"),
+                           approach_m=u)
     assert res.n_contacts[0] == 1 and res.n_contacts[-1] >= 10
+
+
+def _area_fraction(sm, u):  # type: ignore[no-untyped-def]
+    area, _force, count = asperity_sums(sm.heights_m, sm.radius_m, u, e_star_pa=1e9)
+    return area / sm.area_m2, count
+
+
+def test_contacts_rule_spans_twenty_contacts_to_the_non_interaction_limit() -> None:
+    """The default rule: from 20 touching summits to A_c/A_nom = 0.1 or half the summits touching."""
+    sm = summits_of(Surface(heights_m=np.random.default_rng(3).normal(size=(120, 150)) * 1e-6,
+                            physical_size_m=(1.2e-3, 1.5e-3)))
+    u = default_approach_m(sm)
+    frac, count = _area_fraction(sm, u)
+    assert count[0] == 20
+    half = count[-1] >= (sm.count - 1) // 2 and count[-1] <= sm.count // 2 + 1
+    assert frac[-1] == pytest.approx(0.1, rel=1e-9) or (half and frac[-1] < 0.1)
+    assert np.all(frac <= 0.1 * (1 + 1e-9)) and np.all(np.diff(u) > 0)
+    for fraction in (0.002, 0.01):  # a smaller limit ends the range where the area reaches it
+        frac_f, _ = _area_fraction(sm, default_approach_m(sm, max_area_fraction=fraction))
+        assert frac_f[-1] == pytest.approx(fraction, rel=1e-9)
+
+
+def test_contacts_rule_is_shifted_but_not_widened_by_a_spike() -> None:
+    s = _surface(4)
+    sm = summits_of(s)
+    u = default_approach_m(sm, max_area_fraction=0.02)
+    h = np.array(s.heights_m)
+    k = int(np.argmax(sm.heights_m))
+    h[int(sm.i[k]), int(sm.j[k])] += 30 * float(np.std(sm.heights_m))
+    sm2 = summits_of(Surface(heights_m=h, physical_size_m=s.physical_size_m))
+    u2 = default_approach_m(sm2, max_area_fraction=0.02)
+    shift = float(sm2.heights_m.max() - sm.heights_m.max())
+    # the spike's summit is summit k raised: every depth below it grows by the same shift
+    np.testing.assert_allclose(u2, u + shift, rtol=1e-9)
+
+
+def test_unknown_approach_rule_is_refused() -> None:
+    with pytest.raises(ContactError, match="approach rule"):
+        default_approach_m(summits_of(_surface()), rule="nope")

@@ -180,7 +180,8 @@ def test_every_process_model_drives_the_contact_oscillator(kind: str) -> None:
         fine, _ = prepare(read_surface(default_surface_path()))
         cfg = AnalysisConfig(realizations=3, long_surfaces=3, length_factor=3, window_shift_points=37, seed=1,
                              check_realizations=5)
-        model = analyse(fine, get_material("brake-pad"), default_approach_m(summits_of(fine), num=5), cfg).model
+        u = default_approach_m(summits_of(fine), num=5, rule="sigma")
+        model = analyse(fine, get_material("brake-pad"), u, cfg).model
         model = dataclasses.replace(model, length=0.05, dx=0.05 / round(0.05 / model.dx))  # type: ignore[arg-type]
     params = PhysicalParameters(
         mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed, normal_force=5600.0,

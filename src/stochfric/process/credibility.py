@@ -1,0 +1,131 @@
+"""Is a statistical contact analysis credible enough to write a friction-process model? (method §3–§4)
+
+The gate of ``stochfric friction-process``: an analysis is *not credible* when any of these holds,
+each a coded reason (:class:`~stochfric.contact.validity.ValidityWarning`):
+
+* ``surrogate-check-failed`` — the measured map lies outside its own surrogate ensemble
+  (summit count, β̄, σ_S or μ(u), |z| ≥ 3; :func:`~stochfric.process.checks.surrogate_check`);
+* ``window-check-failed`` — μ scatters across disjoint windows of the measurement differently from
+  the same windows of the surrogates (:func:`~stochfric.process.checks.window_scatter_check`);
+* ``mu-out-of-range`` — E[μ] (path or ensemble) outside :data:`MU_PHYSICAL_RANGE` at an
+  approach used by the fits: 0.03 … 1.5 spans dry metal, polymer and brake-pad pairings
+  (boundary-lubricated 0.03 to clean-metal adhesion 1.5); outside it Bowden–Tabor with this
+  pairing is not a description of this surface;
+* ``area-above-nominal`` — a mean contact area above the nominal area (A_c/A_nom > 1);
+* ``fit-too-few-points`` — fewer than :data:`MIN_FIT_POINTS` points inside the non-interaction
+  range for the fits a p^b + c (three parameters need at least four points).
+
+The command then exits with status 3, prints the reasons as coded warnings and writes no model
+file unless the user accepts it (``--accept-not-credible``); a model written that way carries
+the reasons (``not_credible``) and every command that reads it warns.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from stochfric.contact.validity import ValidityWarning
+
+__all__ = ["MIN_FIT_POINTS", "MU_PHYSICAL_RANGE", "NOT_CREDIBLE_EXIT", "Credibility", "assess_credibility"]
+
+#: Range of a physical mean friction coefficient of a dry contact (module doc).
+MU_PHYSICAL_RANGE = (0.03, 1.5)
+#: Fewest points inside the non-interaction range for a fit of a p^b + c.
+MIN_FIT_POINTS = 4
+#: Exit status of ``friction-process`` for a result that is not credible (2 is bad input).
+NOT_CREDIBLE_EXIT = 3
+
+
+@dataclass(frozen=True)
+class Credibility:
+    """The verdict of :func:`assess_credibility`: the reasons against (empty: credible)."""
+
+    reasons: tuple[ValidityWarning, ...]
+
+    @property
+    def credible(self) -> bool:
+        """True when nothing speaks against the analysis."""
+        return not self.reasons
+
+    def codes(self) -> list[str]:
+        """The reasons' codes."""
+        return [r.code for r in self.reasons]
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary."""
+        return {"credible": self.credible, "reasons": [r.to_dict() for r in self.reasons]}
+
+
+def _where(u: npt.NDArray[np.float64], mask: npt.NDArray[np.bool_]) -> str:
+    idx = np.flatnonzero(mask)
+    return f"u = {u[idx[0]] * 1e6:.4g} … {u[idx[-1]] * 1e6:.4g} µm" if idx.size > 1 else f"u = {u[idx[0]] * 1e6:.4g} µm"
+
+
+def assess_credibility(
+    *,
+    name: str,
+    approach_m: npt.ArrayLike,
+    surrogate_ok: bool,
+    surrogate_failures: list[str],
+    window_ok: bool | None,
+    window_max_z: float | None,
+    mu_means: list[npt.ArrayLike],
+    area_fractions: list[npt.ArrayLike],
+    fit_mask: npt.ArrayLike,
+    valid_fit_points: int,
+) -> Credibility:
+    """Collect the reasons of the module doc.  ``window_ok = None``: the window check could not be
+    made (too few summits for 2 × 2 windows); that is reported by the analysis, not a reason here.
+    ``mu_means`` and ``area_fractions``: E[μ](u) and mean A_c/A_nom(u) of the path and the ensemble;
+    μ is checked at the approaches of ``fit_mask``, the area at every approach."""
+    u = np.asarray(approach_m, dtype=np.float64)
+    used = np.asarray(fit_mask, dtype=bool)
+    out: list[ValidityWarning] = []
+    if not surrogate_ok:
+        out.append(ValidityWarning(
+            "surrogate-check-failed",
+            f"{name}: the measured map lies outside its surrogate ensemble (|z| >= 3) for "
+            f"{', '.join(surrogate_failures)}: the surrogates do not resemble this surface; try another "
+            "--surrogate (quilt keeps local non-Gaussian structure) or check the preparation",
+        ))  # fmt: skip
+    if window_ok is False:
+        out.append(ValidityWarning(
+            "window-check-failed",
+            f"{name}: mu scatters across disjoint windows of the measurement unlike the same windows of the "
+            f"surrogates (max |z| {window_max_z:.2f}); the surrogates do not carry the measured scatter",
+        ))  # fmt: skip
+    lo, hi = MU_PHYSICAL_RANGE
+    for label, mu in zip(("path", "ensemble"), mu_means, strict=False):
+        m = np.asarray(mu, dtype=np.float64)
+        bad = used & (~np.isfinite(m) | (m < lo) | (m > hi))
+        if np.any(bad):
+            out.append(ValidityWarning(
+                "mu-out-of-range",
+                f"{name}: E[mu] of the {label} statistics is {np.nanmin(m[bad]):.3g} … {np.nanmax(m[bad]):.3g} at "
+                f"{_where(u, bad)}, outside the physical range {lo:g} … {hi:g}: this pairing (E*, tau_max) does not "
+                "belong to this surface, or the preparation left artefacts",
+                tuple(int(i) for i in np.flatnonzero(bad)),
+            ))  # fmt: skip
+            break
+    for label, frac in zip(("path", "ensemble"), area_fractions, strict=False):
+        f = np.asarray(frac, dtype=np.float64)
+        bad = f > 1.0
+        if np.any(bad):
+            out.append(ValidityWarning(
+                "area-above-nominal",
+                f"{name}: the mean contact area of the {label} statistics exceeds the nominal area (max "
+                f"{np.nanmax(f):.3g}) at {_where(u, bad)}; use smaller approaches",
+                tuple(int(i) for i in np.flatnonzero(bad)),
+            ))  # fmt: skip
+            break
+    if valid_fit_points < MIN_FIT_POINTS:
+        out.append(ValidityWarning(
+            "fit-too-few-points",
+            f"{name}: only {valid_fit_points} approach(es) lie inside the non-interaction range; the fits a p^b + c "
+            f"need at least {MIN_FIT_POINTS}: choose approaches with A_c/A_nom <= the --max-area-fraction",
+        ))  # fmt: skip
+    return Credibility(tuple(out))

@@ -1,0 +1,69 @@
+"""Realisations on several cores: the same numbers as serially, in the same order.
+
+Every realisation (or long surface) of the statistical contact analysis is a pure function of its
+index and its own child seed stream, so they can be computed in any order and on any number of
+processes; :func:`map_indexed` returns them in index order.  Worker processes are forked (Linux),
+so the large inputs (the measured maps) are inherited, not pickled per task; only the small
+results travel back.  Without ``fork`` (or with one worker) the work runs serially.
+"""
+
+from __future__ import annotations
+
+import multiprocessing
+import os
+from collections.abc import Callable
+from concurrent.futures import ProcessPoolExecutor
+from typing import Any, TypeVar
+
+__all__ = ["default_workers", "map_indexed"]
+
+T = TypeVar("T")
+
+#: The function of the running map, inherited by the forked workers.
+_JOB: Callable[[int], Any] | None = None
+
+
+def default_workers() -> int:
+    """Cores this process may use (the affinity mask where the platform has one)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def _call(index: int) -> Any:
+    assert _JOB is not None
+    return index, _JOB(index)
+
+
+def map_indexed(
+    job: Callable[[int], T], count: int, *, workers: int | None = None, done: Callable[[int], None] | None = None,
+) -> list[T]:
+    """``[job(0), …, job(count − 1)]`` on ``workers`` processes (default: all cores).
+
+    ``done(k)`` is called in the parent after each result with the number finished so far.
+    """
+    global _JOB
+    n = default_workers() if workers is None else int(workers)
+    if n < 1:
+        raise ValueError(f"workers must be >= 1, got {workers!r}")
+    if n == 1 or count < 2 or "fork" not in multiprocessing.get_all_start_methods():
+        out = []
+        for k in range(count):
+            out.append(job(k))
+            if done is not None:
+                done(k + 1)
+        return out
+    results: list[Any] = [None] * count
+    _JOB = job
+    try:
+        with ProcessPoolExecutor(max_workers=min(n, count), mp_context=multiprocessing.get_context("fork")) as pool:
+            finished = 0
+            for index, value in pool.map(_call, range(count)):
+                results[index] = value
+                finished += 1
+                if done is not None:
+                    done(finished)
+    finally:
+        _JOB = None
+    return results
