@@ -114,3 +114,26 @@ def test_window_tiles_is_checked(app: typer.Typer, value: str) -> None:
     res = CliRunner().invoke(app, ["friction-process", "--material", "brake-pad", *SMALL, "--window-tiles", value])
     assert res.exit_code == 2, res.output
     assert "Traceback" not in res.output
+
+
+def test_iaaft_cost_is_said_before_the_work(app: typer.Typer) -> None:
+    res = CliRunner().invoke(app, ["friction-process", "--material", "brake-pad", "--realizations", "3",
+                                   "--long-surfaces", "3", "--length-factor", "2", "--surrogate", "iaaft",
+                                   "--accept-not-credible", "--seed", "1"])
+    assert res.exit_code == 0, res.output
+    assert "note: IAAFT surrogates iterate FFTs" in res.stderr and " s for 3 maps and 3 long surfaces" in res.stderr
+
+
+@pytest.mark.parametrize("value", ["0", "-1", "x"])
+def test_workers_is_checked(app: typer.Typer, value: str) -> None:
+    res = CliRunner().invoke(app, ["friction-process", "--material", "brake-pad", *SMALL, "--workers", value])
+    assert res.exit_code == 2 and "Traceback" not in res.output
+
+
+@pytest.mark.parametrize("rule", ["contacts", "sigma"])
+def test_approach_rules(app: typer.Typer, rule: str) -> None:
+    res = CliRunner().invoke(app, ["friction-process", "--material", "brake-pad", *SMALL, "--approach-rule", rule,
+                                   "--accept-not-credible", "--json"])
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.stdout)
+    assert data["approach_rule"] == rule and len(data["approach_m"]) == 12

@@ -383,6 +383,16 @@ def _print(payload: dict[str, Any], analysis: Any) -> None:
             f"vs {wc['surrogate_std'][k]:.3g}; max |z| {wc['max_abs_z']:.2f} (threshold {wc['threshold']:.2f}) → "
             f"{wc['verdict']}"
         )
+    cc = payload["copy_check"]
+    if cc:
+        piece = cc["largest_piece_fraction"]
+        typer.echo(
+            f"new surfaces? {cc['surrogates']} surrogates: largest NCC with the map {cc['max_ncc_with_map']:.2f}, "
+            f"between surrogates {_num(cc['max_ncc_between_surrogates'], '.2f')} (limit {cc['ncc_limit']:g})"
+            + (f", largest verbatim piece {100 * piece:.2g} % of the map (limit {100 * cc['piece_limit']:g} %)"
+               if piece else "")
+            + f" → {'COPY' if cc['is_copy'] else 'new'}"
+        )
     ss = payload["scan_scatter"]
     if ss["scans"] > 1:
         typer.echo(f"scans     {ss['scans']} pooled; sd of μ(u): between scans "

@@ -62,6 +62,8 @@ class StatisticalContactAnalysis:
     credibility: Credibility
     #: The surrogate method used and why (``"auto"`` resolved by the map, or the user's choice).
     surrogate_choice: str = ""
+    #: Overlap of the first surrogates with the map and each other (:func:`~stochfric.process.checks.copy_check`).
+    copy_check: dict[str, Any] = field(default_factory=dict)
     # path statistics (c)
     pressure_pa: FloatArray
     area_fraction: FloatArray
@@ -142,6 +144,7 @@ class StatisticalContactAnalysis:
             "scan_scatter": self.scan_scatter,
             "credibility": self.credibility.to_dict(),
             "surrogate_choice": self.surrogate_choice,
+            "copy_check": self.copy_check,
             "sigma_zeta": self.sigma_zeta_table(),
             "process_check": self.process_check.to_dict(),
             "model": self.model.to_dict(),
@@ -214,6 +217,7 @@ class StatisticalContactAnalysis:
             "scan_scatter": json.dumps(self.scan_scatter, sort_keys=True),
             "credibility": json.dumps(self.credibility.to_dict(), sort_keys=True),
             "surrogate_choice": self.surrogate_choice,
+            "copy_check": json.dumps(self.copy_check, sort_keys=True),
             "contact_fraction_fit": json.dumps(self.contact_fraction_fit, sort_keys=True),
             "window_shift_m": self.path.window_shift_m,
             "window_length_m": self.path.window_length_m,

@@ -26,9 +26,11 @@ from stochfric.process.model_base import FrictionProcessModel
 from stochfric.process.spectral import one_sided_psd
 from stochfric.random import SeedLike, as_seed_sequence, spawn_generators
 from stochfric.surface.io import Surface
+from stochfric.surface.quilting import COPY_NCC_LIMIT, COPY_PIECE_LIMIT, copy_metrics, quilt_heights
 from stochfric.surface.summits import find_summits
 
 __all__ = [
+    "COPY_CHECK_SURROGATES",
     "ERGODICITY_ALPHA",
     "SURROGATE_Z_LIMIT",
     "WINDOW_CHECK_ALPHA",
@@ -39,6 +41,7 @@ __all__ = [
     "SurrogateCheck",
     "WindowScatterCheck",
     "check_generated_process",
+    "copy_check",
     "ergodicity_check",
     "surrogate_check",
     "window_scatter_check",
@@ -265,6 +268,48 @@ def surrogate_check(
         amplitude=str(ensemble.info.get("amplitude", "")),
         per_scan_z=tuple({n: float(v) for n, v in zip(names, zz, strict=True)} for zz in zs),
     )
+
+
+#: Surrogates whose overlap with the map (and with each other) is measured by :func:`copy_check`.
+COPY_CHECK_SURROGATES = 4
+
+
+def copy_check(
+    scans: Sequence[Surface], options: Any, seeds: Sequence[np.random.SeedSequence], *,
+    count: int = COPY_CHECK_SURROGATES,
+) -> dict[str, Any]:
+    """Are the surrogates new surfaces?  The first ``count`` realisations are made again from their
+    own seed streams (``seeds[r]``, scan ``r mod S``, the same numbers as in the ensemble) and
+    compared with their scan and with each other (:func:`stochfric.surface.quilting.copy_metrics`:
+    the largest normalised cross-correlation over all shifts and, for quilts, the largest verbatim
+    piece of the map).  ``is_copy`` when any exceeds its limit."""
+    n = min(int(count), len(seeds))
+    maps, rows = [], []
+    for r in range(n):
+        scan = scans[r % len(scans)]
+        gen = np.random.Generator(np.random.PCG64(seeds[r]))
+        if options.method == "quilt":
+            res = quilt_heights(scan.heights_m, gen)
+            m = copy_metrics(res.heights, scan.heights_m, source=res)
+            maps.append(res.heights)
+        else:
+            h = options.similar(scan, gen).heights_m
+            m = copy_metrics(h, scan.heights_m)
+            maps.append(h)
+        rows.append(m)
+    pairs = [copy_metrics(maps[a], maps[a + 1]) for a in range(0, n - 1, 2)]
+    return {
+        "surrogates": n,
+        "max_ncc_with_map": max((m.max_ncc for m in rows), default=None),
+        "largest_piece_fraction": max((m.largest_piece_fraction for m in rows), default=None),
+        "max_ncc_between_surrogates": max((m.max_ncc for m in pairs), default=None),
+        "ncc_limit": COPY_NCC_LIMIT,
+        "piece_limit": COPY_PIECE_LIMIT,
+        "is_copy": any(m.is_copy for m in rows) or any(m.is_copy for m in pairs),
+        "rule": "first realisations made again from their seeds; largest NCC over all shifts (>= 1/4 overlap) with "
+        "the map and between pairs of surrogates, largest verbatim piece of the map (quilt); a copy above the "
+        "limits",
+    }
 
 
 #: Family-wise false-alarm probability of the measured-window check (two-sided, Bonferroni over U).

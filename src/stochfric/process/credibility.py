@@ -7,6 +7,8 @@ each a coded reason (:class:`~stochfric.contact.validity.ValidityWarning`):
   (summit count, β̄, σ_S or μ(u), |z| ≥ 3; :func:`~stochfric.process.checks.surrogate_check`);
 * ``window-check-failed`` — μ scatters across disjoint windows of the measurement differently from
   the same windows of the surrogates (:func:`~stochfric.process.checks.window_scatter_check`);
+* ``surrogate-copies-map`` — a surrogate reproduces the map or another surrogate
+  (:func:`~stochfric.process.checks.copy_check`);
 * ``mu-out-of-range`` — E[μ] (path or ensemble) outside :data:`MU_PHYSICAL_RANGE` at an
   approach used by the fits: 0.03 … 1.5 spans dry metal, polymer and brake-pad pairings
   (boundary-lubricated 0.03 to clean-metal adhesion 1.5); outside it Bowden–Tabor with this
@@ -73,6 +75,7 @@ def assess_credibility(
     surrogate_failures: list[str],
     window_ok: bool | None,
     window_max_z: float | None,
+    copies: dict[str, Any] | None = None,
     mu_means: list[npt.ArrayLike],
     area_fractions: list[npt.ArrayLike],
     fit_mask: npt.ArrayLike,
@@ -97,6 +100,13 @@ def assess_credibility(
             "window-check-failed",
             f"{name}: mu scatters across disjoint windows of the measurement unlike the same windows of the "
             f"surrogates (max |z| {window_max_z:.2f}); the surrogates do not carry the measured scatter",
+        ))  # fmt: skip
+    if copies and copies.get("is_copy"):
+        out.append(ValidityWarning(
+            "surrogate-copies-map",
+            f"{name}: a surrogate reproduces the map (largest NCC with it {copies['max_ncc_with_map']:.3g}, limit "
+            f"{copies['ncc_limit']:g}; largest verbatim piece {copies['largest_piece_fraction']:.3g} of the map, limit "
+            f"{copies['piece_limit']:g}): the ensemble is not one of new surfaces",
         ))  # fmt: skip
     lo, hi = MU_PHYSICAL_RANGE
     for label, mu in zip(("path", "ensemble"), mu_means, strict=False):

@@ -7,7 +7,8 @@ window index last (K long surfaces × W windows per approach).
   that the records share one normalisation;
 * (3.18) R(k) = (1/(W − k)) Σ_{i<W−k} μ̄_i μ̄_{i+k} (the thesis's 1/n with n the number of pairs
   at lag k), lags k = 0..⌊W/2⌋, averaged over the records;
-* correlation length ℓ_corr = first zero crossing of the averaged R, by linear interpolation
+* integral correlation length ℓ_int = S(0)/(4σ²) per record (:func:`integral_correlation_length`),
+  the analysis's ℓ_corr; the thesis's first zero crossing of the averaged R, by linear interpolation
   between the last positive and the first non-positive lag (thesis §3.2.4, Fig. 3.19), in m;
   NaN if R stays positive;
 * (3.19)/(3.20) μ̂ = μ − mean → one-sided PSD in the convention of method §0
@@ -31,6 +32,7 @@ __all__ = [
     "LOW_FREQUENCY_LIMIT",
     "autocorrelation",
     "correlation_length",
+    "integral_correlation_length",
     "mean_psd",
     "normalise",
     "psd_level",
@@ -133,3 +135,20 @@ def psd_level(frequencies: npt.ArrayLike, psd: npt.ArrayLike, window_length_m: f
     if not np.any(keep):
         keep = pos & (f == f[pos].min())
     return float(np.mean(s[keep] / window_response(f[keep], ell)))
+
+
+def integral_correlation_length(record: npt.ArrayLike, spacing_m: float, window_length_m: float) -> float:
+    """Integral correlation length ℓ_int = ∫₀^∞ ρ(y) dy = S(0)/(4σ²) of one record μ(y) [m].
+
+    S(0) is the low-frequency level of the record's one-sided PSD (:func:`psd_level`, window
+    response divided out; the one-sided S(0) is 4σ²∫₀^∞ρ dy), σ² its sample variance.  It is an
+    average over the whole ACF, so it varies smoothly between realisations, unlike the first zero
+    crossing (:func:`correlation_length`); for a moving average over L points of spacing a it is
+    aL/2.  NaN for a constant record.
+    """
+    r = np.asarray(record, dtype=np.float64)
+    var = float(r.var(ddof=1)) if r.size > 1 else 0.0
+    if not var > 0.0:
+        return math.nan
+    f, s = one_sided_psd(r, spacing_m)
+    return psd_level(f, s, window_length_m) / (4.0 * var)

@@ -51,6 +51,7 @@ from stochfric.process.analysis_result import StatisticalContactAnalysis
 from stochfric.process.checks import (
     WINDOW_MIN_SUMMITS,
     check_generated_process,
+    copy_check,
     ergodicity_check,
     surrogate_check,
     window_scatter_check,
@@ -61,7 +62,13 @@ from stochfric.process.ensemble import ensemble_contact, path_contact, tile_cont
 from stochfric.process.estimators import linear_fit, mean_and_std_errors, mu_pdfs
 from stochfric.process.fit import fit_mask, fit_model_function
 from stochfric.process.memory import check_memory
-from stochfric.process.spectra import autocorrelation, correlation_length, mean_psd, psd_level
+from stochfric.process.spectra import (
+    autocorrelation,
+    correlation_length,
+    integral_correlation_length,
+    mean_psd,
+    psd_level,
+)
 from stochfric.process.spectral import one_sided_psd
 from stochfric.process.tabulated import TabulatedProcessModel
 from stochfric.progress import StagedProgress
@@ -199,6 +206,7 @@ def analyse(
             f"the map has {min(measured_counts)}: the scatter across windows could not be checked"
         )
     scan_scatter = _scan_scatter(scan_mu, measured_tile_mu, len(scans), ens.mu)
+    copies = copy_check(scans, options, spawn_seed_sequences(s_ens, cfg.realizations))
 
     # --- path statistics (c) --------------------------------------------------------------
     mu_p = path.samples.mu  # (K, W, U)
@@ -228,10 +236,8 @@ def analyse(
             psd_level(freqs, one_sided_psd(mu_p[j, :, k], a_y)[1], path.window_length_m) for j in range(k_count)
         ]
         level_se.append(float(np.std(per_surface, ddof=1) / root_k) if k_count > 1 else math.nan)
-        # integral scale ℓ_int = S(0)/(4σ²) per surface (∫₀^∞ ρ dy; the one-sided S(0) is 4σ²∫₀^∞ ρ dy)
-        per_var = mu_p[:, :, k].var(axis=1, ddof=1)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            per_len = np.asarray(per_surface) / (4.0 * per_var)
+        per_len = np.array([integral_correlation_length(mu_p[j, :, k], a_y, path.window_length_m)
+                            for j in range(k_count)])
         ok = np.isfinite(per_len)
         corr.append(float(np.mean(per_len[ok])) if np.any(ok) else math.nan)
         corr_se.append(float(np.std(per_len[ok], ddof=1) / math.sqrt(int(ok.sum()))) if ok.sum() > 1 else math.nan)
@@ -286,7 +292,7 @@ def analyse(
         name=name or "measured surface", approach_m=u, surrogate_ok=s_check_result.credible,
         surrogate_failures=s_check_result.failures(),
         window_ok=None if window_check is None else window_check.consistent,
-        window_max_z=None if window_check is None else window_check.max_abs_z,
+        window_max_z=None if window_check is None else window_check.max_abs_z, copies=copies,
         mu_means=[mu_mean, e_mean], area_fractions=[frac_path, e_frac], fit_mask=mask, valid_fit_points=valid_points,
     )  # fmt: skip
     if not credibility.credible:
@@ -321,6 +327,7 @@ def analyse(
         scan_scatter=scan_scatter,
         credibility=credibility,
         surrogate_choice=surrogate_choice,
+        copy_check=copies,
         pressure_pa=p_path,
         area_fraction=frac_path,
         mu_mean=mu_mean,

@@ -68,6 +68,15 @@ def friction_process_section(directory: Path, ch3: Chapter3) -> str:
             f"{f(wc['surrogate_std'][k], '.3g')}; max |z| = {f(wc['max_abs_z'], '.2f')} (threshold "
             f"{f(wc['threshold'], '.2f')}) → <b>{html.escape(str(wc['verdict']))}</b>.</p>"
         )
+    cc = d.get("copy_check") or {}
+    if cc:
+        window_html += (
+            f"<p><b>Are the surrogates new surfaces?</b> Largest normalised cross-correlation over all shifts of "
+            f"{cc['surrogates']} surrogates with the map: {f(cc['max_ncc_with_map'], '.2f')}, between surrogates: "
+            f"{f(cc['max_ncc_between_surrogates'], '.2f')} (limit {f(cc['ncc_limit'], 'g')}); largest verbatim piece "
+            f"of the map: {f(100 * (cc['largest_piece_fraction'] or 0.0), '.2g')} % (limit "
+            f"{f(100 * cc['piece_limit'], 'g')} %) → {'a COPY' if cc['is_copy'] else 'new surfaces'}.</p>"
+        )
     cr = d["credibility"]
     gate = ("credible: the model would be written" if cr["credible"] else
             "NOT credible (" + ", ".join(r["code"] for r in cr["reasons"]) + "): `friction-process` would exit 3 "

@@ -7,7 +7,14 @@ import pytest
 
 from stochfric.process.checks import ergodicity_check
 from stochfric.process.estimators import linear_fit, mean_and_std_errors
-from stochfric.process.spectra import autocorrelation, correlation_length, mean_psd, normalise, psd_level
+from stochfric.process.spectra import (
+    autocorrelation,
+    correlation_length,
+    integral_correlation_length,
+    mean_psd,
+    normalise,
+    psd_level,
+)
 
 
 def test_normalise_and_acf_of_white_noise() -> None:
@@ -31,6 +38,21 @@ def test_correlation_length_of_a_moving_average() -> None:
     r = autocorrelation(mu, max_lag=20)
     np.testing.assert_allclose(r[:9], 1.0 - np.arange(9) / length, atol=0.03)
     assert correlation_length(r, 2.5e-6) == pytest.approx(length * 2.5e-6, rel=0.05)
+
+
+def test_integral_correlation_length_of_a_moving_average_is_stable() -> None:
+    """ℓ_int = aL/2 for a moving sum of L white values; its scatter between records is a few per cent,
+    the first zero crossing of each record's own ACF scatters several times more."""
+    rng = np.random.default_rng(4)
+    length, a = 8, 2.5e-6
+    w = rng.standard_normal((40, 4000 + length))
+    mu = np.stack([np.convolve(row, np.ones(length), mode="valid")[:4000] for row in w])
+    ell = np.array([integral_correlation_length(r, a, length * a) for r in mu])
+    assert ell.mean() == pytest.approx(length * a / 2, rel=0.05)
+    zero = np.array([correlation_length(autocorrelation(r[None, :], max_lag=60), a) for r in mu])
+    assert ell.std() / ell.mean() < 0.1
+    assert ell.std() / ell.mean() < 0.5 * np.nanstd(zero) / np.nanmean(zero)
+    assert np.isnan(integral_correlation_length(np.ones(10), a, a))
 
 
 def test_correlation_length_interpolates_and_reports_none() -> None:
