@@ -262,7 +262,7 @@ UnitOpt = Annotated[
 def surface_options(
     median_radius: MedianOpt = 0,
     step: StepOpt = 1,
-    detrend: DetrendOpt = "plane",
+    detrend: DetrendOpt = "auto",
     fill_undefined: FillOpt = False,
     summit_rule: RuleOpt = SummitRuleChoice.thesis,
     size_um: SizeOpt = None,

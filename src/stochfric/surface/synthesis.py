@@ -251,7 +251,7 @@ def longer_surface(
     elif method == "quilt":
         from stochfric.surface.quilting import quilt_heights  # quilting imports this module
 
-        h = quilt_heights(z, gen, factor=factor).heights
+        h = quilt_heights(z, gen, factor=factor, sources=False).heights
     else:
         raise SurfaceError(f"unknown surrogate method {method!r}; use one of {', '.join(SURROGATE_METHODS)}")
     lx, ly = surface.physical_size_m

@@ -34,7 +34,7 @@ def _field(shape: tuple[int, int], corr: float, seed: int = 0) -> Surface:
 
 def test_auto_quilts_a_map_with_many_summits_and_not_a_small_one() -> None:
     cfg = AnalysisConfig(surrogate="auto")
-    big = _field((240, 240), 1.0)
+    big = _field((320, 320), 1.0)
     opts, why = cfg.surrogate_for([big.heights_m])
     assert opts.method == "quilt" and why.startswith("quilt (auto:")
     shipped = prepare(read_surface(default_surface_path()))[1]  # 226 summits on 200 × 296 points
@@ -61,7 +61,7 @@ def test_a_surrogate_that_is_the_map_is_a_copy_and_not_credible() -> None:
     assert copies["is_copy"] and copies["max_ncc_with_map"] == pytest.approx(1.0)
     fresh = copy_check([s], SurrogateOptions(method="phase"), seeds)
     assert not fresh["is_copy"] and fresh["max_ncc_with_map"] < 0.9
-    quilt = copy_check([_field((240, 240), 1.0)], SurrogateOptions(method="quilt"), seeds)
+    quilt = copy_check([_field((320, 320), 1.0)], SurrogateOptions(method="quilt"), seeds)
     assert not quilt["is_copy"] and 0.0 < quilt["largest_piece_fraction"] < 0.1
     u = np.linspace(1e-7, 1e-6, 4)
     verdict = assess_credibility(

@@ -13,6 +13,8 @@ from stochfric.surface.quilting import (
     QuiltParameters,
     copy_metrics,
     largest_verbatim_piece,
+    low_band,
+    max_patch,
     quilt_heights,
     quilt_parameters,
     screened_poisson,
@@ -125,3 +127,51 @@ def test_bad_sizes() -> None:
         quilt_heights(_field(), 1, factor=0)
     with pytest.raises(SurfaceError):
         quilt_heights(np.full((50, 50), np.nan), 1)
+
+
+def test_low_band_has_the_maps_low_pass_power() -> None:
+    """Random-sign DCT low band: the map's low-pass variance exactly (factor 1), the mean kept,
+    about the same variance on a longer grid, deterministic given the generator."""
+    z = _field(120, 150, corr=6.0) + 3.0
+    lam = 40.0
+    from scipy import fft as sfft
+
+    from stochfric.surface.quilting import _dct_wavenumbers, _split_gain
+
+    coef = sfft.dctn(z - z.mean(), norm="ortho") * _split_gain(_dct_wavenumbers(*z.shape), lam)
+    target = float(np.sum(coef**2)) / z.size
+    a = low_band(z, lam, 5)
+    assert a.shape == z.shape
+    assert a.mean() == pytest.approx(z.mean(), abs=1e-12)
+    assert a.var() == pytest.approx(target, rel=1e-6)
+    assert not np.allclose(a, low_band(z, lam, 6))
+    np.testing.assert_array_equal(a, low_band(z, lam, 5))
+    long = low_band(z, lam, 7, factor=3)
+    assert long.shape == (120, 450)
+    assert long.var() == pytest.approx(target, rel=0.02)
+
+
+def test_max_patch_keeps_a_piece_below_the_copy_limit() -> None:
+    assert max_patch(650, 650) == 205  # 1/3 would be 216: 216² > 10 % of the map
+    assert max_patch(960, 600) == 200
+    for nx, ny in ((100, 100), (768, 576), (1700, 1700), (300, 900)):
+        p = max_patch(nx, ny)
+        assert p * p < 0.1 * nx * ny and p <= min(nx, ny) / 3
+
+
+def test_fused_seam_repair_equals_the_two_step_form_bit_for_bit() -> None:
+    """quilt_heights builds κ² hard − div g point by point (no gradient arrays, for memory); it must equal
+    source_gradients + screened_poisson exactly."""
+    from stochfric.surface.quilting import _seam_rhs, _solve_screened, screened_poisson, source_gradients
+
+    rng = np.random.default_rng(8)
+    z = rng.standard_normal((40, 50))
+    hard = rng.standard_normal((33, 70))
+    si = rng.integers(0, 40, size=hard.shape).astype(np.int32)
+    sj = rng.integers(0, 50, size=hard.shape).astype(np.int32)
+    rot = rng.integers(0, 2, size=hard.shape).astype(np.int8)
+    gx, gy = source_gradients(z, si, sj, rot)
+    two_step = screened_poisson(hard, gx, gy, 7.0)
+    kappa2 = 1.0 / 49.0
+    fused = _solve_screened(_seam_rhs(z, si, sj, rot, hard, kappa2), kappa2)
+    assert np.array_equal(two_step, fused)
