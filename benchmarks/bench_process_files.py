@@ -11,7 +11,9 @@ Cases (default settings: 100 realisations, 10 long surfaces × 10 lengths, 12 ap
   5.3 × 5.3 mm (Hurst 0.8, Sq 0.5 µm), written to ``.npy`` and read through SurfaceTopography;
 * ``files``  — all seven shared files (undefined points filled).
 
-Targets (issue 9): 1700², 100 realisations < 3 min on 2 cores with peak RSS < 4 GiB.
+Targets (issues 9, 18): 1700², 100 realisations < 3 min on 2 cores with peak RSS < 4 GiB (the peak of
+the main process and of its worker processes, each measured); plu-1 < 30 s.  Exit status 3 (the
+gate: not credible) is a finished run.
 
 Run:  python benchmarks/bench_process_files.py [plu] [thesis] [files]
 """
@@ -23,10 +25,12 @@ import os
 import subprocess
 import sys
 import tempfile
+import threading
 import time
 from pathlib import Path
 
 import numpy as np
+import psutil
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "data" / "topographies"
 FILES = {
@@ -50,27 +54,51 @@ def thesis_size_map(path: Path, n: int = 1700, seed: int = 1700) -> Path:
     return path
 
 
+def _sample_tree_rss(pid: int, peak: list[int], every_s: float = 0.1) -> None:
+    """Largest summed RSS of process ``pid`` and all its descendants (worker processes), sampled."""
+    try:
+        root = psutil.Process(pid)
+        while root.is_running() and root.status() != psutil.STATUS_ZOMBIE:
+            total = 0
+            for p in [root, *root.children(recursive=True)]:
+                try:
+                    total += p.memory_info().rss
+                except psutil.Error:
+                    pass
+            peak[0] = max(peak[0], total)
+            time.sleep(every_s)
+    except psutil.Error:
+        return
+
+
 def run_case(args: list[str]) -> dict[str, object]:
     """Run ``stochfric friction-process ARGS --json`` in a subprocess: time, peak RSS, summary."""
     cmd = [sys.executable, "-c", "from stochfric.cli import main; main()", "friction-process", *args, "--json"]
     with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
         t0 = time.perf_counter()
         proc = subprocess.Popen(cmd, stdout=out, stderr=err, text=True)
+        tree_peak = [0]
+        sampler = threading.Thread(target=_sample_tree_rss, args=(proc.pid, tree_peak), daemon=True)
+        sampler.start()
         _pid, status, usage = os.wait4(proc.pid, 0)
+        sampler.join(timeout=1.0)
         wall = time.perf_counter() - t0
         proc.returncode = os.waitstatus_to_exitcode(status)
         out.seek(0)
         err.seek(0)
         stdout, stderr = out.read(), err.read()
     res: dict[str, object] = {"wall_s": round(wall, 1), "peak_rss_mib": round(usage.ru_maxrss / 1024, 1),
-                              "rc": proc.returncode}  # fmt: skip
-    if proc.returncode != 0:
+                              "peak_tree_rss_mib": round(tree_peak[0] / 2**20, 1), "rc": proc.returncode}  # fmt: skip
+    if proc.returncode not in (0, 3):  # 3: finished, not credible (the gate)
         res["error"] = stderr.strip().splitlines()[-1] if stderr.strip() else "?"
         return res
     d = json.loads(stdout)
-    sc, erg = d["surrogate_check"], d["ergodicity"]
+    sc, erg, wc = d["surrogate_check"], d["ergodicity"], d["window_check"]
     res.update(
         grid=d["surface"]["grid"],
+        surrogate=d["surrogate_choice"].split(" ")[0],
+        window_check_max_z=None if wc is None else round(wc["max_abs_z"], 2),
+        gate=d["credibility"]["credible"] or [r["code"] for r in d["credibility"]["reasons"]],
         summits_measured=sc["measured"]["summit_count"],
         summits_surrogates=f"{sc['ensemble_mean']['summit_count']:.0f} ± {sc['ensemble_std']['summit_count']:.0f}",
         z_summits={k: round(v, 2) for k, v in sc["z"].items()},

@@ -17,12 +17,14 @@ __all__ = [
     "check_memory",
     "estimate_peak_memory_bytes",
     "iaaft_cost_seconds",
+    "workers_that_fit",
 ]
 
 #: Peak memory of :func:`analyse` per grid point of one long surface [bytes] and its fixed part
 #: (interpreter, numpy, numba), measured with ``benchmarks/bench_process_files.py``: 1700 × 17000
-#: points (the thesis's 1700² map, length factor 10) peaked at 1118 MiB, i.e. ≈ 33 B per point
-#: above ≈ 220 MiB; the estimate uses 48 B per point and 256 MiB for a margin.
+#: points (the thesis's 1700² map, length factor 10) peaked at 1118 MiB with random phases, i.e.
+#: ≈ 33 B per point above ≈ 220 MiB, and at 2278 MiB over two workers with quilts (≈ 1140 MiB
+#: each, ≈ 32 B per point); the estimate uses 48 B per point and 256 MiB for a margin.
 MEMORY_PER_POINT_BYTES = 48
 MEMORY_FIXED_BYTES = 256 * 2**20
 
@@ -30,6 +32,20 @@ MEMORY_FIXED_BYTES = 256 * 2**20
 def estimate_peak_memory_bytes(grid: tuple[int, int], length_factor: int) -> int:
     """Estimated peak memory of :func:`analyse` [bytes]: one long surface of M × (F·N) points at a time."""
     return MEMORY_FIXED_BYTES + MEMORY_PER_POINT_BYTES * int(grid[0]) * int(grid[1]) * int(length_factor)
+
+
+def workers_that_fit(
+    grid: tuple[int, int], length_factor: int, workers: int, available: int | None = None
+) -> int:
+    """How many of ``workers`` processes may build long surfaces at once: each holds one long
+    surface (:data:`MEMORY_PER_POINT_BYTES` per point, measured for random-phase and quilted ones:
+    about 33 B), the parent its fixed part; at least 1 (:func:`check_memory` refuses what does not
+    fit with one)."""
+    have = available_memory_bytes() if available is None else available
+    if have is None:
+        return max(1, int(workers))
+    per = MEMORY_PER_POINT_BYTES * int(grid[0]) * int(grid[1]) * int(length_factor)
+    return max(1, min(int(workers), int((have - MEMORY_FIXED_BYTES) // max(per, 1))))
 
 
 def check_memory(grid: tuple[int, int], length_factor: int, available: int | None = None) -> int:

@@ -61,7 +61,8 @@ from stochfric.process.credibility import assess_credibility
 from stochfric.process.ensemble import ensemble_contact, path_contact, tile_contact, tile_grid
 from stochfric.process.estimators import linear_fit, mean_and_std_errors, mu_pdfs
 from stochfric.process.fit import fit_mask, fit_model_function
-from stochfric.process.memory import check_memory
+from stochfric.process.memory import check_memory, workers_that_fit
+from stochfric.process.parallel import default_workers
 from stochfric.process.spectra import (
     autocorrelation,
     correlation_length,
@@ -159,6 +160,8 @@ def analyse(
         raise ContactError("no surface to analyse")
     surface = scans[0]
     check_memory(surface.nb_grid_pts, cfg.length_factor)
+    long_workers = workers_that_fit(surface.nb_grid_pts, cfg.length_factor,
+                                    default_workers() if workers is None else workers)
     root = as_seed_sequence(cfg.seed)
     s_ens, _s_unused, s_path, s_check = spawn_seed_sequences(root, 4)  # stream 1: retired one-surface check
     u = np.asarray(approach_m, dtype=np.float64)
@@ -178,7 +181,7 @@ def analyse(
     path = path_contact(
         scans, material, u, long_surfaces=cfg.long_surfaces, length_factor=cfg.length_factor,
         shift_points=cfg.window_shift_points, seed=s_path, progress=stage("long surfaces"), options=options,
-        workers=workers,
+        workers=long_workers,
     )  # fmt: skip
     notes: list[str] = []
     mu_e = ens.mu

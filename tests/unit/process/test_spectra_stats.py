@@ -127,11 +127,15 @@ def test_linear_fit() -> None:
 
 def test_memory_estimate_refuses_before_work() -> None:
     from stochfric.contact.asperity import ContactError
-    from stochfric.process.memory import check_memory, estimate_peak_memory_bytes
+    from stochfric.process.memory import check_memory, estimate_peak_memory_bytes, workers_that_fit
 
     # the thesis's 1700² map with 10 lengths: measured peak 1118 MiB, estimate above it and < 4 GiB
     est = estimate_peak_memory_bytes((1700, 1700), 10)
     assert 1118 * 2**20 < est < 4 * 2**30
     assert check_memory((200, 296), 10, available=2**30) == estimate_peak_memory_bytes((200, 296), 10)
+    # two long surfaces of 1700 x 17000 points at once need 2 x 1.3 GiB: with 2 GiB only one worker builds them
+    assert workers_that_fit((1700, 1700), 10, 2, available=2 * 2**30) == 1
+    assert workers_that_fit((1700, 1700), 10, 2, available=8 * 2**30) == 2
+    assert workers_that_fit((1700, 1700), 10, 4, available=2**20) == 1
     with pytest.raises(ContactError, match=r"GB.*--length-factor"):
         check_memory((1700, 1700), 100, available=8 * 2**30)
