@@ -218,6 +218,7 @@ def friction_process_command(
     except OSError as exc:  # disk full while writing: the previous files stay intact
         raise fail(f"could not write the results: {exc}") from None
     _echo_warnings(payload["warnings"])
+    _echo_checks(payload)
     if as_json:
         typer.echo(json.dumps(_clean(payload), indent=1, allow_nan=False))
     else:
@@ -231,6 +232,21 @@ def friction_process_command(
                 f"error: not credible ({', '.join(analysis.credibility.codes())}): no model file written; fix the "
                 "cause named above, or give --accept-not-credible to write a stamped model", err=True)
             raise typer.Exit(code=NOT_CREDIBLE_EXIT)
+
+
+def _echo_checks(payload: dict[str, Any]) -> None:
+    """The two checks of the surrogates against the measurement, one line each on stderr (also with --json)."""
+    sc, wc = payload["surrogate_check"], payload["window_check"]
+    z = sc["z"]
+    typer.echo(
+        f"check: summits ({sc['surrogate']}) z count {z['summit_count']:+.1f}, β̄ {z['summit_radius_mean_m']:+.1f}, "
+        f"σ_S {z['summit_height_std_m']:+.1f}, max |z| of μ(u) {_num(sc['max_abs_mu_z'], '.1f')} (limit "
+        f"{sc['limit']:g}) → {'pass' if sc['credible'] else 'FAIL'}", err=True)
+    if wc is None:
+        typer.echo("check: measured windows not checked (too few summits for 2 x 2 windows)", err=True)
+    else:
+        typer.echo(f"check: measured windows ({wc['measured_windows']}) max |z| {wc['max_abs_z']:.2f} (threshold "
+                   f"{wc['threshold']:.2f}) → {'pass' if wc['consistent'] else 'FAIL'}", err=True)
 
 
 def _load_scans(
