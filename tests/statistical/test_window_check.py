@@ -17,7 +17,7 @@ from scipy import stats as sps
 
 from stochfric.contact.asperity import default_approach_m
 from stochfric.contact.materials import get_material
-from stochfric.process.checks import window_scatter_check, window_tiles
+from stochfric.process.checks import surrogate_check, window_scatter_check, window_tiles
 from stochfric.process.ensemble import ensemble_contact, tile_contact, tile_grid
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import summits_of
@@ -83,3 +83,21 @@ def test_gaussian_surrogates_of_a_half_smooth_half_rough_map_fail() -> None:
     check = _window_check(s, seed=1)
     assert not check.consistent
     assert check.max_abs_z > check.threshold
+
+
+def test_summit_check_fails_gaussian_surrogates_of_a_spiky_map() -> None:
+    """The summit check fails, as it must, random-phase surrogates of a strongly non-Gaussian map: a
+    smooth Gaussian field carrying 150 sharp bumps of 6 sd (its summit population is two populations
+    that no Gaussian field of the same spectrum has)."""
+    rng = np.random.default_rng(5)
+    n = 256
+    base = _field(rng, (n, n), 3.0)
+    bumps = np.zeros((n, n))
+    idx = rng.integers(0, n, size=(150, 2))
+    bumps[idx[:, 0], idx[:, 1]] = 1.0
+    bumps = ndimage.gaussian_filter(bumps, 1.0, mode="wrap")
+    s = Surface(heights_m=1e-6 * (base + 6.0 * bumps / bumps.max()), physical_size_m=(n * 1e-6, n * 1e-6))
+    u = default_approach_m(summits_of(s), num=6)
+    check = surrogate_check(s, MAT, ensemble_contact(s, MAT, u, realizations=12, seed=1, method="phase"))
+    assert not check.credible
+    assert abs(check.z["summit_count"]) > 10 and abs(check.z["summit_height_std_m"]) > 10
