@@ -120,8 +120,10 @@ def main(argv: list[str]) -> None:
     if "thesis" in cases:
         with tempfile.TemporaryDirectory() as tmp:
             path = thesis_size_map(Path(tmp) / "thesis1700.npy")
-            print("synthetic 1700x1700:", json.dumps(run_case([str(path), "--size-um", "5300:5300",
-                  "--height-unit", "m", "--material", "brake-pad", "--seed", "1"])))  # fmt: skip
+            for surrogate in ("quilt", "auto"):  # the new method's cost; auto picks phase on this Gaussian map
+                print(f"synthetic 1700x1700, --surrogate {surrogate}:", json.dumps(run_case([
+                    str(path), "--size-um", "5300:5300", "--height-unit", "m", "--material", "brake-pad",
+                    "--seed", "1", "--surrogate", surrogate])))  # fmt: skip
     if "files" in cases:
         for name, fill in FILES.items():
             extra = ["--fill-undefined"] if fill else []

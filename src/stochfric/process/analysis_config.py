@@ -8,7 +8,6 @@ surrogate settings among them are one :class:`~stochfric.process.ensemble.Surrog
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
-from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -18,6 +17,8 @@ from stochfric.process.checks import WINDOW_TILES
 from stochfric.process.ensemble import SurrogateOptions
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.surface.quilting import quilt_applicable
+from stochfric.surface.statistics import curvature_gaussianity
+from stochfric.surface.summits import find_summits
 from stochfric.surface.synthesis import DEFAULT_AMPLITUDE
 from stochfric.validation import count
 
@@ -86,17 +87,24 @@ class AnalysisConfig:
                                 rule=self.summit_rule)
 
     def surrogate_for(self, heights: list[FloatArray]) -> tuple[SurrogateOptions, str]:
-        """The surrogate options for these maps and why: ``"auto"`` is ``"quilt"`` when every map can be
-        quilted (:func:`~stochfric.surface.quilting.quilt_applicable`), ``"phase"`` otherwise."""
+        """The surrogate options for these maps and why.  ``"auto"``: random phases where they are exact,
+        i.e. where every map's curvature is that of a Gaussian field
+        (:func:`~stochfric.surface.statistics.curvature_gaussianity`); otherwise ``"quilt"`` when every
+        map can be quilted (:func:`~stochfric.surface.quilting.quilt_applicable`), ``"phase"`` when not."""
         opts = self.surrogate_options
         if self.surrogate != AUTO_SURROGATE:
             return opts, f"{self.surrogate} (chosen by the user)"
+        counts = [find_summits(h, (1.0, 1.0), rule=self.summit_rule).count for h in heights]
+        tests = [curvature_gaussianity(h, n) for h, n in zip(heights, counts, strict=True)]
+        kurt = ", ".join(f"{t['laplacian_kurtosis']:.3g}" for t in tests)
+        if all(t["gaussian"] for t in tests):
+            return replace(opts, method="phase"), (
+                f"phase (auto: Gaussian curvature, Laplacian kurtosis {kurt} within "
+                f"{tests[0]['limit']:g}·√(24/n_s) of 3: random phases are exact)")
         verdicts = [quilt_applicable(h, rule=self.summit_rule) for h in heights]
         if all(ok for ok, _ in verdicts):
-            return opts, "quilt (auto: " + "; ".join(r for _, r in verdicts) + ")"
+            return opts, (f"quilt (auto: non-Gaussian curvature, Laplacian kurtosis {kurt}; "
+                          + "; ".join(r for _, r in verdicts) + ")")
         why = next(r for ok, r in verdicts if not ok)
-        return replace(opts, method="phase"), f"phase (auto: cannot quilt: {why})"
-
-    def to_dict(self) -> dict[str, Any]:
-        """Plain dictionary (JSON / netCDF attributes)."""
-        return dict(self.__dict__)
+        return replace(opts, method="phase"), (
+            f"phase (auto: non-Gaussian curvature, Laplacian kurtosis {kurt}, but cannot quilt: {why})")

@@ -17,6 +17,7 @@ __all__ = [
     "check_memory",
     "estimate_peak_memory_bytes",
     "iaaft_cost_seconds",
+    "sample_arrays_bytes",
     "workers_that_fit",
 ]
 
@@ -48,15 +49,32 @@ def workers_that_fit(
     return max(1, min(int(workers), int((have - MEMORY_FIXED_BYTES) // max(per, 1))))
 
 
-def check_memory(grid: tuple[int, int], length_factor: int, available: int | None = None) -> int:
+def sample_arrays_bytes(realizations: int, long_surfaces: int, windows: int, approaches: int, tiles: int) -> int:
+    """Memory of the per-sample results [bytes]: A_c, N (float64) and contact counts (int64) over the
+    approaches for every realisation and its tiles², and for every window of every long surface
+    (shifted windows and non-overlapping blocks), plus the seed streams (≈ 1 KiB each)."""
+    per = 3 * 8 * int(approaches)
+    return (int(realizations) * (per * (1 + int(tiles) ** 2) + 1024)
+            + int(long_surfaces) * (per * 2 * int(windows) + 1024))
+
+
+def check_memory(
+    grid: tuple[int, int], length_factor: int, available: int | None = None, *, samples_bytes: int = 0
+) -> int:
     """Refuse, before any work, an analysis whose long surfaces do not fit in memory.
 
     Returns the estimate [bytes]; raises :class:`ContactError` with the figures and what to change
     when it exceeds the available memory (``available``; default
     :func:`stochfric.io_utils.available_memory_bytes`).
     """
-    need = estimate_peak_memory_bytes(grid, length_factor)
+    need = estimate_peak_memory_bytes(grid, length_factor) + int(samples_bytes)
     have = available_memory_bytes() if available is None else available
+    if have is not None and samples_bytes > have // 2:
+        raise ContactError(
+            f"the results of so many realisations / long surfaces need about {format_bytes(samples_bytes)} but "
+            f"{format_bytes(have)} are available; use fewer --realizations or --long-surfaces (100 and 10 are the "
+            "thesis's numbers; the statistics converge as 1/sqrt(R))"
+        )
     if have is not None and need > have:
         raise ContactError(
             f"the analysis needs about {format_bytes(need)} (long surfaces of {grid[0]} × {length_factor * grid[1]} "

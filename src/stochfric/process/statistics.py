@@ -61,7 +61,7 @@ from stochfric.process.credibility import assess_credibility
 from stochfric.process.ensemble import ensemble_contact, path_contact, tile_contact, tile_grid
 from stochfric.process.estimators import linear_fit, mean_and_std_errors, mu_pdfs
 from stochfric.process.fit import fit_mask, fit_model_function
-from stochfric.process.memory import check_memory, workers_that_fit
+from stochfric.process.memory import check_memory, sample_arrays_bytes, workers_that_fit
 from stochfric.process.parallel import default_workers
 from stochfric.process.spectra import (
     autocorrelation,
@@ -159,7 +159,9 @@ def analyse(
     if not scans:
         raise ContactError("no surface to analyse")
     surface = scans[0]
-    check_memory(surface.nb_grid_pts, cfg.length_factor)
+    windows = (cfg.length_factor - 1) * surface.nb_grid_pts[1] // cfg.window_shift_points + 1
+    check_memory(surface.nb_grid_pts, cfg.length_factor, samples_bytes=sample_arrays_bytes(
+        cfg.realizations, cfg.long_surfaces, windows, np.asarray(approach_m).size, cfg.window_tiles))
     long_workers = workers_that_fit(surface.nb_grid_pts, cfg.length_factor,
                                     default_workers() if workers is None else workers)
     root = as_seed_sequence(cfg.seed)

@@ -32,16 +32,44 @@ def _field(shape: tuple[int, int], corr: float, seed: int = 0) -> Surface:
     return Surface(heights_m=1e-6 * z / z.std(), physical_size_m=(shape[0] * 1e-6, shape[1] * 1e-6))
 
 
-def test_auto_quilts_a_map_with_many_summits_and_not_a_small_one() -> None:
+def _spiky(shape: tuple[int, int], seed: int = 0) -> Surface:
+    """A Gaussian field with sparse sharp bumps: non-Gaussian curvature."""
+    rng = np.random.default_rng(seed)
+    z = ndimage.gaussian_filter(rng.standard_normal(shape), 1.0, mode="wrap")
+    bumps = np.zeros(shape)
+    idx = rng.integers(0, min(shape), size=(shape[0] * shape[1] // 400, 2))
+    bumps[idx[:, 0], idx[:, 1]] = 6.0 * z.std()
+    z = z + ndimage.gaussian_filter(bumps, 0.8, mode="wrap") * 4.0
+    return Surface(heights_m=1e-6 * z / z.std(), physical_size_m=(shape[0] * 1e-6, shape[1] * 1e-6))
+
+
+def test_auto_picks_phase_for_gaussian_curvature_and_quilt_otherwise() -> None:
     cfg = AnalysisConfig(surrogate="auto")
-    big = _field((320, 320), 1.0)
-    opts, why = cfg.surrogate_for([big.heights_m])
-    assert opts.method == "quilt" and why.startswith("quilt (auto:")
-    shipped = prepare(read_surface(default_surface_path()))[1]  # 226 summits on 200 × 296 points
+    gaussian = _field((320, 320), 1.0)
+    opts, why = cfg.surrogate_for([gaussian.heights_m])
+    assert opts.method == "phase" and "Gaussian curvature" in why and "exact" in why
+    spiky = _spiky((320, 320))
+    opts, why = cfg.surrogate_for([spiky.heights_m])
+    assert opts.method == "quilt" and why.startswith("quilt (auto: non-Gaussian curvature")
+    shipped = prepare(read_surface(default_surface_path()))[1]  # non-Gaussian, 226 summits on 200 × 296 points
     opts, why = cfg.surrogate_for([shipped.heights_m])
-    assert opts.method == "phase" and "does not fit 3 times" in why
-    opts, why = AnalysisConfig(surrogate="phase").surrogate_for([big.heights_m])
+    assert opts.method == "phase" and "cannot quilt" in why and "does not fit 3 times" in why
+    opts, why = AnalysisConfig(surrogate="phase").surrogate_for([spiky.heights_m])
     assert opts.method == "phase" and why == "phase (chosen by the user)"
+
+
+def test_curvature_gaussianity_is_calibrated_on_gaussian_fields() -> None:
+    """|z| well inside the limit on Gaussian fields of several sizes and correlation lengths; far outside on
+    the spiky field."""
+    from stochfric.surface.statistics import GAUSSIAN_CURVATURE_Z, curvature_gaussianity
+
+    for k, (n, corr) in enumerate([(200, 0.7), (300, 1.5), (400, 3.0)]):
+        s = _field((n, n + 17), corr, seed=k)
+        t = curvature_gaussianity(s.heights_m, summits_of(s).count)
+        assert t["gaussian"] and abs(t["z"]) < GAUSSIAN_CURVATURE_Z / 3, t
+    spiky = _spiky((320, 320))
+    t = curvature_gaussianity(spiky.heights_m, summits_of(spiky).count)
+    assert not t["gaussian"] and t["z"] > 10 * GAUSSIAN_CURVATURE_Z
 
 
 @dataclass(frozen=True)
@@ -61,7 +89,7 @@ def test_a_surrogate_that_is_the_map_is_a_copy_and_not_credible() -> None:
     assert copies["is_copy"] and copies["max_ncc_with_map"] == pytest.approx(1.0)
     fresh = copy_check([s], SurrogateOptions(method="phase"), seeds)
     assert not fresh["is_copy"] and fresh["max_ncc_with_map"] < 0.9
-    quilt = copy_check([_field((320, 320), 1.0)], SurrogateOptions(method="quilt"), seeds)
+    quilt = copy_check([_spiky((320, 320))], SurrogateOptions(method="quilt"), seeds)
     assert not quilt["is_copy"] and 0.0 < quilt["largest_piece_fraction"] < 0.1
     u = np.linspace(1e-7, 1e-6, 4)
     verdict = assess_credibility(
