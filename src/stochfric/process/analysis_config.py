@@ -8,6 +8,7 @@ surrogate settings among them are one :class:`~stochfric.process.ensemble.Surrog
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -108,3 +109,7 @@ class AnalysisConfig:
         why = next(r for ok, r in verdicts if not ok)
         return replace(opts, method="phase"), (
             f"phase (auto: non-Gaussian curvature, Laplacian kurtosis {kurt}, but cannot quilt: {why})")
+
+    def to_dict(self) -> dict[str, Any]:
+        """Plain dictionary (JSON / netCDF attributes)."""
+        return dict(self.__dict__)
