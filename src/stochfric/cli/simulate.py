@@ -54,6 +54,28 @@ def _simulation_memory_bytes(runs: int, tau_end: float, dt: float, *, save_every
     return float(runs) * per_run + batch
 
 
+#: Most time steps of one run (τ_end/Δτ): 10¹¹ steps take about 10 minutes per run at the measured
+#: 5 ns per step (docs/performance.md); more is a typing slip, not a study.
+MAX_STEPS_PER_RUN = 1e11
+#: Measured cost of one Euler step of one run [s] (white noise, one core; docs/performance.md).
+SECONDS_PER_STEP = 5e-9
+
+
+def _check_step_count(tau_end: float, dt: float, runs: int) -> None:
+    """Refuse, before any work, a non-finite τ_end or Δτ and a step count no run could finish."""
+    for flag, v in (("--tau-end", tau_end), ("--dt", dt)):
+        if not (math.isfinite(v) and v > 0):
+            raise ParameterError(f"{flag} must be a finite number > 0, got {v!r}")
+    steps = tau_end / dt
+    if not steps <= MAX_STEPS_PER_RUN:
+        hours = steps * max(runs, 1) * SECONDS_PER_STEP / 3600.0
+        raise ParameterError(
+            f"--tau-end {tau_end:g} / --dt {dt:g} = {steps:.3g} steps per run (limit {MAX_STEPS_PER_RUN:.0e}); "
+            f"{runs} run(s) would take about {hours:.3g} h at {SECONDS_PER_STEP * 1e9:g} ns per step: use a larger "
+            "--dt or a shorter --tau-end"
+        )
+
+
 def _progress_bar(enabled: bool) -> tuple[Progress | None, Any]:
     if not enabled:
         return None, None
@@ -181,6 +203,7 @@ def simulate(
         )
         pre, process = case.preset, case.process
         te, step = case.tau_end, case.dt
+        _check_step_count(te, step, runs)
         if te > 0 and step > 0:
             save_traj = plot is not None or out is not None
             need = _simulation_memory_bytes(

@@ -45,6 +45,10 @@ _INPUT_ERRORS = (SurfaceError, ContactError, MaterialError)
 # ------------------------------------------------------------------ parsing helpers
 
 
+#: Most approaches a command accepts (each costs a pass over the summits and a column in every result).
+MAX_APPROACHES = 10_000
+
+
 def parse_approach_um(spec: str) -> npt.NDArray[np.float64]:
     """``"START:STOP:NUM"`` in µm → ``linspace(START, STOP, NUM)`` in metres."""
     parts = spec.split(":")
@@ -59,6 +63,9 @@ def parse_approach_um(spec: str) -> npt.NDArray[np.float64]:
         raise ContactError(f"--approach-um needs 0 < START <= STOP, got {spec!r}")
     if num < 1:
         raise ContactError(f"--approach-um needs NUM >= 1, got {spec!r}")
+    if num > MAX_APPROACHES:
+        raise ContactError(f"--approach-um asks for {num} approaches; a μ(u) curve needs tens (the default is 12), "
+                           f"at most {MAX_APPROACHES}")
     return np.linspace(start, stop, num) * MICROMETRE
 
 

@@ -15,6 +15,10 @@ from ..oscillator.case import CaseError as StudyError
 #: transition with τ in (STICK_WINDOW · τ_end, τ_end] (after the transient, method §7.9).
 STICK_WINDOW = 0.5
 
+#: Most values one grid axis may hold: every value is a cell of runs (the thesis's densest axis has
+#: 41); more is a typing slip that would allocate and run for hours before saying anything.
+MAX_GRID_POINTS = 10_000
+
 
 def parse_grid(spec: str | Sequence[float] | float) -> tuple[float, ...]:
     """A grid from ``"START:STOP:NUM"`` (inclusive linspace), ``"a,b,c"``, a number or a list.
@@ -36,6 +40,9 @@ def parse_grid(spec: str | Sequence[float] | float) -> tuple[float, ...]:
                 raise StudyError(f"grid {spec!r}: START and STOP must be numbers, NUM an integer") from None
             if n < 1:
                 raise StudyError(f"grid {spec!r}: NUM must be >= 1")
+            if n > MAX_GRID_POINTS:
+                raise StudyError(f"grid {spec!r}: {n} values; at most {MAX_GRID_POINTS} per axis (every value is a "
+                                 "cell of runs; the thesis's densest axis has 41)")
             vals = [float(v) for v in np.linspace(a, b, n)] if n > 1 else [a]
         else:
             try:
@@ -49,6 +56,8 @@ def parse_grid(spec: str | Sequence[float] | float) -> tuple[float, ...]:
             raise StudyError(f"grid {spec!r}: expected numbers") from None
     if not vals:
         raise StudyError(f"grid {spec!r} is empty")
+    if len(vals) > MAX_GRID_POINTS:
+        raise StudyError(f"grid {spec!r}: {len(vals)} values; at most {MAX_GRID_POINTS} per axis")
     if not all(math.isfinite(v) for v in vals):
         raise StudyError(f"grid {spec!r} contains a value that is not finite")
     # round away linspace noise (0.15000000000000002) so that labels and hashes are clean

@@ -284,6 +284,11 @@ def prepare_with_report(
         raise SurfaceError(
             f"the surface has only {nx}×{ny} points; at least {MIN_GRID_POINTS} per direction are needed"
         )
+    if 2 * prep.median_radius + 1 > min(nx, ny):  # before any work: a window larger than the map
+        raise SurfaceError(
+            f"--median-radius {prep.median_radius} gives a {2 * prep.median_radius + 1}-point window, larger than "
+            f"the {nx}×{ny} map; use a radius of at most {(min(nx, ny) - 1) // 2} (the thesis uses 5 and 6)"
+        )
     n = nx * ny
     new_warnings: list[dict[str, Any]] = []
     report: dict[str, Any] = {
