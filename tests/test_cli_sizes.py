@@ -34,3 +34,43 @@ def test_absurd_sizes_are_refused_at_once(args: list[str], message: str) -> None
     lines = [ln for ln in res.stderr.strip().splitlines() if ln.strip()]
     assert lines[-1].startswith("error:") and message in lines[-1], res.stderr
     assert time.perf_counter() - t0 < 30.0
+
+
+@pytest.fixture()
+def matrices(tmp_path):  # type: ignore[no-untyped-def]
+    import numpy as np
+
+    rng = np.random.default_rng(0)
+    np.save(tmp_path / "complex.npy", rng.random((50, 60)) + 1j * rng.random((50, 60)))
+    np.save(tmp_path / "metres.npy", rng.random((100, 100)))  # Sq ≈ 0.3 m on a 100 µm map: a unit slip
+    np.save(tmp_path / "flat.npy", np.zeros((50, 60)))
+    return tmp_path
+
+
+@pytest.mark.parametrize(("name", "unit", "message"), [
+    ("complex.npy", "um", "complex numbers"),
+    ("metres.npy", "m", "exceeds the map's lateral size"),
+    ("flat.npy", "um", "is flat after the form removal"),
+])
+def test_implausible_height_maps_are_refused_with_the_reason(matrices, name: str, unit: str, message: str) -> None:  # type: ignore[no-untyped-def]
+    res = CliRunner().invoke(app, ["surface", str(matrices / name), "--size-um", "100:100", "--height-unit", unit])
+    assert res.exit_code == 2 and "Traceback" not in res.output
+    assert message in res.stderr.strip().splitlines()[-1], res.stderr
+
+
+@pytest.mark.parametrize(("option", "value", "message"), [
+    ("--long-surfaces", "0", "long_surfaces must be >= 3 (the ergodicity check"),
+    ("--long-surfaces", "2", "long_surfaces must be >= 3"),
+    ("--realizations", "1", "realizations must be >= 2"),
+])
+def test_count_options_name_their_real_minimum(option: str, value: str, message: str) -> None:
+    res = CliRunner().invoke(app, ["friction-process", "--material", "brake-pad", option, value])
+    assert res.exit_code == 2 and message in res.stderr
+
+
+def test_a_boolean_is_not_a_seed(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    toml = tmp_path / "s.toml"
+    toml.write_text('[defaults]\nseed = true\n[[study]]\nkind = "damping"\nnormal_force_n = [5600]\n'
+                    'damping_ratio = "0.05:0.25:3"\nruns = 2\n', encoding="utf-8")
+    res = CliRunner().invoke(app, ["run", str(toml)])
+    assert res.exit_code == 2 and "seed must be a number, not the boolean true" in res.stderr

@@ -130,7 +130,7 @@ def test_contact_halfspace(app: typer.Typer, tmp_path: Path) -> None:
         (["contact", "--material", "steel"], "unknown material"),
         (["contact", "--material", "dc04", "--approach-um", "0:1:3"], "0 < START"),
         (["contact", "--material", "dc04", "--approach-um", "1:2"], "START:STOP:NUM"),
-        (["contact", "{flat}", "--material", "dc04", "--size-um", "100:100", "--height-unit", "um"], "no summit found"),
+        (["contact", "{flat}", "--material", "dc04", "--size-um", "100:100", "--height-unit", "um"], "is flat"),
     ],
 )
 def test_bad_input_gives_one_line_and_exit_2(app: typer.Typer, tmp_path: Path, args: list[str], message: str) -> None:

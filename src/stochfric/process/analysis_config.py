@@ -62,19 +62,20 @@ class AnalysisConfig:
     seed: int | None = None
 
     def __post_init__(self) -> None:
+        for name, low, why in (
+            ("realizations", 2, "a standard deviation needs two"),
+            ("long_surfaces", 3, "the ergodicity check and the standard errors of the path statistics use the "
+                                 "scatter between independent long surfaces"),
+        ):
+            v = getattr(self, name)
+            if not isinstance(v, bool) and isinstance(v, int | np.integer) and v < low:
+                raise ContactError(f"{name} must be >= {low} ({why}), got {v}")
         for name in ("realizations", "long_surfaces", "window_shift_points", "pdf_bins", "check_realizations",
                      "window_tiles"):
             object.__setattr__(self, name, count(name, getattr(self, name), error=ContactError))
         object.__setattr__(self, "length_factor", count("length_factor", self.length_factor, 2, error=ContactError))
         if self.window_tiles < 2:
             raise ContactError(f"window_tiles must be >= 2 (at least 2 x 2 windows), got {self.window_tiles}")
-        if self.realizations < 2:
-            raise ContactError("realizations must be >= 2 (a standard deviation needs two)")
-        if self.long_surfaces < 3:
-            raise ContactError(
-                f"long_surfaces must be >= 3 (the ergodicity check and the standard errors of the path "
-                f"statistics use the scatter between independent long surfaces), got {self.long_surfaces}"
-            )
         if not 0.0 < self.max_area_fraction <= 1.0:
             raise ContactError(f"max_area_fraction must lie in (0, 1], got {self.max_area_fraction!r}")
         self.surrogate_options  # noqa: B018 - validates surrogate and amplitude (ContactError)

@@ -89,6 +89,17 @@ class StudyConfig(BaseModel):
                 out[new] = out.pop(old)
         return out
 
+    @model_validator(mode="before")
+    @classmethod
+    def _no_booleans_as_numbers(cls, data: Any) -> Any:
+        """``seed = true`` is a slip, not seed 1: a boolean is refused wherever the field is not a switch."""
+        if isinstance(data, dict):
+            for key, value in data.items():
+                field = cls.model_fields.get(key)
+                if isinstance(value, bool) and field is not None and field.annotation is not bool:
+                    raise ValueError(f"{key} must be a number, not the boolean {str(value).lower()}")
+        return data
+
     @field_validator("models")
     @classmethod
     def _unique_models(cls, v: tuple[str, ...]) -> tuple[str, ...]:

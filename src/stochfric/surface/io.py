@@ -410,6 +410,9 @@ def _read_matrix(
         )
     if not np.issubdtype(raw.dtype, np.number):
         raise SurfaceError(f"{p.name} holds {raw.dtype} data, not heights")
+    if np.iscomplexobj(raw):
+        raise SurfaceError(f"{p.name} holds complex numbers; heights are real (save the real part, or the "
+                           "modulus if that is what was measured)")
     info.update({"reader": "numpy", "height_unit": height_unit})
     return surface_from_array(
         raw.astype(np.float64) * factor,
@@ -504,6 +507,23 @@ def _read_instrument(
     )
 
 
+def _check_height_scale(heights: FloatArray, physical_size_m: tuple[float, float], name: str) -> None:
+    """Refuse a map whose RMS roughness (after a plane fit) exceeds its lateral size: mean slopes far
+    beyond 1 are no measured micro-topography but heights in the wrong unit (m for µm: ×10⁶)."""
+    nx, ny = heights.shape
+    xx, yy = np.meshgrid(np.arange(nx) / max(nx, 1), np.arange(ny) / max(ny, 1), indexing="ij")
+    design = np.stack([np.ones(heights.size), xx.ravel(), yy.ravel()], axis=1)
+    coef, *_ = np.linalg.lstsq(design, heights.ravel(), rcond=None)
+    h = heights.ravel() - design @ coef
+    sq = float(np.sqrt(np.mean(h * h)))
+    side = float(min(physical_size_m))
+    if math.isfinite(sq) and sq > side:
+        raise SurfaceError(
+            f"{name}: Sq = {sq:.3g} m exceeds the map's lateral size {side:.3g} m; the heights are probably in "
+            f"another unit than read (give --height-unit, e.g. um if they are micrometres)"
+        )
+
+
 def _finish(
     masked: np.ma.MaskedArray[Any, Any],
     *,
@@ -536,6 +556,7 @@ def _finish(
         filled = _fill_harmonic(masked, physical_size_m)
     else:
         filled = np.ma.getdata(masked).astype(np.float64)
+    _check_height_scale(filled, physical_size_m, name)
     return Surface(
         heights_m=filled,
         physical_size_m=physical_size_m,

@@ -396,6 +396,10 @@ def prepare_with_report(
     form["sq_after_m"] = _rms(h)
     report["form"] = form
 
+    if not float(np.ptp(h)) > 0.0:
+        raise SurfaceError(f"{name} is flat after the form removal (all heights equal): there is no roughness, "
+                           "hence no summit, to analyse")
+
     # 5. rough-surface check
     verdict = pc.rough_surface_verdict(h, undefined_border_fraction=border_fraction)
     if verdict["rough"]:
