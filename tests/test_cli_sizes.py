@@ -74,3 +74,36 @@ def test_a_boolean_is_not_a_seed(tmp_path) -> None:  # type: ignore[no-untyped-d
                     'damping_ratio = "0.05:0.25:3"\nruns = 2\n', encoding="utf-8")
     res = CliRunner().invoke(app, ["run", str(toml)])
     assert res.exit_code == 2 and "seed must be a number, not the boolean true" in res.stderr
+
+
+def test_decode_errors_name_the_file(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    bad_toml = tmp_path / "bad.toml"
+    bad_toml.write_bytes(b"\xff\xfe\x00bad")
+    res = CliRunner().invoke(app, ["run", str(bad_toml)])
+    assert res.exit_code == 2 and f"{bad_toml} is not UTF-8 text" in res.stderr
+    bad_json = tmp_path / "bad.json"
+    bad_json.write_bytes(b"\xff\xfe{bad")
+    res = CliRunner().invoke(app, ["simulate", "--preset", "brake", "--model", "contact", "--process", str(bad_json)])
+    assert res.exit_code == 2 and f"{bad_json} is not a friction-process model file" in res.stderr
+    assert "Traceback" not in res.output
+
+
+def test_random_bytes_in_an_instrument_suffix_are_called_possibly_invalid(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    import numpy as np
+
+    f = tmp_path / "rand.al3d"
+    f.write_bytes(np.random.default_rng(1).bytes(20000))
+    res = CliRunner().invoke(app, ["surface", str(f)])
+    assert res.exit_code == 2 and "Traceback" not in res.output
+    assert "not a valid .al3d file" in res.stderr or "cannot read" in res.stderr
+
+
+def test_an_absurd_normal_force_gets_a_coded_hopf_warning() -> None:
+    import json
+
+    res = CliRunner().invoke(app, ["study", "damping", "--preset", "brake", "--normal-force", "1e12", "--damping",
+                                   "0.05:0.25:3", "--runs", "1", "--models", "deterministic", "--json"])
+    assert res.exit_code == 0, res.output
+    data = json.loads(res.stdout[res.stdout.index("{"):])
+    assert data["d_hopf"][0] > 1e6
+    assert {"code": "hopf-damping-above-one", "count": 1} in data["warnings"]

@@ -72,6 +72,9 @@ def load_process_model(path: str | os.PathLike[str]) -> FrictionProcessModel:
             data = json.load(fh)
     except (OSError, json.JSONDecodeError) as exc:
         raise ValueError(f"cannot read friction-process model {path}: {exc}") from None
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{path} is not a friction-process model file (not UTF-8 text: byte {exc.start}, "
+                         f"{exc.reason})") from None
     if not isinstance(data, dict):
         raise ValueError(f"{path} is not a friction-process model file")
     try:

@@ -217,6 +217,11 @@ class DampingStudy(Study):
                         dgrid, k[mi, ni], int(n_runs[mi, ni, 0]), confidence=config.confidence,
                         p_detect=config.p_detect)
         d_hopf = np.array([hopf_damping(c.params, c.law) for c in (setup.case(nf, float(dgrid[0])) for nf in forces)])
+        for nf, dh in zip(forces, d_hopf, strict=True):
+            if dh > 1.0:  # beyond critical damping: no oscillator of this field, a typing slip in N or the case
+                warns.append({"code": "hopf-damping-above-one",
+                              "message": f"N = {nf:g} N gives a Hopf damping ratio D_H = {dh:.3g} > 1 (beyond critical "
+                                         "damping): check the normal force and the case's parameters"})
         coords: dict[str, Any] = {
             "model": models,
             "normal_force_n": ("normal_force_n", np.asarray(forces, float),

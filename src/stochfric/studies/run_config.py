@@ -116,6 +116,8 @@ def load_run_file(path: str | Path) -> RunFile:
         data = tomllib.loads(p.read_text(encoding="utf-8"))
     except OSError as exc:
         raise StudyError(f"cannot read {p}: {exc.strerror or exc}") from None
+    except UnicodeDecodeError as exc:
+        raise StudyError(f"{p} is not UTF-8 text (byte {exc.start}: {exc.reason}); save it as UTF-8 TOML") from None
     except tomllib.TOMLDecodeError as exc:
         raise StudyError(f"{p} is not valid TOML: {exc}") from None
     return parse_run_file(data, str(p))

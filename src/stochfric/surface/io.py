@@ -472,7 +472,9 @@ def _read_instrument(
             raise SurfaceError(f"{p.name} stores its physical size; a size can only be given for files without one")
         unit = file_unit if file_unit is not None else height_unit
         if unit is None:
-            raise SurfaceError(f"{p.name} does not store a length unit; give it (command line: --height-unit)")
+            raise SurfaceError(f"{p.name} does not store a length unit, or is not a valid {p.suffix} file (its "
+                               "reader found no unit in it); if the file is valid, give the unit (command line: "
+                               "--height-unit)")
         factor = _unit_factor(str(unit), f"{p.name}")
         kwargs: dict[str, Any] = {}
         if ch.physical_sizes is None:
