@@ -43,6 +43,7 @@ __all__ = [
     "ContactResult",
     "asperity_contact",
     "asperity_sums",
+    "bowden_tabor_mu",
     "default_approach_m",
     "read_contact_result",
 ]
@@ -220,6 +221,15 @@ def asperity_sums(
     return area, force, k
 
 
+def bowden_tabor_mu(area_m2: npt.ArrayLike, force_n: npt.ArrayLike, shear_strength_pa: float) -> FloatArray:
+    """``μ = A_c τ_max / N`` (3.15–3.16) elementwise; NaN where N = 0 (nothing carries load)."""
+    a = np.asarray(area_m2, dtype=np.float64)
+    n = np.asarray(force_n, dtype=np.float64)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        out = a * shear_strength_pa / n
+    return np.asarray(np.where(n > 0.0, out, np.nan))
+
+
 @dataclass(frozen=True, kw_only=True, eq=False)
 class BowdenTabor:
     """Contact sums over the approach u and the quantities derived from them by eq. (3.14)–(3.16).
@@ -256,9 +266,7 @@ class BowdenTabor:
     @property
     def mu(self) -> FloatArray:
         """Friction coefficient ``μ = A_c τ_max / N`` (3.16); NaN where N = 0."""
-        with np.errstate(divide="ignore", invalid="ignore"):
-            out = self.friction_force_n / self.normal_force_n
-        return np.where(self.normal_force_n > 0.0, out, np.nan)
+        return bowden_tabor_mu(self.contact_area_m2, self.normal_force_n, self.shear_strength_pa)
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)

@@ -19,7 +19,7 @@ import numpy as np
 import numpy.typing as npt
 from scipy import stats as sps
 
-from stochfric.contact.asperity import ContactError, asperity_sums
+from stochfric.contact.asperity import ContactError, asperity_sums, bowden_tabor_mu
 from stochfric.contact.materials import Material
 from stochfric.process.ensemble import ContactSamples, summit_statistics
 from stochfric.process.model_base import FrictionProcessModel
@@ -238,8 +238,7 @@ def surrogate_check(
         meas = summit_statistics(s.heights_m, s.radius_m)
         if s.count:
             area, force, _count = asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=material.e_star_pa)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                mu_meas = np.where(force > 0.0, area * material.shear_strength_pa / force, np.nan)
+            mu_meas = bowden_tabor_mu(area, force, material.shear_strength_pa)
         else:
             mu_meas = np.full(u.size, np.nan)
         with np.errstate(divide="ignore", invalid="ignore"):

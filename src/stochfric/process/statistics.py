@@ -43,7 +43,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from stochfric.contact.asperity import ContactError, asperity_sums
+from stochfric.contact.asperity import ContactError, asperity_sums, bowden_tabor_mu
 from stochfric.contact.materials import Material
 from stochfric.contact.validity import contact_validity
 from stochfric.process.analysis_config import AnalysisConfig
@@ -76,7 +76,7 @@ from stochfric.progress import StagedProgress
 from stochfric.random import as_seed_sequence, seed_entropy, spawn_seed_sequences
 from stochfric.surface.io import Surface
 from stochfric.surface.statistics import plasticity_index
-from stochfric.surface.summits import find_summits
+from stochfric.surface.summits import Summits, find_summits
 
 __all__ = [
     "AnalysisConfig",
@@ -92,19 +92,16 @@ def _measured_tiles(scans: list[Surface], material: Material, u: FloatArray, til
     rows = []
     for scan in scans:
         area, force, _count = tile_contact(scan.heights_m, scan.grid_spacing_m, material, u, tiles=tiles, rule=rule)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            rows.append(np.where(force > 0.0, area * material.shear_strength_pa / force, np.nan))
+        rows.append(bowden_tabor_mu(area, force, material.shear_strength_pa))
     return np.concatenate(rows)
 
 
-def _full_map_mu(scans: list[Surface], material: Material, u: FloatArray, rule: str) -> FloatArray:
-    """μ(u) of every whole scan (referenced to its own highest summit), shape (scans, U)."""
+def _full_map_mu(found: list[Summits], material: Material, u: FloatArray) -> FloatArray:
+    """μ(u) of every whole scan from its summits (referenced to its own highest summit), shape (scans, U)."""
     rows = []
-    for scan in scans:
-        s = find_summits(scan.heights_m, scan.grid_spacing_m, rule=rule)
+    for s in found:
         area, force, _count = asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=material.e_star_pa)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            rows.append(np.where(force > 0.0, area * material.shear_strength_pa / force, np.nan))
+        rows.append(bowden_tabor_mu(area, force, material.shear_strength_pa))
     return np.stack(rows)
 
 
@@ -174,7 +171,8 @@ def analyse(
         return lambda done, total: progress(label, done, total)
 
     options, surrogate_choice = cfg.surrogate_for([s.heights_m for s in scans])
-    measured_counts = [find_summits(s.heights_m, s.grid_spacing_m, rule=cfg.summit_rule).count for s in scans]
+    found = [find_summits(s.heights_m, s.grid_spacing_m, rule=cfg.summit_rule) for s in scans]
+    measured_counts = [f.count for f in found]
     tiles = window_tiles(min(measured_counts), cfg.window_tiles)
     ens = ensemble_contact(
         scans, material, u, realizations=cfg.realizations, seed=s_ens, progress=stage("ensemble"), options=options,
@@ -196,7 +194,7 @@ def analyse(
     erg_check = ergodicity_check(path.blocks.mu)
     s_check_result = surrogate_check(scans, material, ens, rule=cfg.summit_rule)
     window_check = None
-    scan_mu = _full_map_mu(scans, material, u, cfg.summit_rule)
+    scan_mu = _full_map_mu(found, material, u)
     measured_tile_mu = np.empty((0, u.size))
     if tiles is not None and ens.tile_samples is not None:
         measured_tile_mu = _measured_tiles(scans, material, u, tiles, cfg.summit_rule)
@@ -280,7 +278,6 @@ def analyse(
         psd_level=fits["psd_level"].model_function(),
         window_length_m=path.window_length_m,
     )
-    found = [find_summits(s.heights_m, s.grid_spacing_m, rule=cfg.summit_rule) for s in scans]
     summit_heights = np.concatenate([f.heights_m for f in found])
     summit_radii = np.concatenate([f.radius_m for f in found])
     gamma = None

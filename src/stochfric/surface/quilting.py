@@ -50,7 +50,7 @@ when the piece exceeds :data:`COPY_PIECE_LIMIT` or the correlation exceeds :data
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from typing import Any
 
 import numba
@@ -152,15 +152,7 @@ class QuiltParameters:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary."""
-        return {
-            "patch": self.patch,
-            "overlap": self.overlap,
-            "candidates": self.candidates,
-            "rotate": self.rotate,
-            "screening_length": self.screening_length,
-            "split_wavelength": self.split_wavelength,
-            "choose": self.choose,
-        }
+        return asdict(self)
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -744,16 +736,6 @@ class CopyMetrics:
     def is_copy(self) -> bool:
         """True if the largest verbatim piece or the largest correlation exceeds its limit."""
         return self.largest_piece_fraction > self.piece_limit or self.max_ncc > self.ncc_limit
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary."""
-        return {
-            "max_ncc": self.max_ncc,
-            "largest_piece_fraction": self.largest_piece_fraction,
-            "ncc_limit": self.ncc_limit,
-            "piece_limit": self.piece_limit,
-            "is_copy": self.is_copy,
-        }
 
 
 def copy_metrics(
