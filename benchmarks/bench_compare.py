@@ -113,11 +113,11 @@ def _sigma(case: Case) -> float:
 
 
 def _process_rows(case: Case, runs: int, seed: int = 1) -> npt.NDArray[np.float64]:
-    """The process realisations ``simulate`` uses for runs ``0..runs-1`` (set 0)."""
+    """The process realisations ``simulate`` uses for runs ``0..runs-1`` (set 0, first segment)."""
     assert case.process is not None and case.params.pressure_pa is not None
     root = np.random.SeedSequence(seed)
     return np.stack([case.process.generate(
-        case.params.pressure_pa, np.random.Generator(np.random.PCG64(trajectory_seed(root, 0, r))))
+        case.params.pressure_pa, np.random.Generator(np.random.PCG64(trajectory_seed(root, (0,), r, 0))))
         for r in range(runs)])
 
 

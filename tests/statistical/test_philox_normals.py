@@ -57,7 +57,7 @@ def test_independence_between_trajectories() -> None:
     """Lanes keyed by neighbouring spawn keys (runs r, r+1 of one root) and neighbouring raw
     keys: no correlation at the same step."""
     root = np.random.SeedSequence(2013)
-    keys = P.trajectory_keys(root, np.zeros(64, dtype=np.int64), np.arange(64))
+    keys = P.trajectory_keys(root, np.column_stack([np.zeros(64, dtype=np.int64), np.arange(64)]))
     assert np.unique(keys).size == keys.size
     m = 4000
     zs = np.stack([Z.step_normals(k, m, True) for k in keys])

@@ -60,10 +60,10 @@ def test_children_of_a_child_extend_its_spawn_key_like_numpy() -> None:
 def test_the_oscillator_trajectory_stream_is_the_random_modules_child(root: object) -> None:
     ss = as_seed_sequence(root)  # type: ignore[arg-type]
     for i, r in ((0, 0), (2, 5), (11, 0)):
-        np.testing.assert_array_equal(trajectory_seed(ss, i, r).generate_state(4),
+        np.testing.assert_array_equal(trajectory_seed(ss, (i,), r).generate_state(4),
                                       child_seed(ss, i, r).generate_state(4))
     np.testing.assert_array_equal(child_generator(ss, 2, 5).standard_normal(3),
-                                  np.random.Generator(np.random.PCG64(trajectory_seed(ss, 2, 5))).standard_normal(3))
+                                  np.random.Generator(np.random.PCG64(trajectory_seed(ss, (2,), 5))).standard_normal(3))
 
 
 def test_reserved_keys_cannot_collide_with_task_indices() -> None:

@@ -33,6 +33,7 @@ from .options import (
     WhiteIntensityChoice,
     WhiteStreamChoice,
     fail,
+    write_failed,
 )
 
 err_console = Console(stderr=True)
@@ -92,7 +93,10 @@ def simulate(
         PresetChoice | None,
         typer.Option(help="Thesis case: oscillator, contact area, friction-process model."),
     ] = None,
-    model: Annotated[ModelChoice, typer.Option(help="Friction model (method §5).")] = (
+    model: Annotated[ModelChoice, typer.Option(
+        help="Friction model (method §5): deterministic = the friction law alone; white = phenomenological "
+             "white noise in time, σ_ζ a free intensity that no surface measurement fixes (not the small-ℓ "
+             "limit of the contact process, method §5.1a); contact = the measured surface's friction process.")] = (
         ModelChoice.deterministic
     ),
     friction_law: Annotated[
@@ -157,7 +161,7 @@ def simulate(
     white_stream: Annotated[
         WhiteStreamChoice,
         typer.Option(help="Normals of the white-noise model: philox-ziggurat (default), philox-boxmuller "
-                     "(the default before the ziggurat, recorded as 'philox' in older results) or pcg64 "
+                     "(the default before the ziggurat) or pcg64 "
                      "(numpy's stream, the numbers before the in-kernel streams); same statistics, "
                      "different realisations."),
     ] = WhiteStreamChoice["philox-ziggurat"],
@@ -172,7 +176,9 @@ def simulate(
                      "friction-process`); replaces the preset's model."),
     ] = None,
     process_length: Annotated[
-        float | None, typer.Option(help="Length of the generated process [m].")
+        float | None, typer.Option(help="Length ℓ of one generated process segment [m] (a band-limited "
+                                         "model's band starts at 1/ℓ); a run that slides further reads further, "
+                                         "independent segments: the process never repeats.")
     ] = None,
     save_every: Annotated[int, typer.Option(min=1, help="Trajectory decimation.")] = 10,
     workers: Annotated[int | None, typer.Option(min=1, help="Threads (default: all).")] = None,
@@ -239,14 +245,18 @@ def simulate(
 
     summary = result.to_json_dict()
     summary["preset"] = pre.name if pre else None
+    modes = case.modes(model.value)
+    summary.update(modes)
     try:
         if out is not None:
-            write_netcdf_atomic(out / "simulation.nc", result.to_dataset())
+            ds = result.to_dataset()
+            ds.attrs.update(modes)
+            write_netcdf_atomic(out / "simulation.nc", ds)
             write_text_atomic(out / "simulation.json", json.dumps(summary, indent=1))
         if plot is not None:
             plot_phase_portrait(result, plot)
     except OSError as exc:  # disk full, place removed meanwhile: the previous files stay intact
-        raise fail(f"could not write the results: {exc}") from None
+        raise write_failed(exc) from None
     if json_out:
         typer.echo(json.dumps(summary))
         return

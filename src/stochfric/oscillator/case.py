@@ -55,6 +55,12 @@ __all__ = [
 MODELS: tuple[str, ...] = ("deterministic", "white", "contact")
 #: Where the contact process is read (method §7.7).
 PATH_COORDINATES: tuple[str, ...] = ("mass", "relative", "position")
+#: What the white-noise model is (docs/method.md §5.1a, ``stochfric study white-limit``), recorded with every
+#: white-noise result: not the small-correlation-length limit of the measured contact process.
+WHITE_MODEL_STANDING = ("phenomenological white noise in time: its intensity σ_ζ is fixed by no surface measurement, "
+                        "and it is not the limit of the contact process (at a fixed spectral level σ(X_gh) grows as "
+                        "ℓ^β, β ≈ −0.2 … −0.3, as the correlation length ℓ shrinks; method §5.1a)")
+
 #: σ_ζ rules of the white-noise model (glossary: ``white_intensity``).
 WHITE_INTENSITY_RULES: tuple[str, ...] = ("sigma_mu", "spectral_level", "thesis")
 #: Static coefficient μ0 of the pressure law (4.13), thesis value.
@@ -194,6 +200,18 @@ class Case:
     process_source: str = ""
     white_intensity: str | None = None
     sigma_zeta: float | None = None
+    process_level: str = "sigma_mu"
+
+    def modes(self, model: str) -> dict[str, str]:
+        """The case's modelling modes as plain strings (recorded in every output): the σ_ζ rule of
+        the white-noise model (``given`` for an explicit σ_ζ) and the contact process's level."""
+        rule = ("given" if self.sigma_zeta is not None else self.white_intensity
+                or str(getattr(self.process, "sigma_zeta_rule", "sigma_mu")))
+        out = {"white_intensity": rule if model == "white" else "n/a",
+               "process_level": self.process_level if model == "contact" else "n/a"}
+        if model == "white":
+            out["white_model"] = WHITE_MODEL_STANDING
+        return out
 
     def white_increment(self, model: str) -> str:
         """``"thesis"`` for the white-noise model under the printed-(4.31) rule, else ``"ito"``."""
@@ -427,4 +445,5 @@ def build_case(
         tau_end=tau_end if tau_end is not None else (pre.tau_end if pre else 50.0),
         dt=dt if dt is not None else (pre.dt if pre else 0.005),
         preset=pre, process_source=source, white_intensity=white_intensity, sigma_zeta=sigma_zeta,
+        process_level=process_level or "sigma_mu",
     )

@@ -3,17 +3,23 @@
 One call runs ``runs`` trajectories for each of many parameter sets (normal forces,
 damping ratios, forcing frequencies …) in compiled kernels on all cores.  Trajectory
 ``(i, r)`` (parameter set ``i``, run ``r``) draws all its random numbers from its own
-stream, the child with spawn key ``(i, r)`` of the root seed
-(:class:`numpy.random.SeedSequence`); with ``common_random_numbers=True`` the key is
-``(0, r)`` for every set, so run ``r`` sees the same noise at every parameter set.  The
+stream, the child with spawn key ``(*k_i, r)`` of the root seed
+(:class:`numpy.random.SeedSequence`), where ``k_i`` is the set's *stream key*: ``(i,)`` by
+default, or what the caller gives (the studies give a key made from the cell's own parameter
+values, so a cell's numbers do not depend on its position in a grid:
+:func:`stochfric.studies.tasks.cell_stream_key`); with ``common_random_numbers=True`` every
+set uses ``k_0``, so run ``r`` sees the same noise at every parameter set.  The
 numbers of a trajectory therefore do not depend on the number of threads, the batch
 size or the order of execution.  White noise: the child's first 64 bits key the Philox
 stream drawn inside the compiled kernel, turned into normals by the ziggurat
 (``white_stream="philox-ziggurat"``, default) or by Box–Muller (``"philox-boxmuller"``, the
-default before the ziggurat, formerly called ``"philox"``), or seed numpy's
-PCG64 (``"pcg64"``, the numbers of versions before the in-kernel stream).  Contact process: the child seeds
-numpy's PCG64 for the phases of the spectral representation (computed in compiled code for
-the package's process models, bit for bit).
+default before the ziggurat), or seed numpy's
+PCG64 (``"pcg64"``, the numbers of versions before the in-kernel stream).  Contact process: a run's realisation is
+an unbounded sequence of independent segments of the model's length ℓ (segment ``s`` of
+trajectory ``(i, r)`` from the child ``(*k_i, r, s)``, which seeds numpy's PCG64 for the phases of
+the spectral representation, computed in compiled code for the package's process models, bit
+for bit); only the segments a run's path reaches are generated (:class:`_BatchRunner`), so the
+process never repeats.
 
 Models (method §5): ``deterministic`` (friction law only), ``white`` (law + Gaussian
 white noise of intensity σ_ζ in the relative path, §5.1; integrators ``euler`` =
@@ -25,7 +31,6 @@ from __future__ import annotations
 
 import math
 import os
-import warnings
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
@@ -59,8 +64,6 @@ INTEGRATORS = ("euler", "milstein", "accurate")
 #: versions before issue 13: numpy's ``Generator(PCG64(seed)).standard_normal`` per trajectory,
 #: drawn into a buffer (the same numbers as then, about 4× slower end to end).
 WHITE_STREAMS = ("philox-ziggurat", "philox-boxmuller", "pcg64")
-#: old names of white-noise streams (same numbers)
-WHITE_STREAM_ALIASES = {"philox": "philox-boxmuller"}
 PATH_COORDINATES = {"mass": _k.PATH_MASS, "relative": _k.PATH_RELATIVE, "position": _k.PATH_POSITION}
 
 #: Above this Δτ the Euler methods are refused: fewer than ~25 steps per natural period
@@ -71,11 +74,6 @@ DT_REFUSE = 0.25
 #: unforced, a deviation is visible at 0.05).
 DT_WARN_FORCED = 0.01
 DT_WARN_UNFORCED = 0.02
-
-
-class SimulationWarningCategory(UserWarning):
-    """Kept for code that filters it; :func:`simulate` no longer emits Python warnings — its
-    :class:`SimulationWarning` list is ``result.warnings``."""
 
 
 class ProcessModel(Protocol):
@@ -136,10 +134,9 @@ class _SpectralBatch:
         return self._psd[p]
 
     def fill(self, out: npt.NDArray[np.float64], root: np.random.SeedSequence,
-             key_sets: npt.NDArray[np.int64], runs: npt.NDArray[np.int64],
-             pressures: list[float]) -> None:
-        """``out[j]`` = realisation of trajectory ``(key_sets[j], runs[j])`` at ``pressures[j]``."""
-        phases = _ph.pcg64_uniform_for_children(root, key_sets, runs, self.f.size, 2.0 * np.pi)
+             tails: npt.NDArray[np.int64], pressures: list[float]) -> None:
+        """``out[j]`` = realisation with spawn key ``(*root.spawn_key, *tails[j])`` at ``pressures[j]``."""
+        phases = _ph.pcg64_uniform_for_children(root, tails, self.f.size, 2.0 * np.pi)
         pr = np.asarray(pressures, dtype=np.float64)
         for p in np.unique(pr):
             rows = np.flatnonzero(pr == p)
@@ -147,10 +144,34 @@ class _SpectralBatch:
                                                self.model.length, phases[rows])
 
 
-def trajectory_seed(root: np.random.SeedSequence, param_set: int, run: int) -> np.random.SeedSequence:
-    """The seed sequence of trajectory ``(param_set, run)``: spawn key ``(param_set, run)`` of ``root``
+def trajectory_seed(root: np.random.SeedSequence, stream_key: Sequence[int], run: int,
+                    *segment: int) -> np.random.SeedSequence:
+    """The seed sequence of run ``run`` of the parameter set with stream key ``stream_key``: spawn
+    key ``(*stream_key, run)`` of ``root`` (contact process: ``(*stream_key, run, segment)``)
     (:func:`stochfric.random.child_seed`, the one place streams are derived)."""
-    return child_seed(root, param_set, run)
+    return child_seed(root, *stream_key, run, *segment)
+
+
+def check_stream_keys(stream_keys: Any, npar: int) -> npt.NDArray[np.int64]:
+    """The stream keys of ``npar`` parameter sets as an ``(npar, m)`` int64 array; default ``(i,)``.
+
+    Every key is a tuple of ``m`` ints in ``[0, 2³²)`` (one 32-bit spawn-key word each), the same
+    ``m`` for every set.
+    """
+    if stream_keys is None:
+        return np.arange(npar, dtype=np.int64)[:, None]
+    try:
+        rows = [tuple(int(v) for v in k) for k in stream_keys]
+    except (TypeError, ValueError):
+        raise ParameterError("stream_keys must be one tuple of non-negative ints per parameter set") from None
+    if len(rows) != npar:
+        raise ParameterError(f"stream_keys has {len(rows)} entries for {npar} parameter sets")
+    if len({len(r) for r in rows}) != 1 or not rows[0]:
+        raise ParameterError("every stream key must have the same, non-zero number of entries")
+    arr = np.array(rows, dtype=np.int64)
+    if arr.min() < 0 or arr.max() >= 2**32:
+        raise ParameterError("stream-key entries must lie in [0, 2**32)")
+    return arr
 
 
 def check_time_step(
@@ -347,6 +368,7 @@ def simulate(
     progress: Callable[[int, int], None] | None = None,
     white_increment: str = "ito",
     white_stream: str = "philox-ziggurat",
+    stream_keys: Sequence[Sequence[int]] | None = None,
 ) -> SimulationResult:
     """Simulate the friction oscillator for every parameter set and run.
 
@@ -372,8 +394,10 @@ def simulate(
     integrator:
         ``euler`` (thesis; Euler–Maruyama for white noise), ``milstein`` (white noise,
         strong order 1), ``accurate`` (adaptive RK45 with events; deterministic/contact).
-    runs, seed, common_random_numbers:
-        Monte Carlo runs per set; the root seed; see the module docstring.
+    runs, seed, common_random_numbers, stream_keys:
+        Monte Carlo runs per set; the root seed; see the module docstring.  ``stream_keys``: one
+        tuple of ints in [0, 2³²) per parameter set (default ``(i,)``); run ``r`` of set ``i``
+        draws from spawn key ``(*stream_keys[i], r)`` of the root seed.
     path_coordinate:
         Where the contact process is read: ``mass`` (thesis text §4.1.3: the mass's own path
         |Δx1| in slip), ``relative`` (relative sliding distance |γ0 − x2|Δτ) (method §7.7) or
@@ -401,7 +425,7 @@ def simulate(
         spawned seed, turned into normals by a 1024-layer ziggurat
         (:mod:`stochfric.oscillator.ziggurat`).  ``philox-boxmuller``: the same Philox blocks
         through Box–Muller (:mod:`stochfric.oscillator.philox`; the default before the
-        ziggurat, then called ``philox``, a name still accepted).  ``pcg64``: numpy's PCG64
+        ziggurat).  ``pcg64``: numpy's PCG64
         stream of the same seed drawn into a buffer (the numbers before the in-kernel
         streams).  All three are exact N(0, 1) streams, one per trajectory; they give
         different realisations of the same statistics (tests/statistical/test_white_stream.py).
@@ -409,22 +433,19 @@ def simulate(
     plist = [params] if isinstance(params, OscillatorParameters) else list(params)
     if not plist:
         raise ParameterError("no parameter set given")
-    if white_stream in WHITE_STREAM_ALIASES:
-        new = WHITE_STREAM_ALIASES[white_stream]
-        warnings.warn(f"white_stream={white_stream!r} is now called {new!r} (the same numbers); "
-                      f"the default is 'philox-ziggurat'", DeprecationWarning, stacklevel=2)
-        white_stream = new
     _check_options(model, integrator, white_increment, white_stream, path_coordinate, runs, save_every)
     warn_list = check_time_step(dt, tau_end, integrator, plist)
     law_spec: LawSpec = law_III() if law is None else law
     plan = _plan(plist, model, law_spec, process, sigma_zeta, x0, tau_end, dt, white_increment)
     root = as_seed_sequence(seed)
     npar = len(plist)
+    keys = check_stream_keys(stream_keys, npar)
     nev = int(max_events) if max_events is not None else int(2 * tau_end) + 16
     nsave = plan.nsteps // save_every + 1 if save_trajectory else 0
     out = _allocate_output(npar * runs, nev, nsave)
     runner = _BatchRunner(
-        plan=plan, model=model, integrator=integrator, process=process, root=root, runs=runs,
+        plan=plan, model=model, integrator=integrator, process=process, root=root, stream_keys=keys,
+        runs=runs,
         common_random_numbers=common_random_numbers, path_mode=PATH_COORDINATES[path_coordinate],
         white_stream=white_stream, dt=dt, save_every=save_every,
         accurate=_acc.AccurateSettings(float(tau_end), min(dt, max_step), max_step, rtol, atol,
@@ -434,6 +455,7 @@ def simulate(
     _run_batches(runner, npar * runs, workers, batch_size, progress)
 
     diagnostics = {k: out.diag[:, j].reshape(npar, runs).copy() for k, j in DIAGNOSTICS.items()}
+    diagnostics["process_segments"] = runner.segments.reshape(npar, runs).astype(float)
     # returned in the result only (``result.warnings``, also in its JSON and NetCDF); callers show
     # them (the CLI prints each on stderr, the studies count them, the report explains them)
     warn_list += _post_warnings(out.counts, nev, out.diag, model, process, plist, runner.path_mode)
@@ -461,7 +483,8 @@ def simulate(
             "save_every": save_every, "max_events": nev,
             "common_random_numbers": common_random_numbers,
             "rtol": rtol, "atol": atol, "max_step": max_step,
-            "spawn_key_layout": "(param_set, run)",
+            "spawn_key_layout": "(*stream_key, run); contact process: (*stream_key, run, segment)",
+            "stream_keys": keys.tolist(),
             "white_increment": white_increment,
             "white_stream": white_stream,
             "sigma_zeta_effective": plan.sigma_eff,
@@ -534,17 +557,29 @@ def _allocate_output(n_traj: int, capacity: int, nsave: int) -> _k.KernelOutput:
     )
 
 
+#: Process segments a contact run starts with (more are generated for runs that need them; the
+#: numbers do not depend on this value: tests/unit/oscillator/test_simulate.py).
+FIRST_SEGMENTS = 1
+
+
 @dataclass
 class _BatchRunner:
     """Runs trajectories ``lo … hi − 1`` (trajectory ``j`` = parameter set ``j // runs``, run
     ``j % runs``) through the compiled kernel: draws their random input from their own streams
-    (:func:`trajectory_seed`), then writes rows ``lo … hi − 1`` of ``out``."""
+    (:func:`trajectory_seed`), then writes rows ``lo … hi − 1`` of ``out``.
+
+    Contact model: a run starts with one segment of the process (the model's n points); a run
+    whose path reaches the end of what was generated is run again with more segments (at least
+    twice as many), until its path stays inside.  The segments a run reads are the same however
+    many were generated, so its numbers are those of an unbounded, never-repeating realisation
+    (``segments`` records how many each run needed)."""
 
     plan: _Plan
     model: str
     integrator: str
     process: ProcessModel | None
     root: np.random.SeedSequence
+    stream_keys: npt.NDArray[np.int64]
     runs: int
     common_random_numbers: bool
     path_mode: int
@@ -568,54 +603,69 @@ class _BatchRunner:
                              else _k.WHITE_PHILOX if self.philox else _k.WHITE_GIVEN)
         self.spectral = (_SpectralBatch(self.process) if self.noise == _k.NOISE_PROCESS
                          and getattr(type(self.process), "generate", None) in _SPECTRAL_GENERATE else None)
+        # segments grow only where the path coordinate runs on ('position' reads at x1: periodic)
+        self.extend = self.noise == _k.NOISE_PROCESS and self.path_mode != _k.PATH_POSITION
+        self.segments = np.ones(self.out.counts.shape[0], dtype=np.int64)
+
+    def _tails(self, sets: npt.NDArray[np.int64], rr: npt.NDArray[np.int64], *extra: npt.NDArray[np.int64]
+               ) -> npt.NDArray[np.int64]:
+        """Spawn-key tails ``(*stream key, run, *extra)`` of the trajectories ``(sets[j], rr[j])``."""
+        keys = self.stream_keys[np.zeros_like(sets) if self.common_random_numbers else sets]
+        return np.column_stack([keys, rr, *extra]).astype(np.int64)
 
     def _random_input(
-        self, sets: npt.NDArray[np.int64], rr: npt.NDArray[np.int64]
+        self, sets: npt.NDArray[np.int64], rr: npt.NDArray[np.int64], n_seg: int
     ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64], npt.NDArray[np.uint64]]:
-        """The increments ``dw`` (white noise from a buffer), process realisations and Philox keys
-        of the trajectories ``(sets[j], rr[j])``."""
+        """The increments ``dw`` (white noise from a buffer), process realisations (``n_seg``
+        segments each) and Philox keys of the trajectories ``(sets[j], rr[j])``."""
         b = sets.size
         nsteps = self.plan.nsteps
         buffer_white = self.noise == _k.NOISE_WHITE and not self.philox
         dw = np.empty((b, nsteps)) if buffer_white else np.zeros((b, 1))  # every row is filled below
-        proc = np.zeros((b, self.n_proc))
-        key_sets = np.zeros_like(sets) if self.common_random_numbers else sets
+        proc = np.zeros((b, n_seg * self.n_proc))
         # the key of trajectory (i, r): its spawned seed's first 64 bits (the same as
-        # _ph.trajectory_key(trajectory_seed(root, i, r)), computed in compiled code)
-        keys = _ph.trajectory_keys(self.root, key_sets, rr) if self.philox else np.zeros(1, dtype=np.uint64)
+        # _ph.trajectory_key(trajectory_seed(root, k_i, r)), computed in compiled code)
+        keys = (_ph.trajectory_keys(self.root, self._tails(sets, rr)) if self.philox
+                else np.zeros(1, dtype=np.uint64))
         if self.spectral is not None:
-            prs = [self.plan.pressures[int(i)] for i in sets]
-            self.spectral.fill(proc, self.root, key_sets, rr, [float(p_) for p_ in prs if p_ is not None])
+            seg = np.tile(np.arange(n_seg), b)
+            rows = np.repeat(np.arange(b), n_seg)
+            prs = [self.plan.pressures[int(sets[j])] for j in rows]
+            flat = np.empty((b * n_seg, self.n_proc))
+            self.spectral.fill(flat, self.root, self._tails(sets[rows], rr[rows], seg),
+                               [float(p_) for p_ in prs if p_ is not None])
+            proc[:] = flat.reshape(b, n_seg * self.n_proc)
         elif self.noise != _k.NOISE_NONE and not self.philox:
             sq = math.sqrt(self.dt)
+            tails = self._tails(sets, rr)
             for j in range(b):
-                rng = np.random.Generator(np.random.PCG64(trajectory_seed(self.root, int(key_sets[j]),
-                                                                          int(rr[j]))))
+                key, run = tuple(int(v) for v in tails[j, :-1]), int(tails[j, -1])
                 if self.noise == _k.NOISE_WHITE:
+                    rng = np.random.Generator(np.random.PCG64(trajectory_seed(self.root, key, run)))
                     rng.standard_normal(out=dw[j])
                     dw[j] *= sq
-                else:
-                    assert self.process is not None
-                    pr = self.plan.pressures[int(sets[j])]
-                    assert pr is not None
+                    continue
+                assert self.process is not None
+                pr = self.plan.pressures[int(sets[j])]
+                assert pr is not None
+                for s_ in range(n_seg):
+                    rng = np.random.Generator(np.random.PCG64(trajectory_seed(self.root, key, run, s_)))
                     vals = np.asarray(self.process.generate(pr, rng), dtype=np.float64)
                     if vals.shape != (self.n_proc,):
                         raise RuntimeError(
                             f"process realisation has shape {vals.shape}, expected ({self.n_proc},)"
                         )
-                    proc[j] = vals
+                    proc[j, s_ * self.n_proc:(s_ + 1) * self.n_proc] = vals
         return dw, proc, keys
 
-    def __call__(self, lo: int, hi: int) -> None:
-        idx = np.arange(lo, hi)
+    def _run_rows(self, idx: npt.NDArray[np.int64], n_seg: int, out: _k.KernelOutput) -> None:
+        """Trajectories ``idx`` with ``n_seg`` process segments, written to ``out`` (row j ↔ idx[j])."""
         sets = idx // self.runs
         rr = idx % self.runs
-        dw, proc, keys = self._random_input(sets, rr)
+        dw, proc, keys = self._random_input(sets, rr, n_seg)
         prm, lawp, shapes = self.rows
         rows = _k.KernelRows(prm[sets], shapes[sets], lawp[sets], self.x0[sets], proc,
-                             np.full(hi - lo, self.n_proc, dtype=np.int64))
-        o = self.out
-        out = _k.KernelOutput(o.x_gh[lo:hi], o.t_gh[lo:hi], o.counts[lo:hi], o.traj[lo:hi], o.diag[lo:hi])
+                             np.full(idx.size, n_seg * self.n_proc, dtype=np.int64))
         if self.integrator == "accurate":
             _acc.run_accurate_batch(rows, out, self.accurate, self.noise, self.path_mode)
         else:
@@ -624,6 +674,35 @@ class _BatchRunner:
                 self.noise, self.path_mode,
                 _k.WhiteInput(self.white_source, dw, keys),
             )
+
+    def _exhausted(self, idx: npt.NDArray[np.int64], diag: npt.NDArray[np.float64], n_seg: int
+                   ) -> npt.NDArray[np.bool_]:
+        """Runs whose path came within a tenth of a segment of the end of ``n_seg`` segments
+        (beyond the end the kernel would wrap round to the start; the spare tenth covers the
+        trial stages of an adaptive step, which read ahead of the accepted path)."""
+        pdx = self.rows[0][idx // self.runs, _k.P_PROC_DX]
+        return diag[:, _k.D_PATH] >= (n_seg * self.n_proc - 1 - 0.1 * self.n_proc) * pdx
+
+    def __call__(self, lo: int, hi: int) -> None:
+        o = self.out
+        idx = np.arange(lo, hi)
+        n_seg = FIRST_SEGMENTS if self.extend else 1
+        self._run_rows(idx, n_seg, _k.KernelOutput(o.x_gh[lo:hi], o.t_gh[lo:hi], o.counts[lo:hi],
+                                                   o.traj[lo:hi], o.diag[lo:hi]))
+        self.segments[lo:hi] = n_seg
+        while self.extend:
+            again = idx[self._exhausted(idx, o.diag[idx], n_seg)]
+            if again.size == 0:
+                break
+            pdx = self.rows[0][again // self.runs, _k.P_PROC_DX]
+            need = int(np.max(np.ceil(o.diag[again, _k.D_PATH] / (self.n_proc * pdx)))) + 2
+            n_seg = max(2 * n_seg, need)
+            tmp = _allocate_output(again.size, o.x_gh.shape[1], o.traj.shape[1])
+            self._run_rows(again, n_seg, tmp)
+            o.x_gh[again], o.t_gh[again], o.counts[again] = tmp.x_gh, tmp.t_gh, tmp.counts
+            o.traj[again], o.diag[again] = tmp.traj, tmp.diag
+            self.segments[again] = n_seg
+            idx = again
 
 
 def _run_batches(
@@ -690,22 +769,13 @@ def _post_warnings(
             f"the friction-process model was written with --accept-not-credible: {'; '.join(stamp)}",
         ))
     if model == "contact" and process is not None:
-        if not getattr(process, "grid_is_periodic", True):
+        # 'position' (reproduction mode) reads the process at x1, periodically continued; in the
+        # path coordinates the process never repeats (independent segments, _BatchRunner)
+        if path_mode == _k.PATH_POSITION and not getattr(process, "grid_is_periodic", True):
             out.append(SimulationWarning(
                 "process-grid-not-periodic",
                 f"the process grid ({process.length:.4g} m / dx {process.dx:.4g} m) does not span "
                 "exactly one period: its periodic continuation has a seam; choose dx = length/n",
-            ))
-        length_scale = params[0].length_scale
-        path_m = diag[:, _k.D_PATH] * length_scale
-        worst = float(np.max(path_m))
-        # in 'position' mode the process is read at x1, which stays within the cycle's amplitude
-        if worst > process.length and path_mode != _k.PATH_POSITION:
-            out.append(SimulationWarning(
-                "process-exhausted",
-                f"process exhausted: slip path {worst:.4g} m exceeds process length "
-                f"{process.length:.4g} m; the process repeats {worst / process.length:.2f} times "
-                "(periodic continuation) — generate a longer process (--process-length)",
             ))
         n_short = int(np.sum(diag[:, _k.D_N_SHORT_SLIP]))
         n_ph = int(np.sum(diag[:, _k.D_N_SLIP_PHASES]))

@@ -26,14 +26,13 @@ from dataclasses import asdict, dataclass, field
 from functools import partial
 from typing import Any
 
-from stochfric.validation import finite, non_negative, positive
+from stochfric.validation import non_negative, positive
 
 
 class ParameterError(ValueError):
     """An oscillator parameter is invalid; the message says which one and why."""
 
 
-_finite = partial(finite, error=ParameterError)
 _positive = partial(positive, error=ParameterError)
 _non_negative = partial(non_negative, error=ParameterError)
 

@@ -18,7 +18,7 @@ step ``k`` of trajectory ``j`` are the same whichever thread, batch or machine c
 Stream layout used by the oscillator kernels (method §5.1, docs/performance.md):
 
 * key: the 64 bits ``SeedSequence.generate_state(1, uint64)`` of the trajectory's own spawned
-  seed sequence (spawn key ``(param_set, run)``), split into ``k0`` (low) and ``k1`` (high)
+  seed sequence (spawn key ``(*stream key, run)``), split into ``k0`` (low) and ``k1`` (high)
   (:func:`trajectory_keys` computes the same hash in compiled code);
 * grid steps ``2p`` and ``2p + 1`` share the block ``philox(ctr = (p mod 2³², p div 2³², 0, 0))``:
   its words ``w0 = c1·2³² + c0`` and ``w1 = c3·2³² + c2`` give the pair ``(R_{2p}, R_{2p+1})``
@@ -35,7 +35,7 @@ machine; the C library's ``log``/``sin``/``cos`` would keep the loop scalar).  M
 are in docs/performance.md.
 
 Seeding: :func:`child_states` is numpy's :class:`~numpy.random.SeedSequence` hash of a child
-``(*root.spawn_key, set, run)`` and :func:`pcg64_uniform_for_children` numpy's
+``(*root.spawn_key, *tail)`` and :func:`pcg64_uniform_for_children` numpy's
 ``Generator(PCG64(child)).uniform``, both in compiled code and bit for bit numpy's (tested):
 per trajectory they cost ~0.1 µs instead of ~10 µs of Python, which matters when a trajectory
 is only ~10 µs of integration.
@@ -297,24 +297,22 @@ _XSHIFT = np.uint64(16)
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def _child_states(
-    prefix: npt.NDArray[np.uint64], sets: npt.NDArray[np.uint64], runs: npt.NDArray[np.uint64],
-    pool_size: int, n_words: int,
+    prefix: npt.NDArray[np.uint64], tails: npt.NDArray[np.uint64], pool_size: int, n_words: int,
 ) -> npt.NDArray[np.uint64]:  # pragma: no cover
-    """``SeedSequence(entropy, spawn_key=(*root_key, sets[i], runs[i])).generate_state(n_words,
-    uint32)`` for every ``i`` (32-bit words held in uint64, shape ``(len(sets), n_words)``);
-    ``prefix`` holds the 32-bit words of the assembled entropy before the last two spawn-key
-    entries (run entropy padded to the pool size, then the root's spawn key), ``sets`` and
-    ``runs`` are < 2³²."""
-    n = sets.shape[0]
+    """``SeedSequence(entropy, spawn_key=(*root_key, *tails[i])).generate_state(n_words, uint32)``
+    for every row ``i`` of ``tails`` (32-bit words held in uint64, shape ``(len(tails), n_words)``);
+    ``prefix`` holds the 32-bit words of the assembled entropy before the tail (run entropy
+    padded to the pool size, then the root's spawn key); every tail entry is < 2³²."""
+    n, m = tails.shape
     npre = prefix.shape[0]
-    ne = npre + 2
+    ne = npre + m
     ent = np.empty(ne, dtype=np.uint64)
     ent[:npre] = prefix
     mixer = np.empty(pool_size, dtype=np.uint64)
     out = np.empty((n, n_words), dtype=np.uint64)
     for t in range(n):
-        ent[npre] = sets[t]
-        ent[npre + 1] = runs[t]
+        for c in range(m):
+            ent[npre + c] = tails[t, c]
         hc = _INIT_A
         for i in range(pool_size):
             v = ent[i] if i < ne else np.uint64(0)
@@ -360,44 +358,46 @@ def _uint32_words(value: int) -> list[int]:
     return words
 
 
-def child_states(
-    root: np.random.SeedSequence, sets: npt.ArrayLike, runs: npt.ArrayLike, n_words: int
-) -> npt.NDArray[np.uint32]:
+def spawn_tails(keys: npt.ArrayLike) -> npt.NDArray[np.int64]:
+    """``keys`` as a 2-D int64 array of spawn-key tails, one row per child (a 1-D array is one
+    column); refuses negative entries."""
+    arr = np.asarray(keys, dtype=np.int64)
+    if arr.ndim == 1:
+        arr = arr[:, None]
+    if arr.ndim != 2:
+        raise ValueError(f"spawn-key tails must be a 2-D array (children × entries), got shape {arr.shape}")
+    if arr.size and arr.min() < 0:
+        raise ValueError("spawn-key entries must be non-negative")
+    return arr
+
+
+def child_states(root: np.random.SeedSequence, keys: npt.ArrayLike, n_words: int) -> npt.NDArray[np.uint32]:
     """``generate_state(n_words, uint32)`` of the children of ``root`` with spawn keys
-    ``(*root.spawn_key, sets[i], runs[i])`` (the seeds :func:`stochfric.oscillator.integrate.
-    trajectory_seed` spawns), computed in compiled code; shape ``(len(sets), n_words)``.
+    ``(*root.spawn_key, *keys[i])`` (``keys``: one row of spawn-key entries per child, e.g.
+    ``(*cell key, run)``: :func:`stochfric.oscillator.integrate.trajectory_seed`), computed in
+    compiled code; shape ``(len(keys), n_words)``.
 
     Equal, bit for bit, to numpy's :class:`~numpy.random.SeedSequence` (falls back to it where
-    an index is ≥ 2³² or the root's entropy is not an integer).
+    an entry is ≥ 2³² or the root's entropy is not an integer).
     """
-    s_arr = np.asarray(sets, dtype=np.int64).ravel()
-    r_arr = np.asarray(runs, dtype=np.int64).ravel()
-    if s_arr.shape != r_arr.shape:
-        raise ValueError("sets and runs must have the same length")
-    if s_arr.size and (s_arr.min() < 0 or r_arr.min() < 0):
-        raise ValueError("parameter-set and run indices must be non-negative")
+    tails = spawn_tails(keys)
     entropy = root.entropy
-    if s_arr.size and (int(max(s_arr.max(), r_arr.max())) >= 2**32 or entropy is None
+    if tails.size and (int(tails.max()) >= 2**32 or entropy is None
                        or not isinstance(entropy, int | np.integer)):
         return np.array([np.random.SeedSequence(
-            entropy, spawn_key=(*root.spawn_key, int(a), int(b)), pool_size=root.pool_size
-        ).generate_state(n_words, np.uint32) for a, b in zip(s_arr, r_arr, strict=True)],
-            dtype=np.uint32).reshape(s_arr.size, n_words)
+            entropy, spawn_key=(*root.spawn_key, *(int(v) for v in row)), pool_size=root.pool_size
+        ).generate_state(n_words, np.uint32) for row in tails], dtype=np.uint32).reshape(len(tails), n_words)
     run_entropy = _uint32_words(int(entropy))  # type: ignore[arg-type]
     run_entropy += [0] * max(0, root.pool_size - len(run_entropy))  # spawn key always present
     prefix = run_entropy + [w for k in root.spawn_key for w in _uint32_words(int(k))]
-    return _child_states(np.array(prefix, dtype=np.uint64), s_arr.astype(np.uint64),
-                         r_arr.astype(np.uint64), int(root.pool_size), int(n_words)
-                         ).astype(np.uint32)
+    return _child_states(np.array(prefix, dtype=np.uint64), tails.astype(np.uint64),
+                         int(root.pool_size), int(n_words)).astype(np.uint32)
 
 
-def trajectory_keys(
-    root: np.random.SeedSequence, sets: npt.ArrayLike, runs: npt.ArrayLike
-) -> npt.NDArray[np.uint64]:
-    """:func:`trajectory_key` of the children with spawn keys ``(*root.spawn_key, s, r)`` of
-    ``root``, for the pairs ``(sets[i], runs[i])``, computed in compiled code
-    (:func:`child_states`; bit for bit numpy's)."""
-    w = child_states(root, sets, runs, 2).astype(np.uint64)
+def trajectory_keys(root: np.random.SeedSequence, keys: npt.ArrayLike) -> npt.NDArray[np.uint64]:
+    """:func:`trajectory_key` of the children with spawn keys ``(*root.spawn_key, *keys[i])`` of
+    ``root``, computed in compiled code (:func:`child_states`; bit for bit numpy's)."""
+    w = child_states(root, keys, 2).astype(np.uint64)
     return np.ascontiguousarray(w[:, 0] | (w[:, 1] << np.uint64(32)))
 
 
@@ -464,10 +464,10 @@ def pcg64_uniform(
 
 
 def pcg64_uniform_for_children(
-    root: np.random.SeedSequence, sets: npt.ArrayLike, runs: npt.ArrayLike, count: int, high: float
+    root: np.random.SeedSequence, keys: npt.ArrayLike, count: int, high: float
 ) -> npt.NDArray[np.float64]:
     """Row ``i``: ``Generator(PCG64(child)).uniform(0, high, count)`` for the child of ``root``
-    with spawn key ``(*root.spawn_key, sets[i], runs[i])``, computed in compiled code."""
-    w = child_states(root, sets, runs, 8).astype(np.uint64)
+    with spawn key ``(*root.spawn_key, *keys[i])``, computed in compiled code."""
+    w = child_states(root, keys, 8).astype(np.uint64)
     seeds = np.ascontiguousarray(w[:, 0::2] | (w[:, 1::2] << np.uint64(32)))
     return pcg64_uniform(seeds, int(count), float(high) - 0.0)

@@ -79,6 +79,15 @@ class SimulationResult:
             out.append([float(v) for v in row[np.isfinite(row)]])
         return out
 
+    def __repr__(self) -> str:
+        x = self.x_gh[np.isfinite(self.x_gh)]
+        stats = (f"E[X_gh] = {float(np.mean(x)):.4g}, σ(X_gh) = {float(np.std(x, ddof=1)):.3g}" if x.size > 1
+                 else "no slip→stick transition")
+        return (f"SimulationResult({self.model}, {self.integrator}, {len(self.params)} parameter set(s) × "
+                f"{self.runs} run(s), τ_end = {self.tau_end:g}, Δτ = {self.dt:g}, seed {self.seed_entropy}: "
+                f"M = {float(np.mean(self.stick_count)):.3g} transitions per run, {stats} (x = y/L); "
+                f"{len(self.warnings)} warning(s))")
+
     def _run_record(self) -> dict[str, Any]:
         """How the runs were made: model, integrator, time grid, runs, seed, path coordinate."""
         return {"model": self.model, "integrator": self.integrator, "dt": self.dt, "tau_end": self.tau_end,
@@ -147,6 +156,8 @@ class SimulationResult:
         ds.attrs["integrator"] = self.integrator
         ds.attrs["seed_entropy"] = str(self.seed_entropy)
         ds.attrs["path_coordinate"] = self.path_coordinate
+        for key in ("white_increment", "white_stream"):  # every mode as a plain attribute
+            ds.attrs[key] = str(self.settings.get(key, ""))
         return ds
 
     def to_netcdf(self, path: str | Path) -> Path:

@@ -7,7 +7,8 @@ axes (:meth:`Study.axes`: the friction model first, then the study's own), the p
 one grid point (:meth:`Study.task`) and how the results become a dataset and a summary
 (:meth:`Study.assemble`); :meth:`Study.run` is the same for every study: build the tasks, run them
 (:func:`sweep`: executor, checkpoints, progress), assemble.  Task ``k`` is the ``k``-th point of the
-axes in C order and draws its random numbers from spawn key ``(k,)`` of the root seed.
+axes in C order; its cells draw their random numbers from keys made of their own parameter values
+(:func:`~stochfric.studies.tasks.cell_stream_key`), so a cell's numbers do not depend on the grid.
 """
 
 from __future__ import annotations
@@ -58,6 +59,14 @@ class StudyResult:
     summary: dict[str, Any]
     stats: SweepStats = field(default_factory=SweepStats)
 
+    def __repr__(self) -> str:
+        s = self.summary
+        dims = ", ".join(f"{k} {v}" for k, v in self.dataset.sizes.items())
+        return (f"StudyResult({self.kind}, preset {s.get('preset')}, models {s.get('models')}, runs {s.get('runs')}, "
+                f"seed {s.get('seed')}; dataset: {dims}; {self.stats.computed} task(s) computed, "
+                f"{self.stats.loaded} loaded; summary keys: {', '.join(sorted(s)[:12])}"
+                + (", …" if len(s) > 12 else "") + ")")
+
     def to_dataset(self) -> xr.Dataset:
         """The labelled arrays (dims named, units in attributes, config/seed/versions in attrs)."""
         return self.dataset
@@ -107,11 +116,19 @@ def provenance_attrs(
         "config_json": json.dumps(jsonable(config.model_dump(mode="json"))),
         "setup_json": json.dumps(jsonable(setup.describe())),
         "seed_entropy": str(root_entropy),
-        "seed_rule": "task k uses SeedSequence(seed, spawn_key=(k,)); trajectory (i, r) of a task spawn key (k, i, r)",
+        "seed_rule": ("run r of a cell uses SeedSequence(seed, spawn_key=(h0, h1, r)), (h0, h1) = BLAKE2b words of "
+                      "the model and the cell's parameter values (studies.tasks.cell_stream_key; common random "
+                      "numbers leave D out); contact process segment s: (h0, h1, r, s)"),
         "versions_json": json.dumps(package_versions()),
         "executor_json": json.dumps(executor.describe() if executor is not None else {"executor": "serial"}),
+        # every modelling mode as a plain attribute (also in config_json / setup_json)
         "path_coordinate": str(getattr(config, "path_coordinate", "mass")),
         "white_intensity": str(getattr(config, "white_intensity", "sigma_mu")),
+        "white_increment": str(getattr(setup, "white_increment", "ito")),
+        "process_level": str(getattr(setup, "process_level", "sigma_mu")),
+        "integrator": str(getattr(config, "integrator", "")),
+        "sde_integrator": str(getattr(config, "sde_integrator", "")),
+        "process_extension": "independent segments of the process length, generated as a run's path needs them",
         "units_note": "x_gh, t_gh dimensionless (x = y/L, L = 1 m; tau = omega0 t); forces in N; damping ratio D [-]",
     }
 

@@ -16,9 +16,9 @@ from __future__ import annotations
 from collections.abc import Sequence
 from typing import Any
 
-from ..oscillator.case import MODELS, CaseError, CaseSetup, case_setup
 from ..oscillator.case import PATH_COORDINATES as PATH_COORDINATES
 from ..oscillator.case import WHITE_INTENSITY_RULES as WHITE_INTENSITY_RULES
+from ..oscillator.case import WHITE_MODEL_STANDING, CaseError, CaseSetup, case_setup
 from ..oscillator.case import law_for as law_for
 from ..oscillator.case import process_rule_of as process_rule_of
 from ..oscillator.case import white_increment_of as white_increment_of
@@ -34,7 +34,6 @@ from .tasks import execute_task as execute_task
 from .tasks import integrator_for as integrator_for
 from .tasks import runs_for as runs_for
 from .tasks import task_for as task_for
-from .tasks import task_seed as task_seed
 from .tasks import warnings_of as warnings_of
 
 #: The studies' names for the case of :mod:`stochfric.oscillator.case`: a study's configuration
@@ -61,18 +60,6 @@ def model_choices(config: Any, setup: StudySetup, forces: Sequence[float]) -> di
         "process_level": setup.process_level,
         "sigma_zeta": [setup.sigma_zeta(nf) for nf in forces],
         "sigma_zeta_effective": [setup.sigma_zeta_effective(nf) for nf in forces],
+        **({"white_model": WHITE_MODEL_STANDING} if "white" in config.models else {}),
     }
-
-
-def check_models(models: Sequence[str]) -> tuple[str, ...]:
-    """Validate a list of model names (order kept, duplicates refused)."""
-    out = tuple(str(m) for m in models)
-    bad = [m for m in out if m not in MODELS]
-    if bad:
-        raise StudyError(f"unknown model(s) {bad}; choose from {list(MODELS)}")
-    if len(set(out)) != len(out):
-        raise StudyError(f"models listed twice: {list(out)}")
-    if not out:
-        raise StudyError("no model given")
-    return out
 

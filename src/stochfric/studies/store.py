@@ -22,7 +22,9 @@ import numpy.typing as npt
 
 from ..io_utils import atomic_path, write_text_atomic
 
-SCHEMA = "stochfric.checkpoint/1"
+#: Version of the checkpoint layout and of the stream rule; part of the hash, so checkpoints of
+#: another version are never loaded (2: streams keyed by the cell's parameters, segmented process).
+SCHEMA = "stochfric.checkpoint/2"
 
 
 def _canonical(obj: Any) -> Any:
@@ -52,7 +54,7 @@ class CheckpointStore:
 
     def __init__(self, root: str | Path, config: Mapping[str, Any], kind: str = "study") -> None:
         self.config = dict(config)
-        self.hash = config_hash(self.config)
+        self.hash = config_hash({**self.config, "checkpoint_schema": SCHEMA})
         self.directory = Path(root) / f"{kind}-{self.hash}"
         self.directory.mkdir(parents=True, exist_ok=True)
         cfg = self.directory / "config.json"

@@ -4,13 +4,21 @@ and how it runs.
 A study is a list of independent *tasks*; one task is one :func:`simulate` call that batches
 many parameter sets (e.g. every damping ratio D of one normal force N and one friction model).
 A task is described completely by a picklable, frozen :class:`TaskSpec`, so that it can run in
-this process, in a local worker process or on a Dask worker and give the same numbers: its
-random numbers come from the seed sequence with spawn key ``(task_index,)`` of the study's root
-seed (:func:`task_seed`), never from the order of execution.
+this process, in a local worker process or on a Dask worker and give the same numbers.
+
+**Seeds by cell.**  Run ``r`` of a cell (one parameter set of a task: model, N, D, q, η and the
+case) draws from spawn key ``(*cell key, r)`` of the study's root seed, where the cell key is a
+hash of the model and the cell's own parameter values (:func:`cell_stream_key`), never of its
+position in the grid, the task it is batched in, the executor or the order of execution: a cell
+rerun alone, or inside a larger grid, gives the same numbers bit for bit.  Common random numbers
+(the damping study's default) leave D out of the key, so every D of one (model, N) sees the same
+noise; the Lyapunov study's reference, perturbed and twin runs have the same parameters and so
+the same key.
 """
 
 from __future__ import annotations
 
+import hashlib
 import json
 from collections.abc import Sequence
 from dataclasses import dataclass, field
@@ -25,16 +33,20 @@ from ..oscillator.case import law_for
 from ..oscillator.friction_laws import FrictionLaw
 from ..oscillator.integrate import simulate
 from ..oscillator.parameters import OscillatorParameters
-from ..random import child_seed
+
+#: Version of the cell-key rule, the first word hashed (a new rule gives new streams).
+CELL_KEY_RULE = "stochfric.cell/1"
 
 
-def task_seed(root_entropy: int, task_index: int) -> np.random.SeedSequence:
-    """Seed sequence of task ``task_index``: spawn key ``(task_index,)`` of the root seed.
-
-    Depends only on the root seed and the task's position in the study grid, never on the
-    executor, the number of workers or the order in which tasks finish.
-    """
-    return child_seed(int(root_entropy), int(task_index))
+def cell_stream_key(model: str, params: OscillatorParameters, shared: Sequence[str] = ()) -> tuple[int, int]:
+    """The stream key of a study cell: two 32-bit words of a BLAKE2b hash of the model and every
+    field of ``params`` (exact float values), with the fields named in ``shared`` left out (common
+    random numbers over that axis).  Depends on nothing else (seed rule: module docstring)."""
+    fields = {k: (None if k in shared or v is None else float(v).hex())
+              for k, v in sorted(params.to_dict().items())}
+    text = json.dumps([CELL_KEY_RULE, str(model), fields], sort_keys=True, separators=(",", ":"))
+    word = int.from_bytes(hashlib.blake2b(text.encode("utf-8"), digest_size=8).digest(), "little")
+    return word & 0xFFFFFFFF, word >> 32
 
 
 @dataclass(frozen=True)
@@ -57,7 +69,7 @@ class TaskSpec:
     root_entropy: int
     process: Any
     x0: tuple[tuple[float, float], ...] | None = None
-    common_random_numbers: bool = False
+    stream_keys: tuple[tuple[int, ...], ...] | None = None
     path_coordinate: str = "mass"
     keep_trajectory_runs: int = 0
     save_every: int = 10
@@ -75,6 +87,7 @@ def task_for(
     params: Sequence[OscillatorParameters],
     runs: int | None = None,
     x0: tuple[tuple[float, float], ...] | str | None = "config",
+    common_random_numbers: bool = False,
     **fields: Any,
 ) -> TaskSpec:
     """A :class:`TaskSpec` with the fields every study fills the same way from its config and setup.
@@ -82,10 +95,11 @@ def task_for(
     ``runs`` defaults to :func:`runs_for` ``(model, config.runs)``; ``x0="config"`` repeats
     ``config.x0`` for every parameter set (``None`` if the config has none); the integrator
     follows :func:`integrator_for`, the time grid, process and white-noise increment the setup.
-    ``fields`` sets the remaining :class:`TaskSpec` fields (``common_random_numbers``,
-    ``keep_trajectory_runs``, ``save_every``).
+    ``common_random_numbers`` leaves D out of the cells' stream keys (:func:`cell_stream_key`).
+    ``fields`` sets the remaining :class:`TaskSpec` fields (``keep_trajectory_runs``, ``save_every``).
     """
     ps = tuple(params)
+    shared = ("damping_ratio",) if common_random_numbers else ()
     start = (None if config.x0 is None else tuple(config.x0 for _ in ps)) if isinstance(x0, str) else x0
     return TaskSpec(
         index=index, label=label, model=model, params=ps,
@@ -93,6 +107,7 @@ def task_for(
         tau_end=setup.tau_end, dt=setup.dt,
         integrator=integrator_for(model, config.integrator, config.sde_integrator),
         root_entropy=config.seed, process=setup.process, x0=start,
+        stream_keys=tuple(cell_stream_key(model, p, shared) for p in ps),
         path_coordinate=config.path_coordinate, white_increment=setup.white_increment, **fields,
     )  # fmt: skip
 
@@ -112,9 +127,9 @@ def execute_task(spec: TaskSpec, threads: int | None = None) -> dict[str, npt.ND
     res = simulate(
         list(spec.params), model=spec.model, law=law, process=process,
         x0=list(spec.x0) if spec.x0 is not None else None, tau_end=spec.tau_end, dt=spec.dt,
-        integrator=spec.integrator, runs=spec.runs, seed=task_seed(spec.root_entropy, spec.index),
+        integrator=spec.integrator, runs=spec.runs, seed=int(spec.root_entropy), stream_keys=spec.stream_keys,
         path_coordinate=spec.path_coordinate, save_trajectory=keep, save_every=spec.save_every,
-        workers=threads, common_random_numbers=spec.common_random_numbers,
+        workers=threads,
         white_increment=spec.white_increment if spec.model == "white" else "ito",
     )
     nev = int(max(1, np.max(np.sum(np.isfinite(res.x_gh), axis=2))))

@@ -59,10 +59,10 @@ def test_batch_realisations_equal_generate_process_per_row() -> None:
     s = m.spectrum(f, 3e5)
     root = np.random.SeedSequence(17)
     sets, runs = np.array([0, 0, 2, 5]), np.array([0, 3, 1, 2**31 + 1])
-    phases = P.pcg64_uniform_for_children(root, sets, runs, f.size, 2 * np.pi)
+    phases = P.pcg64_uniform_for_children(root, np.column_stack([sets, runs]), f.size, 2 * np.pi)
     batch = generate_process_batch(f, s, m.dx, m.length, phases)
     for j in range(4):
-        rng = np.random.Generator(np.random.PCG64(trajectory_seed(root, int(sets[j]), int(runs[j]))))
+        rng = np.random.Generator(np.random.PCG64(trajectory_seed(root, (int(sets[j]),), int(runs[j]))))
         np.testing.assert_array_equal(batch[j], generate_process(f, s, m.dx, m.length, rng))
     with pytest.raises(ValueError, match="phases must have shape"):
         generate_process_batch(f, s, m.dx, m.length, phases[:, :-1])

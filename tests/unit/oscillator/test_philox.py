@@ -22,7 +22,7 @@ from stochfric.oscillator import philox as P
 from stochfric.oscillator import ziggurat as Z
 from stochfric.oscillator.friction_laws import law_III
 from stochfric.oscillator.integrate import simulate, trajectory_seed
-from stochfric.oscillator.parameters import OscillatorParameters
+from stochfric.oscillator.parameters import OscillatorParameters, ParameterError
 
 #: Random123 tests/kat_vectors, the three "philox4x32 10" lines: counter[4], key[2], result[4].
 KAT_PHILOX4X32_10 = [
@@ -145,15 +145,21 @@ def test_step_normals_are_philox_blocks_through_box_muller() -> None:
 def test_compiled_seed_sequence_equals_numpy(root: np.random.SeedSequence) -> None:
     sets = np.array([0, 0, 1, 2, 7, 100_000, 0, 2**32 - 1])
     runs = np.array([0, 1, 0, 5, 3, 2, 2**31 + 5, 1])
-    got = P.trajectory_keys(root, sets, runs)
-    ref = [P.trajectory_key(trajectory_seed(root, int(s), int(r))) for s, r in zip(sets, runs, strict=True)]
+    got = P.trajectory_keys(root, np.column_stack([sets, runs]))
+    ref = [P.trajectory_key(trajectory_seed(root, (int(s),), int(r))) for s, r in zip(sets, runs, strict=True)]
     assert got.dtype == np.uint64
     assert [int(v) for v in got] == [int(v) for v in ref]
     # indices beyond 32 bits take numpy's own path
-    big = P.trajectory_keys(root, [2**33], [1])
-    assert int(big[0]) == int(P.trajectory_key(trajectory_seed(root, 2**33, 1)))
+    big = P.trajectory_keys(root, [[2**33, 1]])
+    assert int(big[0]) == int(P.trajectory_key(trajectory_seed(root, (2**33,), 1)))
     with pytest.raises(ValueError, match="non-negative"):
-        P.trajectory_keys(root, [-1], [0])
+        P.trajectory_keys(root, [[-1, 0]])
+    # longer tails (a study cell's two key words, the run, a process segment) hash like numpy too
+    tails = np.array([[5, 2**32 - 1, 0, 0], [7, 3, 2, 9]])
+    got4 = P.child_states(root, tails, 8)
+    for row, want in zip(tails, got4, strict=True):
+        assert want.tolist() == trajectory_seed(root, tuple(int(v) for v in row[:2]), int(row[2]), int(row[3])
+                                                ).generate_state(8).tolist()
 
 
 def _prm(sigma: float) -> np.ndarray:
@@ -216,20 +222,18 @@ def test_simulate_white_streams() -> None:
     for name, r in res.items():
         assert r.settings["white_stream"] == name
     assert not np.array_equal(res["philox-ziggurat"].trajectory, res["philox-boxmuller"].trajectory)
-    with pytest.warns(DeprecationWarning, match="philox-boxmuller"):
-        old = simulate(p, white_stream="philox", **kw)
-    assert old.settings["white_stream"] == "philox-boxmuller"
-    np.testing.assert_array_equal(old.trajectory, res["philox-boxmuller"].trajectory)
+    with pytest.raises(ParameterError, match="unknown white-noise stream 'philox'"):
+        simulate(p, white_stream="philox", **kw)
     dt, nsteps = 0.005, 1000
     root = np.random.SeedSequence(4)
 
     def key(r: int) -> np.uint64:
-        return P.trajectory_key(trajectory_seed(root, 0, r))
+        return P.trajectory_key(trajectory_seed(root, (0,), r))
 
     draws = {
         "philox-ziggurat": lambda r: Z.step_normals(key(r), nsteps),
         "philox-boxmuller": lambda r: Z.step_normals(key(r), nsteps, True),
-        "pcg64": lambda r: np.random.Generator(np.random.PCG64(trajectory_seed(root, 0, r))).standard_normal(nsteps),
+        "pcg64": lambda r: np.random.Generator(np.random.PCG64(trajectory_seed(root, (0,), r))).standard_normal(nsteps),
     }
     for name, draw in draws.items():
         for r in range(3):

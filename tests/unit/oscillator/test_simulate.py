@@ -106,16 +106,33 @@ def test_path_coordinate_is_recorded_and_matters() -> None:
     assert np.all(r.diagnostics["path"] > m.diagnostics["path"])
 
 
-def test_process_exhausted_and_short_slip_warnings() -> None:
+def test_process_never_repeats_and_short_slip_warning(monkeypatch: pytest.MonkeyPatch) -> None:
+    """A run whose path exceeds the process length gets further independent segments instead of
+    the periodic continuation (no ``process-exhausted``); its numbers are those of an unbounded
+    realisation: the same whether it starts with 1 or 16 segments."""
+    import stochfric.oscillator.integrate as integrate_module
+
     p, pre = _brake()
     short = replace(pre.process, length=0.01, dx=0.01 / 16)
     with warnings.catch_warnings():
         warnings.simplefilter("error")  # returned in the result, never emitted as Python warnings
-        res = simulate(p, model="contact", law=_law, process=short, runs=2, seed=1)
-    codes = {w.code for w in res.warnings}
-    assert "process-exhausted" in codes
-    msg = next(w.message for w in res.warnings if w.code == "process-exhausted")
-    assert "process exhausted" in msg and "repeats" in msg and "0.01 m" in msg
+        res = simulate(p, model="contact", law=_law, process=short, runs=3, seed=1)
+    assert "process-exhausted" not in {w.code for w in res.warnings}
+    segments = res.diagnostics["process_segments"]
+    path_m = res.diagnostics["path"] * p.length_scale
+    assert np.all(segments * short.length > path_m)  # every run read a fresh realisation throughout
+    assert np.max(segments) > 1
+    monkeypatch.setattr(integrate_module, "FIRST_SEGMENTS", 16)
+    wide = simulate(p, model="contact", law=_law, process=short, runs=3, seed=1)
+    np.testing.assert_array_equal(wide.x_gh, res.x_gh)
+    np.testing.assert_array_equal(wide.stick_count, res.stick_count)
+    acc = simulate(p, model="contact", law=_law, process=short, runs=2, seed=1, integrator="accurate",
+                   tau_end=20.0)
+    monkeypatch.setattr(integrate_module, "FIRST_SEGMENTS", 1)
+    acc1 = simulate(p, model="contact", law=_law, process=short, runs=2, seed=1, integrator="accurate",
+                    tau_end=20.0)
+    np.testing.assert_array_equal(acc.x_gh, acc1.x_gh)
+    assert np.max(acc1.diagnostics["process_segments"]) > 1
     coarse = replace(pre.process, dx=0.05 / 5)  # 1 cm grid: slip paths (≈ 5 mm) are shorter
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

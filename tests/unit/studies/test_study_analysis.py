@@ -3,14 +3,17 @@
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
-from stochfric.studies.common import StudyError, parse_grid, task_seed, window_mask
+from stochfric.oscillator.parameters import OscillatorParameters
+from stochfric.studies.common import StudyError, parse_grid, window_mask
 from stochfric.studies.damping import d_max_deterministic, d_max_stochastic
 from stochfric.studies.lyapunov import lyapunov_exponent
 from stochfric.studies.stats import clopper_pearson, sample_summary, zero_count_upper_bound
+from stochfric.studies.tasks import cell_stream_key
 
 
 def test_parse_grid_forms() -> None:
@@ -24,12 +27,18 @@ def test_parse_grid_forms() -> None:
             parse_grid(bad)
 
 
-def test_task_seed_depends_on_index_only() -> None:
-    a = np.random.default_rng(task_seed(7, 3)).random(4)
-    b = np.random.default_rng(task_seed(7, 3)).random(4)
-    c = np.random.default_rng(task_seed(7, 4)).random(4)
-    assert np.array_equal(a, b)
-    assert not np.array_equal(a, c)
+def test_cell_stream_key_depends_on_the_cells_values_only() -> None:
+    p = OscillatorParameters(gamma0=0.5, n=0.01, damping_ratio=0.1, q=1e-4, eta=1.2, omega0=700.0)
+    k = cell_stream_key("contact", p)
+    assert k == cell_stream_key("contact", OscillatorParameters(**p.__dict__))  # a fresh, equal object
+    assert all(0 <= w < 2**32 for w in k)
+    others = {cell_stream_key("white", p), cell_stream_key("contact", replace(p, eta=1.25)),
+              cell_stream_key("contact", replace(p, damping_ratio=0.1 + 1e-12)),
+              cell_stream_key("contact", replace(p, n=0.02))}
+    assert k not in others and len(others) == 4
+    # common random numbers over D: D is left out of the key
+    assert cell_stream_key("contact", p, ("damping_ratio",)) == cell_stream_key(
+        "contact", replace(p, damping_ratio=0.2), ("damping_ratio",))
 
 
 def test_window_mask() -> None:
