@@ -76,6 +76,8 @@ class StatisticalContactAnalysis:
     #: Integral correlation length S(0)/(4σ_μ²) along the path [m], mean over the K surfaces, and its SE.
     correlation_length_m: FloatArray
     correlation_length_se_m: FloatArray
+    #: 95 % interval [lo, hi] of the correlation length per u (Student t over the K surfaces), shape (U, 2).
+    correlation_length_ci95_m: FloatArray = field(default_factory=lambda: np.empty((0, 2)))
     #: The thesis's correlation length: first zero crossing of the averaged ACF [m] (NaN: none).
     zero_crossing_m: FloatArray
     frequencies: FloatArray
@@ -91,6 +93,23 @@ class StatisticalContactAnalysis:
     #: Validity of the model on this surface (:mod:`stochfric.contact.validity`): μ > 1,
     #: A_c/A_nom > 1 or beyond the non-interaction range, too few contacts, plasticity index.
     warnings: list[ValidityWarning] = field(default_factory=list)
+
+    def __repr__(self) -> str:
+        p = np.asarray(self.pressure_pa) / 1e6
+        mu = np.asarray(self.mu_mean)
+        ell = np.asarray(self.correlation_length_m) * 1e3
+        verdict = ("credible" if self.credibility.credible
+                   else f"NOT credible ({', '.join(self.credibility.codes())})")
+        return (f"StatisticalContactAnalysis({self.config.surrogate} → {self.surrogate_choice or '?'} surrogates, "
+                f"{self.config.realizations} realisations, seed {self.seed_entropy}: p {np.nanmin(p):.3g}…"
+                f"{np.nanmax(p):.3g} MPa, E[μ] {np.nanmin(mu):.3g}…{np.nanmax(mu):.3g}, correlation length "
+                f"{np.nanmin(ell):.3g}…{np.nanmax(ell):.3g} mm; {verdict})")
+
+    def _correlation_length_ci95(self) -> FloatArray:
+        """The (U, 2) interval array (NaN where it was not computed)."""
+        ci = np.asarray(self.correlation_length_ci95_m, dtype=np.float64)
+        n_u = np.asarray(self.correlation_length_m).size
+        return ci if ci.shape == (n_u, 2) else np.full((n_u, 2), np.nan)
 
     def sigma_zeta_table(self) -> dict[str, list[float]]:
         """σ_ζ at the analysed pressures by both rules (``sigma_mu`` and ``spectral_level``)."""
@@ -124,7 +143,10 @@ class StatisticalContactAnalysis:
             "psd_level_m": lst(self.psd_level),
             "correlation_length_m": lst(self.correlation_length_m),
             "correlation_length_se_m": lst(self.correlation_length_se_m),
-            "correlation_length_rule": "integral scale S(0)/(4 sigma_mu^2) per long surface, mean and SE over them",
+            "correlation_length_ci95_m": [lst(row) for row in self._correlation_length_ci95()],
+            "correlation_length_surfaces": int(self.path.samples.mu.shape[0]),
+            "correlation_length_rule": "integral scale S(0)/(4 sigma_mu^2) per long surface, mean and SE over them; "
+                                       "95 % interval mean +- t(K-1) SE",
             "zero_crossing_m": lst(self.zero_crossing_m),
             "correlation_length_mean_m": float(finite_cl.mean()) if finite_cl.size else None,
             "window_shift_m": self.path.window_shift_m,
@@ -196,6 +218,8 @@ class StatisticalContactAnalysis:
             "correlation_length_m": var(u, self.correlation_length_m, "m",
                                         "integral correlation length S(0)/(4 sigma_mu^2), mean over surfaces"),
             "correlation_length_se_m": var(u, self.correlation_length_se_m, "m", "SE of correlation_length_m"),
+            "correlation_length_ci95_m": var((*u, "bound"), self._correlation_length_ci95(), "m",
+                                             "95 % Student-t interval of correlation_length_m over the surfaces"),
             "zero_crossing_m": var(u, self.zero_crossing_m, "m", "first zero crossing of the averaged ACF (thesis)"),
             "psd": var((*u, "frequency"), self.psd, "m", "one-sided PSD of mu-hat (method 0), surface mean"),
             "psd_se": var((*u, "frequency"), self.psd_se, "m", "SE of psd over surfaces"),

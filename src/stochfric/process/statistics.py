@@ -13,7 +13,8 @@ c) **μ along the path** (:func:`~stochfric.process.ensemble.path_contact`): K l
    windows shifted by a_y → μ(y), autocorrelation, correlation length, PSD (method §0),
    averaged over the surfaces (Fig. 3.19–3.21).  The correlation length is the integral scale
    ℓ_corr = ∫₀^∞ ρ(y) dy = S(0)/(4σ_μ²) per long surface (S(0) the low-frequency level, stable
-   between realisations), with its standard error over the K surfaces; the thesis's first zero
+   between realisations), with its standard error and 95 % Student-t interval over the K surfaces
+   (:func:`~stochfric.process.spectra.correlation_length_interval`); the thesis's first zero
    crossing of the averaged ACF is kept as ``zero_crossing_m`` (it jumps between realisations
    and is undefined when the ACF stays positive);
 d) the **model functions** f(p) = a p^b + c for E[μ], σ_μ and the PSD level over the mean
@@ -66,6 +67,7 @@ from stochfric.process.parallel import default_workers
 from stochfric.process.spectra import (
     autocorrelation,
     correlation_length,
+    correlation_length_interval,
     integral_correlation_length,
     mean_psd,
     psd_level,
@@ -229,6 +231,7 @@ def analyse(
     lags = np.arange(acfs.shape[1], dtype=np.float64) * a_y
     zero_crossing = np.array([correlation_length(acfs[k], a_y) for k in range(n_u)])
     psd_rows, psd_se_rows, levels, level_se, corr, corr_se = [], [], [], [], [], []
+    corr_ci: list[tuple[float, float]] = []
     freqs: FloatArray = np.empty(0)
     for k in range(n_u):
         freqs, s_mean, s_se = mean_psd(mu_p[:, :, k], a_y)
@@ -241,9 +244,10 @@ def analyse(
         level_se.append(float(np.std(per_surface, ddof=1) / root_k) if k_count > 1 else math.nan)
         per_len = np.array([integral_correlation_length(mu_p[j, :, k], a_y, path.window_length_m)
                             for j in range(k_count)])
-        ok = np.isfinite(per_len)
-        corr.append(float(np.mean(per_len[ok])) if np.any(ok) else math.nan)
-        corr_se.append(float(np.std(per_len[ok], ddof=1) / math.sqrt(int(ok.sum()))) if ok.sum() > 1 else math.nan)
+        cl_mean, cl_se, cl_lo, cl_hi = correlation_length_interval(per_len)
+        corr.append(cl_mean)
+        corr_se.append(cl_se)
+        corr_ci.append((cl_lo, cl_hi))
     psd = np.stack(psd_rows)
     psd_se = np.stack(psd_se_rows)
 
@@ -340,6 +344,7 @@ def analyse(
         acf=acfs,
         correlation_length_m=np.asarray(corr),
         correlation_length_se_m=np.asarray(corr_se),
+        correlation_length_ci95_m=np.asarray(corr_ci, dtype=np.float64).reshape(-1, 2),
         zero_crossing_m=zero_crossing,
         frequencies=freqs,
         psd=psd,
