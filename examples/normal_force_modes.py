@@ -124,8 +124,8 @@ def damping(preset: str, runs: int, seed: int) -> list[str]:
                             **mode)  # type: ignore[arg-type]
         s = damping_study(cfg).to_json_dict()
         det = s["d_max_deterministic"][0]
-        lines.append(f"| {preset} | {name} | {det:g} | {_dmax(s['d_max_stochastic']['white'][0])} | "
-                     f"{_dmax(s['d_max_stochastic']['contact'][0])} |")
+        lines.append(f"| {preset} | {name} | {det:g} | {_dmax(s['d_max_sample_extreme']['white'][0])} | "
+                     f"{_dmax(s['d_max_sample_extreme']['contact'][0])} |")
     return lines
 
 

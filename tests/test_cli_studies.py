@@ -36,15 +36,18 @@ def _json(app: typer.Typer, args: list[str]) -> dict:
 def test_damping_json_contract(app: typer.Typer) -> None:
     d = _json(app, ["study", "damping", "--preset", "brake", "--normal-force", "5600", "--damping", "0.05:0.25:41",
                     "--runs", "10", "--json"])
-    for key in ("normal_force_n", "damping_ratio", "d_max_deterministic", "d_max_stochastic", "d_hopf", "d_safe",
-                "stick_probability", "m_diff", "seed", "versions"):
+    for key in ("normal_force_n", "damping_ratio", "d_max_deterministic", "d_max_sample_extreme", "d_hopf",
+                "risk_levels", "d_max_risk", "stick_probability", "m_diff", "seed", "versions"):
         assert key in d, key
+    assert "d_safe" not in d and "d_max_stochastic" not in d  # issue 19: no "safe" sample extreme
     assert d["normal_force_n"] == [5600.0] and len(d["damping_ratio"]) == 41
     assert d["d_max_deterministic"] == [0.14]
     assert d["d_hopf"][0] == pytest.approx(0.0946, abs=1e-4)
     for m in ("white", "contact"):
-        e = d["d_max_stochastic"][m][0]
+        e = d["d_max_sample_extreme"][m][0]
         assert set(e) == {"value", "interval"} and e["interval"][0] == e["value"]
+        r = d["d_max_risk"][m][0]  # per risk level: 10 %, 1 % by default; 10 runs resolve neither
+        assert [x["risk_level"] for x in r] == [0.1, 0.01] and all(x["high_open"] and not x["resolved"] for x in r)
     assert d["tasks"]["computed"] == 6  # 3 grid tasks + 3 phase-diagram tasks (one per model)
     # the thesis's modelling choices are the defaults and are recorded
     assert d["path_coordinate"] == "mass" and d["white_intensity"] == "sigma_mu"
@@ -53,7 +56,8 @@ def test_damping_json_contract(app: typer.Typer) -> None:
     ph = d["phase"]
     assert ph["normal_force_n"] == 5600.0 and ph["damping_rule"] == "auto"
     assert len(ph["damping_ratio"]) == 5 and ph["damping_ratio"][0] == 0.05
-    assert ph["damping_ratio"][-1] > max(d["d_max_deterministic"][0], d["d_max_stochastic"]["contact"][0]["value"])
+    assert ph["damping_ratio"][-1] > max(d["d_max_deterministic"][0],
+                                           d["d_max_sample_extreme"]["contact"][0]["value"])
     assert ph["runs"] == {"deterministic": 1, "white": 3, "contact": 3}
 
 
@@ -97,6 +101,15 @@ def test_human_output_and_report(app: typer.Typer, tmp_path: Path) -> None:
         (["study", "normal-force", "--path-coordinate", "x"], "'mass', 'relative' or 'position'"),
         (["study", "damping", "--phase-damping", "0.1,1.5"], "--phase-damping"),
         (["study", "damping", "--phase-force", "-5"], "--phase-force:"),
+        # issue 19: the risk levels of D_max(α)
+        (["study", "damping", "--risk-levels", "1.5"], "--risk-levels: Value error, risk levels must lie in (0, 1)"),
+        (["study", "damping", "--risk-levels", "0,0.1"], "--risk-levels: Value error, risk levels must lie in (0, 1)"),
+        (["study", "damping", "--risk-levels", "-0.1"], "--risk-levels: Value error, risk levels must lie in (0, 1)"),
+        (["study", "damping", "--risk-levels", "nan"], "--risk-levels: Value error, risk levels must lie in (0, 1)"),
+        (["study", "damping", "--risk-levels", ""], "--risk-levels: Value error, give at least one risk level"),
+        (["study", "damping", "--risk-levels", " , "], "--risk-levels: Value error, give at least one risk level"),
+        (["study", "damping", "--risk-levels", "ten"], "--risk-levels: Value error, 'ten' is not a comma-separated"),
+        (["study", "damping", "--risk-levels", "0.1,0.1"], "--risk-levels: Value error, a risk level is listed twice"),
     ],
 )
 def test_errors_exit_2(app: typer.Typer, args: list[str], needle: str) -> None:

@@ -28,7 +28,7 @@ def _det(**kw: object) -> DampingConfig:
 
 def test_dmax_above_hopf_boundary_on_the_map() -> None:
     ds = damping_study(_det()).to_dataset()
-    dmax = ds["d_max"].sel(model="deterministic").values
+    dmax = ds["d_max_sample_extreme"].sel(model="deterministic").values
     dh = ds["d_hopf"].values
     assert np.all(np.isfinite(dmax))
     assert np.all(dmax >= dh), (dmax, dh)
@@ -46,10 +46,10 @@ def test_dmax_independent_of_dt_with_accurate() -> None:
     a = damping_study(_det(normal_force_n=forces, integrator="accurate", dt=0.005)).to_dataset()
     b = damping_study(_det(normal_force_n=forces, integrator="accurate", dt=0.0025)).to_dataset()
     e = damping_study(_det(normal_force_n=forces, integrator="euler", dt=0.005)).to_dataset()
-    da = a["d_max"].sel(model="deterministic").values
-    np.testing.assert_array_equal(da, b["d_max"].sel(model="deterministic").values)
+    da = a["d_max_sample_extreme"].sel(model="deterministic").values
+    np.testing.assert_array_equal(da, b["d_max_sample_extreme"].sel(model="deterministic").values)
     step = 0.005
-    assert np.all(np.abs(e["d_max"].sel(model="deterministic").values - da) <= step + 1e-12)
+    assert np.all(np.abs(e["d_max_sample_extreme"].sel(model="deterministic").values - da) <= step + 1e-12)
 
 
 def test_probability_is_one_below_and_zero_far_above() -> None:

@@ -20,6 +20,7 @@ from typing import Annotated, Any
 import typer
 from pydantic import ValidationError
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
 from rich.table import Table
 
@@ -30,6 +31,7 @@ from ..studies import executors, run_config
 from ..studies.common import StudyError
 from ..studies.executors import SweepInterrupted
 from .options import GROUP, fail, option_group
+from .white_limit import white_limit_command
 
 #: the module (``stochfric.studies`` re-exports its function ``reproduce`` under the same name);
 #: called through the module so that tests can replace ``plan`` / ``run_study`` / ``reproduce``
@@ -43,7 +45,9 @@ RunsOpt = Annotated[int | None, typer.Option("--runs", help="Monte Carlo runs pe
 SeedOpt = Annotated[int, typer.Option("--seed", min=0, help="Root seed.")]
 TauOpt = Annotated[float | None, typer.Option("--tau-end", help="Simulated time τ_end (default: preset).")]
 DtOpt = Annotated[float | None, typer.Option("--dt", help="Time step Δτ (default: preset).")]
-IntOpt = Annotated[str, typer.Option("--integrator", help="euler | accurate (deterministic, contact).")]
+IntOpt = Annotated[str | None, typer.Option(
+    "--integrator", help="euler | accurate (deterministic, contact; default: accurate for the forcing and Lyapunov "
+                         "studies, euler otherwise; euler at the thesis's Δτ is their reproduction mode).")]
 WinOpt = Annotated[float, typer.Option("--stick-window", help="Stick window: τ > w·τ_end counts (default 0.5).")]
 ForceListOpt = Annotated[str | None, typer.Option("--normal-force", help="N [N] list (default: preset).")]
 ForcingQOpt = Annotated[str | None, typer.Option(
@@ -169,13 +173,15 @@ def _models(spec: str | None) -> dict[str, Any]:
 
 def study_options(
     preset: PresetOpt = "brake", runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None,
-    process: ProcessOpt = None, tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = "euler",
+    process: ProcessOpt = None, tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = None,
     path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu", process_level: LevelOpt = "sigma_mu",
 ) -> dict[str, Any]:
     """The config fields every study command shares (case, Monte Carlo, modelling choices); options
     left out take the config's defaults (:func:`~stochfric.cli.options.option_group`)."""
-    d: dict[str, Any] = {"preset": preset, "seed": seed, "integrator": integrator, "path_coordinate": path_coordinate,
+    d: dict[str, Any] = {"preset": preset, "seed": seed, "path_coordinate": path_coordinate,
                          "white_intensity": white_intensity, "process_level": process_level, **_models(models)}
+    if integrator is not None:
+        d["integrator"] = integrator
     if process is not None:
         d["process_file"] = str(process)
     if runs is not None:
@@ -277,21 +283,24 @@ def _print_summary(kind: str, s: dict[str, Any]) -> None:
               f"({s['wall_time_s']:.1f} s; tasks computed {s['tasks']['computed']}, "
               f"from checkpoint {s['tasks']['loaded_from_checkpoint']})")
     if kind == "damping":
-        t = Table(title="largest damping with stick-slip")
-        for col in ["N [N]", "D_H", "D_max^d", *[f"D_max^s {m} [lo, hi]" for m in s["d_max_stochastic"]]]:
+        risk = s.get("d_max_risk", {})
+        alphas = s.get("risk_levels", [])
+        t = Table(title=escape("largest damping with P(stick-slip) ≥ α [interval]; sample extreme = largest D at "
+                               "which any run stuck (thesis D_max^s, grows with the runs)"))
+        for col in ["N [N]", "D_H", "D_max^d", *[f"D_max({100 * a:g} %) {m}" for m in risk for a in alphas],
+                    *[f"sample extreme {m}" for m in s.get("d_max_sample_extreme", {})]]:
             t.add_column(col, justify="right")
         for i, nf in enumerate(s["normal_force_n"]):
             det = s.get("d_max_deterministic")
             grid = s["damping_ratio"]
             row = [f"{nf:g}", f"{s['d_hopf'][i]:.4g}", report_html.dmax_text(det[i], grid) if det else "—"]
-            for m in s["d_max_stochastic"]:
-                e = s["d_max_stochastic"][m][i]
-                row.append(report_html.dmax_text(e["value"], grid) + (
-                    "" if e["value"] is None else f" [{e['interval'][0]}, {e['interval'][1] or '> grid'}]"))
-            t.add_row(*row)
+            row += [report_html.risk_text(risk[m][i][j], grid, s.get("runs"), compact=True)
+                    for m in risk for j in range(len(alphas))]
+            row += [report_html.dmax_text(e[i]["value"], grid) for e in s.get("d_max_sample_extreme", {}).values()]
+            t.add_row(*(escape(c) for c in row))
         con.print(t)
     _, reading = report_html.READERS[kind](s)
-    con.print(reading)
+    con.print(escape(reading))
     choices = report_html.model_choices_text(s)
     if choices:
         con.print(choices)
@@ -311,7 +320,11 @@ def damping_command(
     ] = "0.05:0.25:41",
     stick_window: WinOpt = 0.5,
     confidence: Annotated[float, typer.Option("--confidence", help="Clopper–Pearson level.")] = 0.95,
-    p_detect: Annotated[float, typer.Option("--p-detect", help="Tolerated stick probability for D_hi.")] = 0.1,
+    p_detect: Annotated[float, typer.Option(
+        "--p-detect", help="Stick probability below which D_hi of the sample extreme is read.")] = 0.1,
+    risk_levels: Annotated[str | None, typer.Option(
+        "--risk-levels", help="Risk levels α of D_max(α), the largest D with P(stick-slip) ≥ α: comma-separated "
+                              "probabilities in (0, 1) (default 0.1,0.01).")] = None,
     x0: Annotated[tuple[float, float] | None, typer.Option("--x0", help="Initial X1 X2 (default (0, γ0)).")] = None,
     phase_force: Annotated[float | None, typer.Option(
         "--phase-force", help="N [N] of the phase diagrams over D (default: the preset's damping-study force if "
@@ -322,10 +335,11 @@ def damping_command(
     phase_runs: PhaseRunsOpt = 3,
     run: ExecutionOptions = GROUP,
 ) -> None:
-    """Damping study: D_max^d, D_max^s (with interval), D_H, M_diff, M_quot, phase diagrams over D (method §6.2)."""
+    """Damping study: P(stick-slip | D), D_max(α) with interval, D_max^d, D_H, M_diff, M_quot, phase diagrams
+    over D (method §6.2)."""
     _execute("damping", {**common, "stick_window": stick_window,
                          "normal_force_n": normal_force, "damping_ratio": damping, "confidence": confidence,
-                         "p_detect": p_detect, "x0": x0, "phase_force_n": phase_force,
+                         "p_detect": p_detect, "risk_levels": risk_levels, "x0": x0, "phase_force_n": phase_force,
                          "phase_damping": phase_damping, "phase_runs": phase_runs}, run)
 
 
@@ -461,13 +475,14 @@ def reproduce_command(
 
 
 def register(app: typer.Typer) -> None:
-    """Add ``study {normal-force,damping,forcing,lyapunov}``, ``run`` and ``reproduce`` to ``app``."""
+    """Add ``study {normal-force,damping,forcing,lyapunov,white-limit}``, ``run`` and ``reproduce`` to ``app``."""
     study = typer.Typer(help="Studies of thesis chapter 4 (method §6): three friction models side by side.",
                         no_args_is_help=True)
     study.command("damping")(damping_command)
     study.command("forcing")(forcing_command)
     study.command("lyapunov")(lyapunov_command)
     study.command("normal-force")(normal_force_command)
+    study.command("white-limit")(white_limit_command)
     app.add_typer(study, name="study")
     app.command("run")(run_command)
     app.command("reproduce")(reproduce_command)

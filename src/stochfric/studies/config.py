@@ -26,13 +26,30 @@ from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
-from .common import MODELS
+from ..oscillator.case import MODELS
 from .grids import STICK_WINDOW, parse_grid
 
 Grid = Annotated[tuple[float, ...], BeforeValidator(parse_grid)]
 ModelName = Literal["deterministic", "white", "contact"]
 PathCoordinate = Literal["mass", "relative", "position"]
 WhiteIntensity = Literal["sigma_mu", "spectral_level", "thesis"]
+
+
+def parse_risk_levels(spec: Any) -> Any:
+    """Risk levels from ``"0.1,0.01"``, a number or a list (values checked by the config)."""
+    if isinstance(spec, bool):
+        raise ValueError("risk levels must be numbers, not a boolean")
+    if isinstance(spec, int | float):
+        return (float(spec),)
+    if isinstance(spec, str):
+        parts = [t.strip() for t in spec.split(",")]
+        if not any(parts):
+            raise ValueError("give at least one risk level, e.g. 0.1,0.01")
+        try:
+            return tuple(float(t) for t in parts if t)
+        except ValueError:
+            raise ValueError(f"{spec!r} is not a comma-separated list of numbers, e.g. 0.1,0.01") from None
+    return spec
 
 
 class StudyConfig(BaseModel):
@@ -132,6 +149,9 @@ class DampingConfig(StudyConfig):
     common_random_numbers: bool = True
     confidence: float = Field(default=0.95, gt=0, lt=1)
     p_detect: float = Field(default=0.1, gt=0, lt=1)
+    risk_levels: Annotated[tuple[float, ...], BeforeValidator(parse_risk_levels)] = Field(
+        default=(0.1, 0.01),
+        description="risk levels α of D_max(α), the largest D with P(stick-slip) >= α (each in (0, 1))")
     phase_force_n: float | None = Field(
         default=None, gt=0,
         description="N [N] of the phase diagrams over D (default: the preset's damping-study force if it is "
@@ -169,6 +189,25 @@ class DampingConfig(StudyConfig):
             raise ValueError("the damping grid must be increasing")
         return v
 
+    @field_validator("risk_levels")
+    @classmethod
+    def _risk_levels(cls, v: tuple[float, ...]) -> tuple[float, ...]:
+        if not v:
+            raise ValueError("give at least one risk level, e.g. 0.1,0.01")
+        bad = [a for a in v if not 0.0 < a < 1.0]
+        if bad:
+            raise ValueError(f"risk levels must lie in (0, 1) (a probability, 0.1 = 10 %), got {bad[0]:g}")
+        if len(set(v)) != len(v):
+            raise ValueError(f"a risk level is listed twice: {list(v)}")
+        return v
+
+    def hash_config(self) -> dict[str, Any]:
+        """As :meth:`StudyConfig.hash_config` without ``risk_levels``: they change the analysis only, so
+        checkpoints of the same simulations (and those written before the field existed) still resume."""
+        d = super().hash_config()
+        d.pop("risk_levels", None)
+        return d
+
     @field_validator("phase_damping")
     @classmethod
     def _phase_damping_range(cls, v: tuple[float, ...] | None) -> tuple[float, ...] | None:
@@ -186,6 +225,12 @@ class _ForcedConfig(StudyConfig):
 
     forcing_q: Grid = (5e-5, 5e-4)
     eta: Grid = Field(default_factory=lambda: parse_grid("0:3:61"))
+    #: The forced studies run on the converged integrator by default (issue 19): Euler at the thesis's
+    #: Δτ = 0.005 locks spurious cycles at some η (brake 4000 N, q = 5e-4, η = 1.2: λ = -0.86 against
+    #: +0.28 converged).  ``euler`` is their reproduction mode (recorded in the outputs).
+    integrator: Literal["euler", "accurate"] = Field(
+        default="accurate", description="deterministic and contact models: accurate (adaptive RK45 with events, "
+                                        "default) | euler (reproduction mode: the thesis's fixed Δτ)")
     damping_ratio: float | None = Field(default=None, ge=0, lt=1)
     renamed_fields = {"damping": "damping_ratio"}
 
@@ -200,6 +245,15 @@ class _ForcedConfig(StudyConfig):
         if any(x < 0 for x in v):
             raise ValueError("values must be >= 0")
         return v
+
+
+def integrator_record(config: Any) -> dict[str, str]:
+    """The integrators a forced study ran with, for its JSON and dataset attributes: ``integrator``
+    (deterministic, contact), ``sde_integrator`` (white noise) and ``integrator_mode``: ``converged``
+    (``accurate``) or ``reproduction`` (``euler`` at a fixed Δτ, the thesis's scheme)."""
+    mode = "converged" if config.integrator == "accurate" else "reproduction"
+    return {"integrator": str(config.integrator), "sde_integrator": str(config.sde_integrator),
+            "integrator_mode": mode}
 
 
 class ForcingConfig(_ForcedConfig):

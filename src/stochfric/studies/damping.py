@@ -9,15 +9,20 @@ E[X_gh], σ(X_gh), E[M_s]; M_diff = M_d − E[M_s] (4.41), M_quot = E[M_s]/M_d (
   τ ∈ (w τ_end, τ_end] (the *stick window*, default w = 0.5: after the transient);
 * D_max^d(N) = the largest grid D at which the deterministic run has a cycle; the true
   boundary lies in [D_max^d, next grid D);
-* P(D) = probability of a cycle, estimated by k/R with a Clopper–Pearson interval;
-  D_max^s(N) = the largest grid D with k > 0.  The interval for D_max^s is
-  [D_max^s, D_hi]: at D_max^s a cycle was seen (P > 0 for certain); D_hi is the first grid
-  D above it at which — assuming P(D) does not increase with D — the one-sided upper
-  confidence bound on P, pooled over the zero-count grid points in (D_max^s, D], falls
-  below ``p_detect``; ``None`` if the grid ends first.
+* P(stick-slip | D) = probability of a cycle, estimated per grid D by k/R with a two-sided
+  Clopper–Pearson interval at ``confidence`` (``stick_probability``, ``_low``, ``_high``);
+* **D_max(α)** (issue 19) = the largest grid D with P(stick-slip | D) ≥ α, for each risk level α
+  of ``risk_levels`` (default 10 %, 1 %), with the interval [low, high] read off the per-D bands
+  (:func:`~stochfric.studies.stats.risk_limit`): low = the largest D whose lower bound is ≥ α,
+  high = the largest D whose upper bound is ≥ α; high at the grid end = open ("≥ grid end"),
+  which is always so when R runs cannot resolve α (0 of R sticking does not exclude P ≥ α);
+* the thesis's D_max^s is kept as ``d_max_sample_extreme`` = the largest grid D at which *any* of the
+  R runs stuck — a sample extreme that grows with R (it estimates D_max(α) for α → 0, at no stated
+  risk); its bar [D_max^s, D_hi]: D_hi is the first grid D above it at which the one-sided upper bound
+  on P pooled over the zero-count grid points in (D_max^s, D] (runs taken as independent across D)
+  falls below ``p_detect``; ``None`` if the grid ends first;
 * D_H(N) from the linearisation (:func:`~stochfric.oscillator.reference.hopf_damping`);
   the Hopf bifurcation is subcritical, so D_max^d ≥ D_H (stick-slip from a large start).
-* safe limit = max(D_max^d, D_max^s) per stochastic model (thesis headline).
 
 X_gh maps use the thesis convention (0 where no stick occurs, ``x_gh_mean``) and NaN-aware
 variants (``x_gh_mean_nan``).  Initial state: sticking at the origin, (0, γ0), unless ``x0``.
@@ -30,7 +35,7 @@ trajectories (every ``save_every``-th step) of ``phase_runs`` runs (deterministi
 Default D (:func:`auto_phase_damping`): 5 values evenly spaced from the lowest grid D to
 D_top, snapped to the grid, where D_top is the first grid D above the largest D_max (of any
 model) at the phase force — so the curves go from a large stick-slip cycle to decay onto
-steady sliding (the grid's largest D if no grid D lies above).  Only these tasks keep
+steady sliding (the grid's largest D if no grid D lies above); D_max here is the sample extreme.  Only these tasks keep
 trajectories; they use task indices after the grid tasks (own seeds, checkpointed too).
 """
 
@@ -52,7 +57,7 @@ from .base import Progress, Study, StudyResult, sweep, warning_counts
 from .config import DampingConfig
 from .executors import Executor, SweepStats
 from .grids import window_mask
-from .stats import clopper_pearson, pooled_bootstrap_se
+from .stats import clopper_pearson, pooled_bootstrap_se, risk_limit, runs_to_resolve
 from .tasks import TaskSpec, runs_for, task_for
 
 
@@ -66,7 +71,7 @@ def d_max_deterministic(damping: npt.ArrayLike, has_cycle: npt.ArrayLike) -> flo
 def d_max_stochastic(
     damping: npt.ArrayLike, k: npt.ArrayLike, n: int, *, confidence: float = 0.95, p_detect: float = 0.1
 ) -> tuple[float, float, float]:
-    """(D_max^s, low, high): see the module docstring; NaN where undefined.
+    """(D_max^s, low, high) of the sample extreme: see the module docstring; NaN where undefined.
 
     ``high`` pools the zero-count grid points above D_max^s: after m of them (m·n runs,
     no cycle) the one-sided bound is 1 − (1 − confidence)^{1/(m n)}; ``high`` is the first
@@ -216,6 +221,23 @@ class DampingStudy(Study):
                     dmax[mi, ni], dlo[mi, ni], dhi[mi, ni] = d_max_stochastic(
                         dgrid, k[mi, ni], int(n_runs[mi, ni, 0]), confidence=config.confidence,
                         p_detect=config.p_detect)
+        # D_max(α) per model, force and risk level (deterministic: D_max^d, exact)
+        alphas = tuple(config.risk_levels)
+        na = len(alphas)
+        rk = {f: np.full((nm, nn, na), np.nan) for f in ("value", "low", "high")}
+        rk_open = np.zeros((nm, nn, na), dtype=np.int8)
+        rk_res = np.ones((nm, nn, na), dtype=np.int8)
+        for mi, model in enumerate(models):
+            for ni in range(nn):
+                for ai, a in enumerate(alphas):
+                    if model == "deterministic":
+                        for f in rk:
+                            rk[f][mi, ni, ai] = dmax[mi, ni]
+                        rk_open[mi, ni, ai] = int(math.isfinite(dmax[mi, ni]) and dmax[mi, ni] >= dgrid[-1] - 1e-12)
+                        continue
+                    r = risk_limit(dgrid, k[mi, ni], n_runs[mi, ni], a, config.confidence)
+                    rk["value"][mi, ni, ai], rk["low"][mi, ni, ai], rk["high"][mi, ni, ai] = r.value, r.low, r.high
+                    rk_open[mi, ni, ai], rk_res[mi, ni, ai] = int(r.high_open), int(r.resolved)
         d_hopf = np.array([hopf_damping(c.params, c.law) for c in (setup.case(nf, float(dgrid[0])) for nf in forces)])
         for nf, dh in zip(forces, d_hopf, strict=True):
             if dh > 1.0:  # beyond critical damping: no oscillator of this field, a typing slip in N or the case
@@ -229,6 +251,8 @@ class DampingStudy(Study):
             "damping_ratio": ("damping_ratio", dgrid, {"units": "1", "long_name": "damping ratio D"}),
             "run": np.arange(nr),
             "event": np.arange(nev),
+            "risk_level": ("risk_level", np.asarray(alphas, float),
+                           {"units": "1", "long_name": "risk level alpha: tolerated P(stick-slip)"}),
         }
         dims5 = ("model", "normal_force_n", "damping_ratio", "run", "event")
         dims4 = dims5[:4]
@@ -242,9 +266,12 @@ class DampingStudy(Study):
             "has_cycle": (dims4, late, {"units": "1",
                                         "long_name": "1 if a slip->stick transition in the stick window"}),
             "n_runs": (dims3, n_runs, {"units": "1"}),
-            "stick_probability": (dims3, prob, {"units": "1", "long_name": "fraction of runs with a cycle"}),
-            "stick_probability_low": (dims3, lo, {"units": "1", "long_name": "Clopper-Pearson lower bound"}),
-            "stick_probability_high": (dims3, hi, {"units": "1", "long_name": "Clopper-Pearson upper bound"}),
+            "stick_probability": (dims3, prob, {"units": "1", "long_name": "P(stick-slip | D): fraction of runs with "
+                                                "a slip->stick transition in the stick window"}),
+            "stick_probability_low": (dims3, lo, {"units": "1", "long_name": "two-sided Clopper-Pearson lower bound "
+                                                  f"of P(stick-slip | D) at confidence {config.confidence:g}"}),
+            "stick_probability_high": (dims3, hi, {"units": "1", "long_name": "two-sided Clopper-Pearson upper bound "
+                                                   f"of P(stick-slip | D) at confidence {config.confidence:g}"}),
             "stick_count_mean": (dims3, m_mean, {"units": "1", "long_name": "E[M] (deterministic: M_d)"}),
             "stick_count_mean_se": (dims3, m_se, {"units": "1",
                                                   "long_name": "standard error of E[M] (runs independent)"}),
@@ -256,10 +283,25 @@ class DampingStudy(Study):
             "x_gh_mean_nan": (dims3, xmean_nan, {"units": "1", "long_name": "E[X_gh] in the window, NaN where none"}),
             "x_gh_std_nan": (dims3, xstd_nan, {"units": "1", "long_name": "sigma(X_gh), NaN where undefined"}),
             "sigma_zeta": (("model", "normal_force_n"), sig, {"units": "1", "long_name": "white-noise intensity"}),
-            "d_max": (("model", "normal_force_n"), dmax, {"units": "1", "long_name": "D_max^d / D_max^s"}),
-            "d_max_low": (("model", "normal_force_n"), dlo, {"units": "1"}),
-            "d_max_high": (("model", "normal_force_n"), dhi, {"units": "1",
-                                                             "long_name": "det: next grid D; stoch: D_hi"}),
+            "d_max_sample_extreme": (("model", "normal_force_n"), dmax, {
+                "units": "1", "long_name": "largest D at which any of the R runs stuck (grows with R; thesis D_max^s; "
+                                           "deterministic: D_max^d)"}),
+            "d_max_sample_extreme_low": (("model", "normal_force_n"), dlo, {"units": "1"}),
+            "d_max_sample_extreme_high": (("model", "normal_force_n"), dhi, {
+                "units": "1", "long_name": "deterministic: next grid D; stochastic: D_hi (pooled bound < p_detect)"}),
+            "d_max_risk": (("model", "normal_force_n", "risk_level"), rk["value"], {
+                "units": "1", "long_name": "D_max(alpha): largest grid D with estimated P(stick-slip) >= alpha "
+                                           "(deterministic: D_max^d; NaN: below the grid start)"}),
+            "d_max_risk_low": (("model", "normal_force_n", "risk_level"), rk["low"], {
+                "units": "1", "long_name": "lower end of D_max(alpha): largest grid D whose Clopper-Pearson lower "
+                                           "bound is >= alpha (NaN: none, below the grid start)"}),
+            "d_max_risk_high": (("model", "normal_force_n", "risk_level"), rk["high"], {
+                "units": "1", "long_name": "upper end of D_max(alpha): largest grid D whose Clopper-Pearson upper "
+                                           "bound is >= alpha (open when d_max_risk_high_open)"}),
+            "d_max_risk_high_open": (("model", "normal_force_n", "risk_level"), rk_open, {
+                "units": "1", "long_name": "1: the upper end is the grid end, D_max(alpha) may lie beyond it"}),
+            "d_max_risk_resolved": (("model", "normal_force_n", "risk_level"), rk_res, {
+                "units": "1", "long_name": "1: R runs can resolve alpha (upper bound after 0 of R sticking < alpha)"}),
             "d_hopf": (("normal_force_n",), d_hopf, {"units": "1", "long_name": "D_H = -n mu'(v0) v0/(2 gamma0)"}),
         }
         if "deterministic" in models:
@@ -275,9 +317,6 @@ class DampingStudy(Study):
                                   {"units": "1", "long_name": "M_diff = M_d - E[M_s] (4.41)"})
                 data["m_quot"] = (("stochastic_model", "normal_force_n", "damping_ratio"), quot,
                                   {"units": "1", "long_name": "M_quot = E[M_s]/M_d (4.42), NaN where M_d = 0"})
-                safe = np.stack([np.fmax(dmax[di], dmax[models.index(m)]) for m in stoch])
-                data["d_safe"] = (("stochastic_model", "normal_force_n"), safe,
-                                  {"units": "1", "long_name": "safe limit max(D_max^d, D_max^s)"})
         phase_rule = "none"
         if n_phase:
             if config.phase_damping is not None:
@@ -357,22 +396,34 @@ def _summary(study: DampingStudy, ds: xr.Dataset, warns: list[dict[str, str]]) -
         forces, {"normal_force_n": list(forces), "damping_ratio": list(config.damping_ratio),
                  "d_hopf": [float(v) for v in ds["d_hopf"].values]},
         stick_window=[config.stick_window * setup.tau_end, setup.tau_end], confidence=config.confidence,
-        p_detect=config.p_detect)
+        p_detect=config.p_detect, risk_levels=list(config.risk_levels),
+        risk_levels_runs_to_resolve=[runs_to_resolve(a, config.confidence) for a in config.risk_levels],
+        stick_probability_interval="clopper-pearson")
+    ex = "d_max_sample_extreme"
     if "deterministic" in models:
-        out["d_max_deterministic"] = [_none(v) for v in ds["d_max"].sel(model="deterministic").values]
-        out["d_max_deterministic_next_grid"] = [_none(v) for v in ds["d_max_high"].sel(model="deterministic").values]
-    out["d_max_stochastic"] = {
+        out["d_max_deterministic"] = [_none(v) for v in ds[ex].sel(model="deterministic").values]
+        out["d_max_deterministic_next_grid"] = [_none(v) for v in ds[f"{ex}_high"].sel(model="deterministic").values]
+    stoch = [m for m in models if m != "deterministic"]
+    out["d_max_risk"] = {
+        m: [[{"risk_level": float(a),
+              "value": _none(float(ds["d_max_risk"].sel(model=m).values[i, j])),
+              "interval": [_none(float(ds["d_max_risk_low"].sel(model=m).values[i, j])),
+                           _none(float(ds["d_max_risk_high"].sel(model=m).values[i, j]))],
+              "high_open": bool(ds["d_max_risk_high_open"].sel(model=m).values[i, j]),
+              "resolved": bool(ds["d_max_risk_resolved"].sel(model=m).values[i, j])}
+             for j, a in enumerate(config.risk_levels)]
+            for i in range(len(forces))]
+        for m in stoch
+    }
+    out[ex] = {
         m: [
-            {"value": _none(float(ds["d_max"].sel(model=m).values[i])),
-             "interval": [_none(float(ds["d_max_low"].sel(model=m).values[i])),
-                          _none(float(ds["d_max_high"].sel(model=m).values[i]))]}
+            {"value": _none(float(ds[ex].sel(model=m).values[i])),
+             "interval": [_none(float(ds[f"{ex}_low"].sel(model=m).values[i])),
+                          _none(float(ds[f"{ex}_high"].sel(model=m).values[i]))]}
             for i in range(len(forces))
         ]
-        for m in models if m != "deterministic"
+        for m in stoch
     }
-    if "d_safe" in ds:
-        out["d_safe"] = {m: [_none(v) for v in ds["d_safe"].sel(stochastic_model=m).values]
-                         for m in ds["stochastic_model"].values.tolist()}
     out["stick_probability"] = {
         m: {"value": ds["stick_probability"].sel(model=m).values.tolist(),
             "low": ds["stick_probability_low"].sel(model=m).values.tolist(),

@@ -25,6 +25,8 @@ SUMMARY_RENAMED: dict[str, str] = {
     "m_mean": "stick_count_mean",
     "m_mean_se": "stick_count_mean_se",
     "counts": "status_counts",
+    # issue 19: the thesis's D_max^s is a sample extreme (grows with the number of runs), not a limit
+    "d_max_stochastic": "d_max_sample_extreme",
 }
 #: Keys of the damping study's ``phase`` summary before the glossary.
 PHASE_RENAMED: dict[str, str] = {"damping": "damping_ratio", "normal_force": "normal_force_n"}
@@ -34,6 +36,9 @@ DATASET_RENAMED: dict[str, str] = {
     "phase_normal_force": "phase_normal_force_n",
     "m_mean": "stick_count_mean",
     "m_mean_se": "stick_count_mean_se",
+    "d_max": "d_max_sample_extreme",
+    "d_max_low": "d_max_sample_extreme_low",
+    "d_max_high": "d_max_sample_extreme_high",
 }
 #: The order of the grid dimensions in every study's dataset (those it has), before the
 #: per-run and per-event ones (``run``, ``event``, …).

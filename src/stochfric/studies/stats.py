@@ -1,7 +1,10 @@
 """Estimators with uncertainty for the studies (method §6: "give their uncertainty").
 
 * :func:`clopper_pearson` — exact binomial interval for a probability (stick-slip
-  probability at a damping ratio, §6.2), from the beta distribution.
+  probability at a damping ratio, §6.2), from the beta distribution; :func:`wilson` — the
+  Wilson score interval (reference only: it can undercover at small n·p).
+* :func:`risk_limit` — D_max(α), the largest grid D at which P(stick-slip) ≥ α, with the
+  interval read off the per-D Clopper–Pearson bands (issue 19).
 * :func:`sample_summary` — E[X_gh], σ(X_gh) and VarK = |σ|/|E| (eq. 4.40) with standard
   errors, both the closed forms for independent samples and a bootstrap over *runs*
   (the X_gh of one run are correlated, so the run is the independent unit).
@@ -37,6 +40,24 @@ def clopper_pearson(k: npt.ArrayLike, n: npt.ArrayLike, confidence: float = 0.95
     bad = ~(nn > 0)
     lo = np.where(bad, np.nan, lo)
     hi = np.where(bad, np.nan, hi)
+    return np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
+
+
+def wilson(k: npt.ArrayLike, n: npt.ArrayLike, confidence: float = 0.95) -> tuple[
+        npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    """Wilson score interval: (p̂ + z²/2n ± z √(p̂(1 − p̂)/n + z²/4n²)) / (1 + z²/n), z = Φ⁻¹((1 + c)/2)."""
+    if not 0.0 < confidence < 1.0:
+        raise ValueError(f"confidence must be in (0, 1), got {confidence}")
+    kk = np.asarray(k, dtype=float)
+    nn = np.asarray(n, dtype=float)
+    z = float(norm.ppf(0.5 + confidence / 2))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        p = kk / nn
+        centre = (p + z * z / (2 * nn)) / (1 + z * z / nn)
+        half = z * np.sqrt(p * (1 - p) / nn + z * z / (4 * nn * nn)) / (1 + z * z / nn)
+    bad = ~(nn > 0)
+    lo = np.where(bad, np.nan, np.clip(centre - half, 0.0, 1.0))
+    hi = np.where(bad, np.nan, np.clip(centre + half, 0.0, 1.0))
     return np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
 
 
@@ -304,3 +325,69 @@ def pooled_bootstrap_se(
         se_m = np.nanstd(mean, axis=-1, ddof=1)
         se_s = np.nanstd(sd, axis=-1, ddof=1)
     return np.where(ok_cell, se_m, np.nan), np.where(ok_cell, se_s, np.nan)
+
+
+@dataclass(frozen=True)
+class RiskLimit(_JsonRecord):
+    """D_max(α) on a D grid with its interval (:func:`risk_limit`); NaN = below the grid start.
+
+    ``value``: the largest grid D with k/n ≥ α.  ``low``: the largest grid D whose Clopper–Pearson
+    lower bound is ≥ α (P ≥ α there, with confidence; NaN: no grid D is confidently at risk α).
+    ``high``: the largest grid D whose upper bound is ≥ α (every grid D above it has P < α, with
+    confidence).  ``high_open``: ``high`` is the grid end, so D_max(α) may lie at or beyond it.
+    ``resolved``: n runs can resolve α at all — the upper bound after 0 of n, 1 − ((1 − c)/2)^{1/n},
+    is below α; if not, ``high`` is the grid end at every D with k = 0 (the runs cannot exclude P ≥ α).
+    """
+
+    risk_level: float
+    value: float
+    low: float
+    high: float
+    high_open: bool
+    resolved: bool
+    n_runs: int
+    confidence: float
+
+
+def risk_limit(damping: npt.ArrayLike, k: npt.ArrayLike, n: npt.ArrayLike, risk_level: float,
+               confidence: float = 0.95) -> RiskLimit:
+    """D_max(α) = the largest grid D with P(stick-slip | D) ≥ α, and an interval for it.
+
+    ``k[j]`` of ``n`` (or ``n[j]``) runs stick at ``damping[j]`` (increasing).  Per D the two-sided
+    Clopper–Pearson interval at ``confidence`` (:func:`clopper_pearson`), each end a one-sided
+    bound at (1 + c)/2.  The true D_max(α) (on the grid) lies in [``low``, ``high``]:
+
+    * ``high`` is wrong only if the upper bound at the true D_max(α) itself falls below α — one grid
+      point, probability ≤ (1 − c)/2;
+    * ``low`` is wrong only if the lower bound is ≥ α at some grid D above the true D_max(α), where
+      P < α — each such D with probability ≤ (1 − c)/2, in practice only the one or two D just above,
+      where P is close to α (joint coverage measured in tests/statistical/test_risk_limit_coverage.py).
+
+    No assumption on the shape of P(D) and none on independence across D (the damping study uses the
+    same noise at every D): only the runs at one D must be independent.
+    """
+    if not 0.0 < risk_level < 1.0:
+        raise ValueError(f"risk level must be in (0, 1), got {risk_level}")
+    d = np.asarray(damping, dtype=float)
+    kk = np.asarray(k, dtype=float)
+    nn = np.broadcast_to(np.asarray(n, dtype=float), kk.shape)
+    ok = nn > 0
+    lo, hi = clopper_pearson(kk, np.where(ok, nn, 1.0), confidence)
+    lo, hi = np.where(ok, lo, np.nan), np.where(ok, hi, np.nan)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        p = np.where(ok, kk / np.where(ok, nn, 1.0), np.nan)
+
+    def largest(mask: npt.NDArray[np.bool_]) -> float:
+        return float(d[mask].max()) if mask.any() else math.nan
+
+    n_min = int(nn[ok].min()) if ok.any() else 0
+    zero_bound = 1.0 - ((1.0 - confidence) / 2) ** (1.0 / n_min) if n_min > 0 else 1.0
+    high = largest(hi >= risk_level)
+    return RiskLimit(risk_level=float(risk_level), value=largest(p >= risk_level), low=largest(lo >= risk_level),
+                     high=high, high_open=bool(math.isfinite(high) and d.size > 0 and high >= d.max() - 1e-12),
+                     resolved=bool(zero_bound < risk_level), n_runs=n_min, confidence=float(confidence))
+
+
+def runs_to_resolve(risk_level: float, confidence: float = 0.95) -> int:
+    """The fewest runs n at which 0 sticking runs exclude P ≥ α: 1 − ((1 − c)/2)^{1/n} < α."""
+    return math.floor(math.log((1.0 - confidence) / 2) / math.log(1.0 - risk_level)) + 1

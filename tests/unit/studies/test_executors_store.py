@@ -29,8 +29,8 @@ SMALL = DampingConfig(normal_force_n=(4000.0, 6000.0), damping_ratio=(0.1, 0.14,
 
 
 def _arrays(ds: xr.Dataset) -> dict[str, np.ndarray]:
-    return {k: ds[k].values for k in ("x_gh", "t_gh", "stick_count", "stick_probability", "d_max",
-                                      "phase_damping", "phase_trajectory")}
+    return {k: ds[k].values for k in ("x_gh", "t_gh", "stick_count", "stick_probability", "d_max_sample_extreme",
+                                      "d_max_risk", "phase_damping", "phase_trajectory")}
 
 
 def _assert_same(a: xr.Dataset, b: xr.Dataset) -> None:

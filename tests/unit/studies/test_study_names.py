@@ -82,15 +82,17 @@ def test_an_old_normal_force_result_loads_under_todays_names(normal_force_result
 def test_an_old_damping_summary_reads_under_todays_names() -> None:
     new = {"preset": "brake", "normal_force_n": [1000.0, 2000.0], "damping_ratio": [0.05, 0.1, 0.15],
            "d_hopf": [0.01, 0.02], "d_max_deterministic": [0.1, 0.15], "models": ["deterministic", "white"],
-           "d_max_stochastic": {"white": [{"value": 0.1, "interval": [0.1, 0.15]},
-                                          {"value": 0.15, "interval": [0.15, None]}]},
+           "d_max_sample_extreme": {"white": [{"value": 0.1, "interval": [0.1, 0.15]},
+                                              {"value": 0.15, "interval": [0.15, None]}]},
            "stick_count_mean": {"white": [[3.0, 1.0, 0.0], [4.0, 2.0, 1.0]]},
            "stick_count_mean_se": {"white": [[0.5, 0.5, 0.0], [0.5, 0.5, 0.5]]},
            "phase": {"normal_force_n": 2000.0, "damping_ratio": [0.05, 0.15], "damping_rule": "auto"}}
     old = {{"normal_force_n": "normal_force", "damping_ratio": "damping", "stick_count_mean": "m_mean",
-            "stick_count_mean_se": "m_mean_se"}.get(k, k): v for k, v in new.items()}
+            "stick_count_mean_se": "m_mean_se", "d_max_sample_extreme": "d_max_stochastic"}.get(k, k): v
+           for k, v in new.items()}
     old["phase"] = {"normal_force": 2000.0, "damping": [0.05, 0.15], "damping_rule": "auto"}
-    with pytest.warns(DeprecationWarning, match=r"damping, normal_force, m_mean, m_mean_se, phase.damping"):
+    with pytest.warns(DeprecationWarning,
+                      match=r"damping, normal_force, m_mean, m_mean_se, d_max_stochastic, phase.damping"):
         got = current_summary("damping", old)
     assert got == new
     assert damping_reading(got) == damping_reading(new)
@@ -119,7 +121,7 @@ def test_an_old_lyapunov_result_reads_and_the_old_keys_of_a_summary_still_resolv
         res = old.current()
     assert res.summary["status_counts"] == counts and res.summary["damping_ratio"] == 5e-6
     assert "counts" not in res.summary and res.dataset["lyapunov"].dims[2] == "normal_force_n"
-    assert "<td>white</td><td>1</td><td>0</td><td>0</td><td>1</td>" in lyapunov_reading(res.summary)[0]
+    assert "<td>white</td><td>1</td><td>—</td><td>0</td><td>0</td><td>1</td>" in lyapunov_reading(res.summary)[0]
     # code written against the old keys still reads today's summary (silently): the CLI's table does
     s = res.to_json_dict()
     assert s["damping"] == s["damping_ratio"] and s["normal_force"] == [4000.0] and s["counts"] == counts
