@@ -299,8 +299,8 @@ def _white_increments(case: Case, runs: int, tau_end: float, seed: int = 1
     """The increments ``simulate`` draws for runs ``0..runs-1`` of parameter set 0 (its default
     stream, :func:`stochfric.oscillator.ziggurat.step_normals`)."""
     nsteps = round(tau_end / DT)
-    keys = _ph.trajectory_keys(np.random.SeedSequence(seed), np.zeros(runs, dtype=np.int64),
-                               np.arange(runs))
+    keys = _ph.trajectory_keys(np.random.SeedSequence(seed),
+                               np.column_stack([np.zeros(runs, dtype=np.int64), np.arange(runs)]))
     return np.stack([_zig.step_normals(k, nsteps) for k in keys]).reshape(runs, nsteps) * math.sqrt(DT)
 
 
@@ -371,8 +371,8 @@ def _generator_rates(rep: Report, cfg: dict[str, Any]) -> None:
     buffer."""
     lanes = _k.LOCKSTEP
     npairs = max(1, int(cfg["runs"]) * round(float(cfg["tau_end"]) / DT) // (2 * lanes) // 8)
-    keys = _ph.trajectory_keys(np.random.SeedSequence(1), np.zeros(lanes, dtype=np.int64),
-                               np.arange(lanes))
+    keys = _ph.trajectory_keys(np.random.SeedSequence(1),
+                               np.column_stack([np.zeros(lanes, dtype=np.int64), np.arange(lanes)]))
     words = np.zeros((2, lanes), dtype=np.uint64)
     normals = np.zeros((2, lanes))
     _philox_words(keys, 1, words)
@@ -517,6 +517,7 @@ law = pressure_law(pre.process.mean(p.pressure))
 out = {}
 for model, integ, n in (("deterministic", "euler", runs), ("white", "euler", runs),
                         ("white", "milstein", runs), ("contact", "euler", runs),
+                        ("deterministic", "accurate", max(1, runs // 16)),
                         ("contact", "accurate", max(1, runs // 16))):  # = BEFORE_CONFIGS
     kw = dict(model=model, law=law, process=pre.process, x0=(0.0, p.gamma0), dt=dt,
               integrator=integ, seed=1, workers=1)
@@ -533,7 +534,7 @@ print(json.dumps(out))
 
 #: (model, integrator) pairs of the before/after table.
 BEFORE_CONFIGS = (("deterministic", "euler"), ("white", "euler"), ("white", "milstein"),
-                  ("contact", "euler"), ("contact", "accurate"))
+                  ("contact", "euler"), ("deterministic", "accurate"), ("contact", "accurate"))
 
 
 def before_after(ref: str, cfg: dict[str, Any], rounds: int = 3,
@@ -705,6 +706,13 @@ def run_benchmarks(size: str = "quick", *, log: Callable[[str], None] | None = N
         ns("contact euler, generate per run") / ns("contact euler"))
     rep.ratios["brake: white euler / deterministic euler (time)"] = ns("white euler") / ns("deterministic euler")
     rep.ratios["brake: contact euler / deterministic euler (time)"] = ns("contact euler") / ns("deterministic euler")
+    # issue 19: the converged integrator against Euler at Δτ = 0.005, ns per Δτ of simulated time
+    for model in ("deterministic", "contact"):
+        rep.ratios[f"brake: {model} accurate / euler (time per Δτ)"] = (
+            ns(f"{model} accurate") / ns(f"{model} euler"))
+        if before is not None:
+            rep.ratios[f"brake: {model} accurate / euler (time per Δτ), {before}"] = (
+                ns(f"{model} accurate", "before") / ns(f"{model} euler", "before"))
     if before is not None:
         for model, integ in BEFORE_CONFIGS:
             what = f"{model} {integ}"

@@ -1,9 +1,9 @@
 """The Lyapunov study measures something that does not depend on the perturbation δ (issue 10).
 
 For δ = 1e-8 … 1e-4 every reported exponent ``lyapunov`` (per slip→stick transition) must agree
-with every other δ's within 4 combined standard errors, or be NaN with a reason (``nonlinear``,
-``merged``, ``too-few-transitions``).  Brake, N = 4000 N, both forcing amplitudes, three η, all
-three models, R = 10, fixed seed.
+with every other δ's within 4 combined standard errors, or be a lower bound (``diverging``) or NaN
+with a reason (``nonlinear``, ``merged``, ``too-few-transitions``).  Brake, N = 4000 N, both forcing
+amplitudes, three η, all three models, R = 10, fixed seed.
 """
 
 from __future__ import annotations
@@ -42,14 +42,16 @@ def test_rate_is_delta_independent_or_undefined(summaries: dict[float, dict], mo
     for d1, d2 in itertools.combinations(DELTAS, 2):
         r1, r2 = _arr(summaries[d1], "lyapunov", model), _arr(summaries[d2], "lyapunov", model)
         s1, s2 = _arr(summaries[d1], "lyapunov_se", model), _arr(summaries[d2], "lyapunov_se", model)
-        both = np.isfinite(r1) & np.isfinite(r2)
+        ok1 = np.array(summaries[d1]["status"][model]).ravel() == "ok"
+        ok2 = np.array(summaries[d2]["status"][model]).ravel() == "ok"
+        both = ok1 & ok2  # a diverging cell's value is a lower bound (its linear prefix depends on δ)
         tol = 4 * np.sqrt(s1[both] ** 2 + s2[both] ** 2)
         assert np.all(np.abs(r1[both] - r2[both]) <= tol), (model, d1, d2, r1, r2)
     for d in DELTAS:
         st = np.array(summaries[d]["status"][model]).ravel()
         r = _arr(summaries[d], "lyapunov", model)
         assert set(st) <= set(STATUS)
-        np.testing.assert_array_equal(np.isfinite(r), st == "ok")  # undefined always has a reason
+        np.testing.assert_array_equal(np.isfinite(r), np.isin(st, ("ok", "diverging")))  # undefined has a reason
 
 
 def test_the_check_is_not_vacuous(summaries: dict[float, dict]) -> None:

@@ -13,13 +13,25 @@ its order; every non-smooth point is an *event* at which the integration restart
   interpolation of μ̂ has a kink at every grid point).
 
 Events are located by bisection on the dense output to ``θ`` resolution 1e-15 and the
-state at the event is recomputed by one Dormand–Prince step of exactly that length.
+state at the event is recomputed by one Dormand–Prince step of exactly that length.  Within a
+step the signs ``s = sign(γ0 − x2)`` and ``sign(x2)`` are held (the right-hand side is then
+smooth across ``x2 = γ0`` and ``x2 = 0``; the step that contains one is not rejected by the
+error control), and a step that would cross a grid point of the process is aimed at it
+instead (cubic Hermite guess, then Newton on the step length: 1–2 extra steps per grid point
+instead of a cascade of rejected steps across the kink).
 The stick phase is solved in closed form (``x1 = x1s + γ0 (τ − τs)``); its end, the
 first ``τ`` with ``|x1 + 2Dγ0 − q cos(x30 + ητ)| > n μ_s``, is found in closed form for
-``q = 0`` and by a fine scan plus bisection otherwise.
+``q = 0`` and by a scan plus bisection otherwise (the scan jumps by the margin over the
+Lipschitz bound γ0 + qη, steps of 0.02/max(1, η) only near the band).  At the belt speed with
+``n μ_s < |F| ≤ n (μ_k(0) + μ̂)`` (contact model) no slip direction is consistent: the mass is
+carried with the belt (:func:`carried_end`) until it sticks or breaks away, the Δτ → 0 limit of
+the fixed-step scheme; after a passage of the belt speed without sticking the friction opposes
+the unbalanced force (``s = sign F``).
 
 With tolerances ``rtol = 1e-11``, ``atol = 1e-13`` the slip→stick positions are
-independent of the initial step and of the tolerance to about 1e-9 (tests).
+independent of the initial step and of the tolerance to about 1e-9 (tests) and agree with
+scipy's ``solve_ivp`` (DOP853, events, rtol 1e-12) to 1e-8 (tests/reference,
+tests/regression/test_lyapunov_integrators.py).
 """
 
 from __future__ import annotations
@@ -31,7 +43,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from .friction_laws import mu_kinetic
+from .friction_laws import mu_kinetic_row
 from .kernels import (
     NOISE_PROCESS,
     P_D,
@@ -46,7 +58,7 @@ from .kernels import (
     PATH_MASS,
     KernelOutput,
     KernelRows,
-    process_value,
+    process_value_row,
     slip_drift,
     stick_force,
     store_diagnostics,
@@ -93,6 +105,99 @@ EV_ZERO_VELOCITY = 2
 EV_NODE = 3
 
 
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _f(
+    tau: float,
+    y0: float,
+    y1: float,
+    y2: float,
+    s: float,
+    sz: float,
+    prm: npt.NDArray[np.float64],
+    shape: int,
+    lawp: npt.NDArray[np.float64],
+    r: int,
+    noise: int,
+    path_mode: int,
+    proc: npt.NDArray[np.float64],
+    n_proc: int,
+    out: npt.NDArray[np.float64],
+    j: int,
+) -> None:  # pragma: no cover
+    """Slip equations (4.7)/(4.36) with the path coordinate as third state, into ``out[j]``.
+
+    The signs are those of the segment, held fixed within a step: ``s = sign(γ0 − x2)`` (so
+    ``|γ0 − x2| = s(γ0 − x2)``) and, for the mass path, ``sz = sign(x2)`` (``|x2| = sz·x2``).  The
+    right-hand side is then smooth across ``x2 = γ0`` and ``x2 = 0``, which are events where the
+    integration restarts with the new sign, so the step that contains one is not rejected by the
+    error control (a kink would cost a cascade of rejected steps).  ``lawp``/``proc`` are the rows'
+    2-D arrays, ``r`` the row.
+    """
+    vr = prm[P_GAMMA0] - y1
+    mu = mu_kinetic_row(shape, prm[P_VSCALE] * (s * vr), lawp, r)
+    if noise == NOISE_PROCESS:
+        mu += process_value_row(proc, r, n_proc, prm[P_PROC_DX], y2)
+    out[j, 0] = y1
+    acc = slip_drift(y0, y1, 2.0 * prm[P_D], prm[P_N], mu, s)
+    if prm[P_Q] != 0.0:
+        acc += prm[P_Q] * math.cos(prm[P_X30] + prm[P_ETA] * tau)
+    out[j, 1] = acc
+    out[j, 2] = sz * y1 if path_mode == PATH_MASS else s * vr
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _step(
+    tau: float, y: npt.NDArray[np.float64], h: float, k: npt.NDArray[np.float64],
+    s: float, sz: float, prm: npt.NDArray[np.float64], shape: int, lawp: npt.NDArray[np.float64], r: int,
+    noise: int, path_mode: int, proc: npt.NDArray[np.float64], n_proc: int,
+    ynew: npt.NDArray[np.float64],
+) -> None:  # pragma: no cover
+    """One Dormand–Prince step; ``k[0]`` must hold f(τ, y) on entry; fills k[1..6], ynew (FSAL)."""
+    a0, a1, a2 = y[0], y[1], y[2]
+    _f(tau + C2 * h, a0 + h * A21 * k[0, 0], a1 + h * A21 * k[0, 1], a2 + h * A21 * k[0, 2],
+       s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 1)
+    _f(tau + C3 * h,
+       a0 + h * (A31 * k[0, 0] + A32 * k[1, 0]),
+       a1 + h * (A31 * k[0, 1] + A32 * k[1, 1]),
+       a2 + h * (A31 * k[0, 2] + A32 * k[1, 2]),
+       s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 2)
+    _f(tau + C4 * h,
+       a0 + h * (A41 * k[0, 0] + A42 * k[1, 0] + A43 * k[2, 0]),
+       a1 + h * (A41 * k[0, 1] + A42 * k[1, 1] + A43 * k[2, 1]),
+       a2 + h * (A41 * k[0, 2] + A42 * k[1, 2] + A43 * k[2, 2]),
+       s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 3)
+    _f(tau + C5 * h,
+       a0 + h * (A51 * k[0, 0] + A52 * k[1, 0] + A53 * k[2, 0] + A54 * k[3, 0]),
+       a1 + h * (A51 * k[0, 1] + A52 * k[1, 1] + A53 * k[2, 1] + A54 * k[3, 1]),
+       a2 + h * (A51 * k[0, 2] + A52 * k[1, 2] + A53 * k[2, 2] + A54 * k[3, 2]),
+       s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 4)
+    _f(tau + h,
+       a0 + h * (A61 * k[0, 0] + A62 * k[1, 0] + A63 * k[2, 0] + A64 * k[3, 0] + A65 * k[4, 0]),
+       a1 + h * (A61 * k[0, 1] + A62 * k[1, 1] + A63 * k[2, 1] + A64 * k[3, 1] + A65 * k[4, 1]),
+       a2 + h * (A61 * k[0, 2] + A62 * k[1, 2] + A63 * k[2, 2] + A64 * k[3, 2] + A65 * k[4, 2]),
+       s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 5)
+    for i in range(3):
+        ynew[i] = y[i] + h * (
+            B1 * k[0, i] + B3 * k[2, i] + B4 * k[3, i] + B5 * k[4, i] + B6 * k[5, i]
+        )
+    _f(tau + h, ynew[0], ynew[1], ynew[2], s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 6)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _err_norm(
+    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
+    rtol: float, atol: float,
+) -> float:  # pragma: no cover
+    """RMS of the embedded 4th-order error estimate, scaled by ``atol + rtol·max(|y|, |ynew|)``."""
+    err = 0.0
+    for i in range(3):
+        sc = atol + rtol * max(abs(y[i]), abs(ynew[i]))
+        e = h * (E1 * k[0, i] + E3 * k[2, i] + E4 * k[3, i] + E5 * k[4, i]
+                 + E6 * k[5, i] + E7 * k[6, i]) / sc
+        err += e * e
+    return math.sqrt(err / 3.0)
+
+
 @numba.njit(cache=True, nogil=True)
 def _rhs(
     tau: float,
@@ -107,18 +212,12 @@ def _rhs(
     n_proc: int,
     out: npt.NDArray[np.float64],
 ) -> None:  # pragma: no cover
-    """Slip equations (4.7)/(4.36) with the path coordinate as third state."""
-    gamma0 = prm[P_GAMMA0]
-    x1 = y[0]
-    x2 = y[1]
-    vr = gamma0 - x2
-    mu = mu_kinetic(shape, prm[P_VSCALE] * abs(vr), lawp)
-    if noise == NOISE_PROCESS:
-        mu += process_value(proc, n_proc, prm[P_PROC_DX], y[2])
-    out[0] = x2
-    out[1] = slip_drift(x1, x2, 2.0 * prm[P_D], prm[P_N], mu, s) + prm[P_Q] * math.cos(
-        prm[P_X30] + prm[P_ETA] * tau)
-    out[2] = abs(x2) if path_mode == PATH_MASS else abs(vr)
+    """:func:`_f` for one 1-D state, law and process (``sz = sign(x2)``); tests and benchmarks."""
+    sz = 1.0 if y[1] >= 0.0 else -1.0
+    k = np.empty((1, 3))
+    _f(tau, y[0], y[1], y[2], s, sz, prm, shape, lawp.reshape((1, lawp.shape[0])), 0, noise, path_mode,
+       proc.reshape((1, proc.shape[0])), n_proc, k, 0)
+    out[0], out[1], out[2] = k[0, 0], k[0, 1], k[0, 2]
 
 
 @numba.njit(cache=True, nogil=True)
@@ -128,29 +227,11 @@ def _dopri_step(
     noise: int, path_mode: int, proc: npt.NDArray[np.float64], n_proc: int,
     ynew: npt.NDArray[np.float64], tmp: npt.NDArray[np.float64],
 ) -> None:  # pragma: no cover
-    """One Dormand–Prince step; ``k[0]`` must hold f(τ, y) on entry; fills k[1..6], ynew."""
-    for i in range(3):
-        tmp[i] = y[i] + h * A21 * k[0, i]
-    _rhs(tau + C2 * h, tmp, s, prm, shape, lawp, noise, path_mode, proc, n_proc, k[1])
-    for i in range(3):
-        tmp[i] = y[i] + h * (A31 * k[0, i] + A32 * k[1, i])
-    _rhs(tau + C3 * h, tmp, s, prm, shape, lawp, noise, path_mode, proc, n_proc, k[2])
-    for i in range(3):
-        tmp[i] = y[i] + h * (A41 * k[0, i] + A42 * k[1, i] + A43 * k[2, i])
-    _rhs(tau + C4 * h, tmp, s, prm, shape, lawp, noise, path_mode, proc, n_proc, k[3])
-    for i in range(3):
-        tmp[i] = y[i] + h * (A51 * k[0, i] + A52 * k[1, i] + A53 * k[2, i] + A54 * k[3, i])
-    _rhs(tau + C5 * h, tmp, s, prm, shape, lawp, noise, path_mode, proc, n_proc, k[4])
-    for i in range(3):
-        tmp[i] = y[i] + h * (
-            A61 * k[0, i] + A62 * k[1, i] + A63 * k[2, i] + A64 * k[3, i] + A65 * k[4, i]
-        )
-    _rhs(tau + h, tmp, s, prm, shape, lawp, noise, path_mode, proc, n_proc, k[5])
-    for i in range(3):
-        ynew[i] = y[i] + h * (
-            B1 * k[0, i] + B3 * k[2, i] + B4 * k[3, i] + B5 * k[4, i] + B6 * k[5, i]
-        )
-    _rhs(tau + h, ynew, s, prm, shape, lawp, noise, path_mode, proc, n_proc, k[6])
+    """:func:`_step` for one 1-D law and process (``sz = sign(x2)`` at the start); tests.  ``tmp`` is
+    unused (kept for the signature)."""
+    sz = 1.0 if y[1] >= 0.0 else -1.0
+    _step(tau, y, h, k, s, sz, prm, shape, lawp.reshape((1, lawp.shape[0])), 0, noise, path_mode,
+          proc.reshape((1, proc.shape[0])), n_proc, ynew)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -208,9 +289,13 @@ def breakaway_time(
             tb = tau_s
         return tb if tb <= tau_end else np.inf
     delta = 0.02 / max(1.0, eta)
+    # |F'| <= γ0 + q|η|: from a point with margin lim − |F| the band cannot be left within
+    # margin/lip, so the scan jumps that far (never past a crossing) and steps by δ only near the band
+    lip = gamma0 + abs(qq * eta)
     a = tau_s
+    fa = f0
     while a < tau_end:
-        b = min(a + delta, tau_end)
+        b = min(a + max(delta, 0.999 * (lim - abs(fa)) / lip), tau_end)
         fb = stick_force(x1s + gamma0 * (b - tau_s), b, prm)
         if abs(fb) > lim:
             bound = lim if fb > 0.0 else -lim
@@ -227,7 +312,57 @@ def breakaway_time(
                     lo = mid
             return hi
         a = b
+        fa = fb
     return np.inf
+
+
+@numba.njit(cache=True, nogil=True)
+def carried_end(
+    x1s: float, tau_s: float, tau_end: float, prm: npt.NDArray[np.float64], lim: float, nn_k0: float,
+    proc: npt.NDArray[np.float64], r: int, n_proc: int, path0: float, rate: float,
+) -> tuple[float, bool]:  # pragma: no cover
+    """End of a phase *carried with the belt* that starts at ``τs`` with ``lim < |F| ≤ lim_eff``.
+
+    At the belt speed the static friction cannot hold (``|F| > n μ_s``) but the contact model's
+    kinetic friction at ``v_rel → 0``, ``lim_eff = n (μ_k(0) + μ̂(path))`` (``nn_k0 = n μ_k(0)``),
+    exceeds the force, so a slip in either direction would run against it: the mass moves with the
+    belt (``x1 = x1s + γ0(τ − τs)``, the path grows at ``rate``: γ0 on the mass path, 0 on the
+    relative one) until ``|F| ≤ lim`` (it sticks: ``True``) or ``|F| > lim_eff`` (it slips:
+    ``False``) — the limit Δτ → 0 of the fixed-step scheme, which carries the mass with the belt
+    step by step there.  Returns ``(τ, sticks)``, ``(inf, False)`` when it lasts past ``τ_end``.
+    """
+    gamma0 = prm[P_GAMMA0]
+    pdx = prm[P_PROC_DX]
+    eta = prm[P_ETA]
+    f0 = stick_force(x1s, tau_s, prm)
+    sg = 1.0 if f0 > 0.0 else -1.0  # |F| > lim > 0 throughout: F keeps its sign
+    delta = min(0.02 / max(1.0, eta), 0.25 * pdx / max(rate, 1e-300))
+    a = tau_s
+    while a < tau_end:
+        b = min(a + delta, tau_end)
+        fb = sg * stick_force(x1s + gamma0 * (b - tau_s), b, prm)
+        leb = nn_k0 + (prm[P_N] * process_value_row(proc, r, n_proc, pdx, path0 + rate * (b - tau_s)))
+        if fb <= lim or fb > leb:
+            inner = fb <= lim
+            lo = a
+            hi = b
+            for _ in range(200):
+                mid = 0.5 * (lo + hi)
+                if mid <= lo or mid >= hi:
+                    break
+                fm = sg * stick_force(x1s + gamma0 * (mid - tau_s), mid, prm)
+                if inner:
+                    out = fm <= lim
+                else:
+                    out = fm > nn_k0 + prm[P_N] * process_value_row(proc, r, n_proc, pdx,
+                                                                    path0 + rate * (mid - tau_s))
+                if out:
+                    hi = mid
+                else:
+                    lo = mid
+            return hi, inner
+        a = b
+    return np.inf, False
 
 
 #: A sample at τ = k·save_dt belongs to the step that ends there even when k·save_dt rounds a
@@ -267,6 +402,36 @@ def _save_dense(
     return isave
 
 
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _hermite_root(p0: float, p1: float, d0: float, d1: float, target: float) -> float:  # pragma: no cover
+    """θ in (0, 1) where the cubic Hermite interpolant of a rising path (values ``p0``, ``p1``, slopes
+    ``d0``, ``d1`` per unit θ) reaches ``target`` (``p0 < target < p1``); a few Newton steps from the
+    linear guess, kept inside the bracket."""
+    th = (target - p0) / (p1 - p0)
+    dp = p1 - p0
+    for _ in range(4):
+        t2 = th * th
+        t3 = t2 * th
+        v = p0 + d0 * (t3 - 2.0 * t2 + th) + dp * (3.0 * t2 - 2.0 * t3) + d1 * (t3 - t2) - target
+        dv = d0 * (3.0 * t2 - 4.0 * th + 1.0) + dp * (6.0 * th - 6.0 * t2) + d1 * (3.0 * t2 - 2.0 * th)
+        if dv <= 0.0:
+            break
+        th2 = th - v / dv
+        if not 0.0 < th2 < 1.0:
+            break
+        th = th2
+    return th
+
+
+#: Shortest step at the belt speed, and the time the mass is carried with the belt at least when no slip
+#: direction leaves it (a sliding mode: the contact model's kinetic friction μ_k(0) + μ̂(path) grows
+#: along the path faster than the force); the fixed-step scheme carries it for one Δτ.
+CARRY_STEP = 1e-6
+
+#: Newton iterations at most when a step is aimed at a grid point of the process (1–2 suffice).
+NODE_ITER = 8
+
+
 @numba.njit(cache=True, nogil=True)
 def run_accurate(
     rows: KernelRows, out: KernelOutput, i: int, settings: AccurateSettings, noise: int, path_mode: int
@@ -278,10 +443,10 @@ def run_accurate(
     """
     prm = rows.prm[i]
     shape = rows.shapes[i]
-    lawp = rows.lawp[i]
+    lawp = rows.lawp
     x10 = rows.x0[i, 0]
     x20 = rows.x0[i, 1]
-    proc = rows.proc[i]
+    proc = rows.proc
     n_proc = rows.n_proc[i]
     xgh = out.x_gh[i]
     tgh = out.t_gh[i]
@@ -293,11 +458,11 @@ def run_accurate(
     lim = nn * prm[P_MUS]
     pdx = prm[P_PROC_DX]
     use_nodes = noise == NOISE_PROCESS
-    kinetic0 = mu_kinetic(shape, 0.0, lawp)
+    mass_path = path_mode == PATH_MASS
+    kinetic0 = mu_kinetic_row(shape, 0.0, lawp, i)
 
     y = np.empty(3)
     ynew = np.empty(3)
-    tmp = np.empty(3)
     k = np.empty((7, 3))
     y[0] = x10
     y[1] = x20
@@ -315,7 +480,7 @@ def run_accurate(
 
     def _lim_eff(path: float) -> float:
         if use_nodes:
-            return max(lim, nn * (kinetic0 + process_value(proc, n_proc, pdx, path)))
+            return max(lim, nn * (kinetic0 + process_value_row(proc, i, n_proc, pdx, path)))
         return lim
 
     stick = x20 == gamma0 and abs(stick_force(x10, 0.0, prm)) <= _lim_eff(0.0)
@@ -325,6 +490,7 @@ def run_accurate(
         s = 1.0 if stick_force(x10, 0.0, prm) >= 0.0 else -1.0
     else:
         s = 1.0 if x20 < gamma0 else -1.0
+    sz = 1.0
     h = min(h0, max_step)
 
     while tau < tau_end:
@@ -343,22 +509,59 @@ def run_accurate(
             path_slip_start = y[2]
             h = min(h0, max_step)
             continue
+        # a new slip segment (after a breakaway or an event): the signs s = sign(γ0 − x2) and
+        # sz = sign(x2) are fixed until the next event
         if y[1] != gamma0:
             s = 1.0 if y[1] < gamma0 else -1.0
-        _rhs(tau, y, s, prm, shape, lawp, noise, path_mode, proc, n_proc, k[0])
+        _f(tau, y[0], y[1], y[2], s, 1.0, prm, shape, lawp, i, noise, path_mode, proc, n_proc, k, 0)
+        if y[1] != 0.0:
+            sz = 1.0 if y[1] > 0.0 else -1.0
+        else:
+            sz = 1.0 if k[0, 1] >= 0.0 else -1.0
+        k[0, 2] = sz * y[1] if mass_path else s * (gamma0 - y[1])
+        # the next grid point of the process ahead (the path never decreases within a segment)
+        node = (math.floor(y[2] / pdx + 1e-9) + 1.0) * pdx if use_nodes else np.inf
         # integrate the slip segment until an event
         while True:
             if tau + h > tau_end:
                 h = tau_end - tau
-            _dopri_step(tau, y, h, k, s, prm, shape, lawp, noise, path_mode, proc, n_proc,
-                        ynew, tmp)
-            err = 0.0
-            for i in range(3):
-                sc = atol + rtol * max(abs(y[i]), abs(ynew[i]))
-                e = h * (E1 * k[0, i] + E3 * k[2, i] + E4 * k[3, i] + E5 * k[4, i]
-                         + E6 * k[5, i] + E7 * k[6, i]) / sc
-                err += e * e
-            err = math.sqrt(err / 3.0)
+            _step(tau, y, h, k, s, sz, prm, shape, lawp, i, noise, path_mode, proc, n_proc, ynew)
+            on_node = False
+            h_try = h
+            if ynew[2] > node and y[2] < node:
+                # the step crosses a kink of the interpolated process: aim it at the grid point
+                # instead (a step across the kink would fail the error test over and over).  First
+                # guess from the cubic Hermite interpolant of the path (its rate |x2| or |γ0 − x2|
+                # is continuous across the kink), then Newton on the step length with the path's
+                # rate k[6, 2] at the step's end
+                hn = _hermite_root(y[2], ynew[2], h * k[0, 2], h * k[6, 2], node) * h
+                for _ in range(NODE_ITER):
+                    _step(tau, y, hn, k, s, sz, prm, shape, lawp, i, noise, path_mode, proc, n_proc, ynew)
+                    res = ynew[2] - node
+                    if abs(res) <= 1e-13 * pdx or k[6, 2] <= 0.0:
+                        break
+                    hn2 = hn - res / k[6, 2]
+                    if not 0.0 < hn2 <= h or hn2 == hn:
+                        break
+                    hn = hn2
+                on_node = abs(ynew[2] - node) <= 1e-9 * pdx
+                if not on_node:  # no convergence (not seen): halve the step and try again
+                    h = 0.5 * h
+                    continue
+                h = hn
+            at_belt = False
+            if y[1] == gamma0 and s * (gamma0 - ynew[1]) < 0.0:
+                # a segment that starts at the belt speed is back at (or on the wrong side of) it at
+                # the step's end: a short excursion (|F| just above n μ_s) that the step jumped over,
+                # or a slip against the unbalanced force (equal to it within rounding: no verdict, the step
+                # stands).  Shorten the step until the excursion is
+                # resolved; below CARRY_STEP it is a belt contact at once (stick, carried with the belt,
+                # or, if neither, carried for that step as the fixed-step scheme does)
+                if h > CARRY_STEP:
+                    h *= 0.25
+                    continue
+                at_belt = True
+            err = 0.0 if at_belt else _err_norm(y, ynew, k, h, rtol, atol)
             if err > 1.0:
                 h *= max(0.2, 0.9 * err ** -0.2)
                 continue
@@ -372,44 +575,70 @@ def run_accurate(
                 if t1 < th:
                     th = t1
                     ev = EV_BELT
-            if use_nodes and path_mode == PATH_MASS and y[1] * ynew[1] < 0.0:
-                sg = 1.0 if y[1] < 0.0 else -1.0  # g = sg·(0 − x2) > 0 before the crossing
-                t2 = _root_theta(y, ynew, k, h, 1, 0.0, sg)
+            if mass_path and sz * ynew[1] < 0.0 and sz * y[1] > 0.0:
+                t2 = _root_theta(y, ynew, k, h, 1, 0.0, -sz)  # g = sz·x2 > 0 before the crossing
                 if t2 < th:
                     th = t2
                     ev = EV_ZERO_VELOCITY
-            if use_nodes:
-                u = y[2] / pdx
-                ju = math.floor(u + 1e-9)
-                node = (ju + 1) * pdx
-                if ynew[2] >= node:
-                    t3 = _root_theta(y, ynew, k, h, 2, node, 1.0)
-                    if t3 < th:
-                        th = t3
-                        ev = EV_NODE
-            h_next = h * min(5.0, max(0.2, 0.9 * max(err, 1e-10) ** -0.2))
+            if on_node and th > 1.0:
+                th = 1.0
+                ev = EV_NODE
+            if at_belt:
+                th = 0.0
+                ev = EV_BELT
+            h_next = min(h * min(5.0, max(0.2, 0.9 * max(err, 1e-10) ** -0.2)), max_step)
+            if on_node:  # the step was cut short by the grid point, not by the error: keep the step
+                h_next = min(max(h_next, h_try), max_step)
             if ev == EV_NONE:
                 isave = _save_dense(traj, isave, save_dt, tau, tau + h, y, ynew, k, h)
                 tau += h
-                for i in range(3):
-                    y[i] = ynew[i]
-                    k[0, i] = k[6, i]
-                h = min(h_next, max_step)
+                for c in range(3):
+                    y[c] = ynew[c]
+                    k[0, c] = k[6, c]
+                h = h_next
                 if tau >= tau_end:
                     break
                 continue
+            if ev == EV_NODE:  # the accepted step ends on the grid point
+                isave = _save_dense(traj, isave, save_dt, tau, tau + h, y, ynew, k, h)
+                tau += h
+                for c in range(3):
+                    y[c] = ynew[c]
+                y[2] = node
+                h = h_next
+                break  # a new segment: the process's slope changes
             # event inside the step: recompute the state exactly at it
-            hev = th * h
-            isave = _save_dense(traj, isave, save_dt, tau, tau + hev, y, ynew, k, h)
-            _dopri_step(tau, y, hev, k, s, prm, shape, lawp, noise, path_mode, proc, n_proc,
-                        ynew, tmp)
-            tau += hev
-            for i in range(3):
-                y[i] = ynew[i]
-            h = min(max(h, 1e-6), max_step)
+            if not at_belt:
+                hev = th * h
+                isave = _save_dense(traj, isave, save_dt, tau, tau + hev, y, ynew, k, h)
+                _step(tau, y, hev, k, s, sz, prm, shape, lawp, i, noise, path_mode, proc, n_proc, ynew)
+                tau += hev
+                for c in range(3):
+                    y[c] = ynew[c]
+            h = max(h_next, 1e-6)
             if ev == EV_BELT:
                 y[1] = gamma0
-                if abs(stick_force(y[0], tau, prm)) <= lim:
+                fs = stick_force(y[0], tau, prm)
+                sticks = abs(fs) <= lim
+                if not sticks:
+                    n_no_stick += 1
+                    le = _lim_eff(y[2])
+                    if abs(fs) <= le:
+                        # carried with the belt until the force enters the static band or leaves
+                        # the kinetic one (carried_end)
+                        rate = gamma0 if mass_path else 0.0
+                        tc, sticks = carried_end(y[0], tau, tau_end, prm, lim, nn * kinetic0, proc, i, n_proc,
+                                                 y[2], rate)
+                        te = min(tc, tau_end)
+                        isave = _save_stick(traj, isave, save_dt, y[0], tau, te, gamma0)
+                        y[0] += gamma0 * (te - tau)
+                        y[2] += rate * (te - tau)
+                        tau = te
+                        if tc >= tau_end:
+                            stick = True  # still moving with the belt at τ_end
+                            break
+                        fs = stick_force(y[0], tau, prm)
+                if sticks:
                     if m < max_ev:
                         xgh[m] = y[0]
                         tgh[m] = tau
@@ -422,15 +651,19 @@ def run_accurate(
                         n_short += 1
                     stick = True
                     break
-                n_no_stick += 1
-                s = -s
-                _rhs(tau, y, s, prm, shape, lawp, noise, path_mode, proc, n_proc, k[0])
-            elif ev == EV_ZERO_VELOCITY:
-                y[1] = 0.0
-                _rhs(tau, y, s, prm, shape, lawp, noise, path_mode, proc, n_proc, k[0])
-            else:
-                y[2] = (math.floor(y[2] / pdx + 0.5)) * pdx
-                _rhs(tau, y, s, prm, shape, lawp, noise, path_mode, proc, n_proc, k[0])
+                if at_belt and tau < tau_end:
+                    # neither sticking nor carried, yet no slip direction leaves the belt speed:
+                    # carried with the belt for one short step (progress guaranteed)
+                    hc = min(CARRY_STEP, tau_end - tau)
+                    isave = _save_stick(traj, isave, save_dt, y[0], tau, tau + hc, gamma0)
+                    y[0] += gamma0 * hc
+                    tau += hc
+                    fs = stick_force(y[0], tau, prm)
+                # the friction opposes the unbalanced force (as at a breakaway)
+                s = 1.0 if fs > 0.0 else -1.0
+                break
+            y[1] = 0.0  # EV_ZERO_VELOCITY: a new segment with sz reversed
+            break
     store_diagnostics(diag, y[2], min_slip, n_short, n_no_stick, y[0], y[1], stick, n_break, n_phases)
     return m
 

@@ -19,7 +19,7 @@ import numpy as np
 from ..io_utils import package_versions
 from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
 from .base import Study, StudyResult, warning_counts
-from .config import ForcingConfig
+from .config import ForcingConfig, integrator_record
 from .executors import Executor, SweepStats
 from .grids import window_mask
 from .stats import sample_summary, std_ratio_over_cells
@@ -71,7 +71,8 @@ class ForcingStudy(Study):
         summary: dict[str, Any] = {
             **self.summary_head([nf], {
                 "normal_force_n": nf, "damping_ratio": self.damping_ratio, "forcing_q": qs,
-                "forcing_amplitude_n": [q * setup.preset.stiffness for q in qs], "eta": etas.tolist()}),
+                "forcing_amplitude_n": [q * setup.preset.stiffness for q in qs], "eta": etas.tolist()},
+            **integrator_record(config)),
             "x_gh_mean": {m: mean[i].tolist() for i, m in enumerate(models)},
             "x_gh_std": {m: std[i].tolist() for i, m in enumerate(models)},
         }
@@ -111,7 +112,7 @@ class ForcingStudy(Study):
             summary["sigma_ratio_interval"] = {f"{q:g}": lo_hi[i].tolist() for i, q in enumerate(qs)}
             # the median over η with its bootstrap SE and 95 % interval (all η resampled together)
             summary["sigma_ratio_median_ci"] = med_ci
-        ds = self.dataset(data, coords, executor, chash, stick_window=config.stick_window)
+        ds = self.dataset(data, coords, executor, chash, stick_window=config.stick_window, **integrator_record(config))
         summary["warnings"] = warning_counts(self.warnings(tasks, results))
         summary["versions"] = package_versions()
         return StudyResult(self.kind, ds, summary, stats)

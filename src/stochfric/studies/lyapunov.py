@@ -22,6 +22,18 @@ of the process grid: the two runs then read unrelated parts of the surface) it s
   for every i ≤ K.  This catches saturation and the non-smooth parts of the switching logic (a
   breakaway moved across a grid step; probably the white noise's slip remainder ΔW_k √(h/Δτ),
   not Lipschitz in h at h = 0; the contact model's breakaway check) alike, without a length scale.
+* **Diverging pairs (issue 19).**  A pair whose separation grew by at least
+  :data:`DIVERGING_GROWTH` (10²) over w(1) within the transitions that pass the twin check, and only
+  then failed it, has left the linear regime by saturating, not by a jump: status ``diverging``,
+  λ = the slope of ln w over that linear prefix, a *lower bound* of the exponent
+  (``lyapunov_is_lower_bound``); never ``nonlinear``.  A cell of R pairs is ``diverging`` when every
+  pair is ``ok`` or ``diverging`` and one at least is diverging (the mean is then a lower bound).
+* **Integrator.**  The study runs ``accurate`` (adaptive RK45 with events) for the deterministic and
+  contact models by default: at the thesis's Euler Δτ = 0.005 the switching logic locks spurious
+  cycles (brake 4000 N, q = 5·10⁻⁴, η = 1.2: λ = −0.86 against +0.28) and breaks the twin check of
+  most contact pairs.  ``integrator = "euler"`` is the reproduction mode; both are recorded
+  (``integrator``, ``sde_integrator``, ``integrator_mode`` in the JSON and the dataset attributes).
+  White noise stays an SDE (Euler–Maruyama at the config's Δτ).
 * ``lyapunov`` (with ``lyapunov_se``, ``status``) is the exponent *per slip→stick transition*:
   the least-squares slope of ln w(i) over all i = 1 … K (deterministic: SE from the regression;
   stochastic: mean over the R run pairs, SE = s/√R).  It is reported only when every pair is
@@ -55,14 +67,20 @@ import numpy as np
 import numpy.typing as npt
 
 from ..io_utils import package_versions
+from ..oscillator.case import MU0
 from .base import Study, StudyResult, warning_counts
-from .config import LyapunovConfig
+from .config import LyapunovConfig, integrator_record
 from .executors import Executor, SweepStats
-from .tasks import TaskSpec
+from .tasks import StudyError, TaskSpec
 
-STATUS = ("ok", "merged", "too-few-transitions", "nonlinear")
+STATUS = ("ok", "diverging", "merged", "too-few-transitions", "nonlinear")
 #: Fewest transitions in the linear regime for a growth rate.
 MIN_LINEAR = 5
+#: Growth of the separation, relative to its first value, within the linear regime from which a pair
+#: whose twin check fails later is ``diverging`` (its slope up to there a lower bound), not ``nonlinear``.
+DIVERGING_GROWTH = 100.0
+#: Fewest transitions of the linear prefix for the slope of a diverging pair.
+MIN_DIVERGING = 3
 
 
 def lyapunov_exponent(w: npt.ArrayLike) -> tuple[float, str, int]:
@@ -112,6 +130,42 @@ def lyapunov_rate(w: npt.ArrayLike, linear: bool = True) -> tuple[float, float, 
     return float(slope), se, "ok", k
 
 
+def linear_prefix(d: npt.ArrayLike, d_twin: npt.ArrayLike, tolerance: float) -> int:
+    """Number of leading transitions that pass the twin check of :func:`is_linear` (all K when it holds)."""
+    a = np.asarray(d, dtype=float)
+    fin = np.isfinite(a)
+    k = int(np.argmin(fin)) if not fin.all() else a.size
+    a = a[:k]
+    b = np.asarray(d_twin, dtype=float)[:k]
+    if b.size < k:
+        b = np.concatenate([b, np.full(k - b.size, np.nan)])
+    scale = 2.0 * np.maximum.accumulate(np.abs(a)) if k else a
+    with np.errstate(invalid="ignore"):
+        good = np.isfinite(b) & (np.abs(b - 2.0 * a) <= tolerance * scale)
+    return int(np.argmin(good)) if not good.all() else k
+
+
+def diverging_rate(w: npt.ArrayLike, n_linear: int) -> tuple[float, float, bool]:
+    """Slope (and its SE) of ln w over the first ``n_linear`` transitions, and whether the pair is
+    *diverging*: w grew by at least :data:`DIVERGING_GROWTH` over w(1) within them (at least
+    :data:`MIN_DIVERGING` transitions, no w = 0).  Past the linear regime the separation saturates, so
+    the slope is a lower bound of the exponent."""
+    arr = np.asarray(w, dtype=float)[:n_linear]
+    if arr.size < MIN_DIVERGING or not np.all(np.isfinite(arr)) or np.any(arr <= 0.0):
+        return math.nan, math.nan, False
+    if float(np.max(arr / arr[0])) < DIVERGING_GROWTH:
+        return math.nan, math.nan, False
+    i = np.arange(arr.size, dtype=float)
+    y = np.log(arr)
+    slope, icpt = np.polyfit(i, y, 1)
+    if arr.size > 2:
+        res = y - (slope * i + icpt)
+        se = math.sqrt(float(np.sum(res**2)) / (arr.size - 2) / float(np.sum((i - i.mean()) ** 2)))
+    else:
+        se = math.nan
+    return float(slope), se, True
+
+
 def _significant(rate: npt.NDArray[np.float64], se: npt.NDArray[np.float64]) -> dict[str, int]:
     ok = np.isfinite(rate)
     se0 = np.where(np.isfinite(se), se, 0.0)
@@ -148,6 +202,20 @@ class LyapunovStudy(Study):
         sp = self.setup.preset.study_parameters
         self.forces = config.normal_force_n or tuple(float(v) for v in sp["normal_force_study_forces_n"])
         self.damping_ratio = config.damping_ratio if config.damping_ratio is not None else float(sp["damping_undamped"])
+        self._check_perturbation()
+
+    def _check_perturbation(self) -> None:
+        """Refuse a δ that is not small against the attractor: the stick-slip cycle's x1 scale is the static
+        deflection n μ0 (spring force = static friction; n = N/(cL), μ0 = 0.4), and (4.43) needs δ in the
+        linear regime, far below it.  δ ≥ 0.1 n μ0 at the smallest force is refused, saying what to give."""
+        n_min = min(self.setup.parameters(nf, self.damping_ratio).n for nf in self.forces)
+        scale = n_min * MU0
+        if self.config.perturbation >= 0.1 * scale:
+            raise StudyError(
+                f"perturbation {self.config.perturbation:g} is not small against the attractor: the stick-slip "
+                f"cycle at N = {min(self.forces):g} N spans about n μ0 = {scale:.2g} (dimensionless x = y/L); the "
+                f"exponent needs the runs in the linear regime: give a perturbation below {0.1 * scale:.1g}, "
+                "e.g. 1e-6 (the default)")
 
     def axes(self) -> dict[str, Sequence[Any]]:
         return {"model": self.config.models, "forcing_q": self.config.forcing_q, "normal_force_n": self.forces}
@@ -196,6 +264,13 @@ class LyapunovStudy(Study):
             for r in range(runs):
                 lam_runs[(*idx, r)], _, _ = lyapunov_exponent(ww[r])
                 rate_runs[(*idx, r)], se_r, rate_status_runs[(*idx, r)], k_fit = lyapunov_rate(ww[r], bool(linear[r]))
+                if rate_status_runs[(*idx, r)] == "nonlinear":
+                    # grown by orders of magnitude before the twin check failed: diverging, the slope
+                    # up to there a lower bound (never "undefined")
+                    n_pre = linear_prefix(dd[idx][r], dd2[idx][r], tol)
+                    lb, lb_se, div = diverging_rate(ww[r], n_pre)
+                    if div:
+                        rate_runs[(*idx, r)], se_r, rate_status_runs[(*idx, r)], k_fit = lb, lb_se, "diverging", n_pre
                 if runs == 1:
                     rate_se[idx], n_lin[idx] = se_r, k_fit
             # E[W(i)] over the runs, up to the smallest number of transitions
@@ -208,9 +283,10 @@ class LyapunovStudy(Study):
             rs = rate_status_runs[idx][:runs]
             if runs == 1:
                 rate[idx], rate_status[idx] = rate_runs[(*idx, 0)], rs[0]
-            elif np.all(rs == "ok"):
+            elif np.all((rs == "ok") | (rs == "diverging")):
+                # a diverging pair's value is a lower bound, so is the mean of the cell then
                 vals = rate_runs[idx][:runs]
-                rate[idx], rate_status[idx] = float(np.mean(vals)), "ok"
+                rate[idx], rate_status[idx] = float(np.mean(vals)), ("ok" if np.all(rs == "ok") else "diverging")
                 rate_se[idx] = float(np.std(vals, ddof=1) / math.sqrt(runs))
                 n_lin[idx] = runs
             else:  # one undefined pair makes the ensemble mean undefined (no selection bias)
@@ -231,11 +307,16 @@ class LyapunovStudy(Study):
             "d_pair": ((*d4, "run", "event"), dd, {"units": "1", "long_name": "X_gh,pert - X_gh,ref (delta)"}),
             "d_twin": ((*d4, "run", "event"), dd2, {"units": "1", "long_name": "X_gh,twin - X_gh,ref (2 delta)"}),
             "lyapunov": (d4, rate, {"units": "1", "long_name": "largest Lyapunov exponent per slip->stick transition: "
-                                    "slope of ln w(i), i = 1..K (mean over run pairs); NaN unless status ok"}),
+                                    "slope of ln w(i), i = 1..K (mean over run pairs); a lower bound where "
+                                    "status is diverging; NaN unless status ok or diverging"}),
+            "lyapunov_is_lower_bound": (d4, (rate_status == "diverging").astype(np.int8),
+                                        {"units": "1", "long_name": "1 where lyapunov is a lower bound (diverging)"}),
             "lyapunov_se": (d4, rate_se, {"units": "1", "long_name": "standard error of lyapunov"}),
-            "status": (d4, rate_status.astype(str), {"long_name": "ok | merged | too-few-transitions | nonlinear"}),
+            "status": (d4, rate_status.astype(str), {"long_name": "ok | diverging | merged | too-few-transitions | "
+                                                     "nonlinear"}),
             "n_transitions": (d4, kk, {"units": "1", "long_name": "K used in (4.43)/(4.44)"}),
-            "n_ok_pairs": (d4, n_lin, {"units": "1", "long_name": "deterministic: K of the fit; stochastic: pairs ok"}),
+            "n_ok_pairs": (d4, n_lin, {"units": "1", "long_name": "deterministic: K of the fit; stochastic: pairs ok "
+                                       "or diverging"}),
             "lyapunov_runs": ((*d4, "run"), rate_runs, {"units": "1", "long_name": "exponent of each run pair"}),
             "status_runs": ((*d4, "run"), rate_status_runs.astype(str), {}),
             "separation_index_443": (d4, sep443, {"units": "1", "long_name": "(4.43)/(4.44) evaluated as printed at "
@@ -244,15 +325,19 @@ class LyapunovStudy(Study):
             "separation_index_status": (d4, status.astype(str), {"long_name": "ok | merged | too-few-transitions | "
                                                                 "nonlinear (twin check failed)"}),
             "separation_index_443_runs": ((*d4, "run"), lam_runs, {"units": "1"}),
-        }, coords, executor, chash, perturbation=config.perturbation, linearity_tolerance=tol)
+        }, coords, executor, chash, perturbation=config.perturbation, linearity_tolerance=tol,
+            **integrator_record(config))
         sig = {m: _significant(rate[i], rate_se[i]) for i, m in enumerate(models)}
         summary: dict[str, Any] = {
             **self.summary_head(forces, {"normal_force_n": list(forces), "forcing_q": qs, "eta": etas.tolist(),
                                          "damping_ratio": self.damping_ratio},
-                                perturbation=config.perturbation, linearity_tolerance=tol),
+                                perturbation=config.perturbation, linearity_tolerance=tol,
+                                **integrator_record(config)),
             "lyapunov": {m: rate[i].tolist() for i, m in enumerate(models)},
             "lyapunov_se": {m: rate_se[i].tolist() for i, m in enumerate(models)},
             "status": {m: rate_status[i].tolist() for i, m in enumerate(models)},
+            "lyapunov_is_lower_bound": {m: (rate_status[i] == "diverging").tolist() for i, m in enumerate(models)},
+            "diverging_growth": DIVERGING_GROWTH,
             "n_transitions": {m: kk[i].tolist() for i, m in enumerate(models)},
             "status_counts": {m: {s_: int(np.sum(rate_status[i] == s_)) for s_ in STATUS}
                               for i, m in enumerate(models)},
