@@ -15,7 +15,7 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from stochfric.cli.app import app as main_app
+from stochfric.cli import app as main_app
 from stochfric.process.credibility import NOT_CREDIBLE_EXIT
 from stochfric.process.model import load_process_model
 from stochfric.surface.io import default_surface_path, read_surface

@@ -10,7 +10,7 @@ from __future__ import annotations
 import pytest
 from typer.testing import CliRunner
 
-from stochfric.cli.app import app
+from stochfric.cli import app
 
 CASES = [
     *[("--outlier-k", v) for v in ("0", "-1", "nan", "inf", "2", "x")],

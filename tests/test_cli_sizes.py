@@ -11,7 +11,7 @@ import time
 import pytest
 from typer.testing import CliRunner
 
-from stochfric.cli.app import app
+from stochfric.cli import app
 
 CASES = [
     (["simulate", "--preset", "brake", "--tau-end", "inf"], "--tau-end must be a finite number"),
@@ -107,3 +107,14 @@ def test_an_absurd_normal_force_gets_a_coded_hopf_warning() -> None:
     data = json.loads(res.stdout[res.stdout.index("{"):])
     assert data["d_hopf"][0] > 1e6
     assert {"code": "hopf-damping-above-one", "count": 1} in data["warnings"]
+
+
+def test_lyapunov_perturbation_larger_than_the_attractor_is_refused() -> None:
+    """issue 20 §3: δ = 1e6 ran and every cell said too-few-transitions; δ must be small against n μ0."""
+    res = CliRunner().invoke(app, ["study", "lyapunov", "--preset", "brake", "--perturbation", "1e6"])
+    assert res.exit_code == 2
+    assert "not small against the attractor" in res.output and "below 3e-05" in res.output
+    from stochfric.studies.config import LyapunovConfig
+    from stochfric.studies.lyapunov import LyapunovStudy
+
+    LyapunovStudy(LyapunovConfig(normal_force_n=(4000.0,), perturbation=1e-4))  # the δ table's largest: accepted

@@ -17,7 +17,9 @@ __all__ = ["count", "finite", "finite_tuple", "non_negative", "positive"]
 
 
 def finite(name: str, value: float, *, error: type[ValueError] = ValueError) -> float:
-    """``value`` as a finite float, or ``error`` ("NAME must be a number / finite")."""
+    """``value`` as a finite float, or ``error`` ("NAME must be a number / finite"); a boolean is no number."""
+    if isinstance(value, bool):
+        raise error(f"{name} must be a number, not the boolean {str(value).lower()}")
     try:
         v = float(value)
     except (TypeError, ValueError):

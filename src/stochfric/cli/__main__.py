@@ -1,5 +1,5 @@
 """``python -m stochfric.cli``."""
 
-from .app import main
+from .application import main
 
 main()

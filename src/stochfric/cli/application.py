@@ -11,6 +11,7 @@ from typing import Annotated
 import typer
 
 from .. import __version__
+from .options import write_failed
 from .process import register as register_process_commands
 from .simulate import register as register_simulate_command
 from .studies import register as register_study_commands
@@ -52,5 +53,12 @@ register_study_commands(app)
 
 
 def main() -> None:
-    """Console-script entry point."""
-    app()
+    """Console-script entry point.  An output that cannot be written (disk full, no permission) ends
+    with the one-line message of :func:`~stochfric.cli.options.write_failed` wherever it happens."""
+    try:
+        app()
+    except OSError as exc:
+        try:
+            raise write_failed(exc) from None
+        except typer.Exit as done:
+            raise SystemExit(done.exit_code) from None

@@ -49,6 +49,15 @@ VarianceRuleChoice = StrEnum("VarianceRuleChoice", "sigma_mu tabulated")
 SigmaZetaChoice = StrEnum("SigmaZetaChoice", "sigma_mu spectral_level")
 
 
+def write_failed(exc: OSError) -> typer.Exit:
+    """:func:`fail` for an output that could not be written (disk full, no permission, a removed
+    directory): what failed and where, and that the files written before are intact (every
+    writer is atomic)."""
+    where = f" ({exc.filename})" if getattr(exc, "filename", None) else ""
+    return fail(f"could not write the results: {exc.strerror or exc}{where}; free some space or choose "
+                "another output directory (files written before are intact)")
+
+
 def fail(message: str) -> typer.Exit:
     """Print ``error: message`` on stderr and return the exit to raise (status 2)."""
     typer.echo(f"error: {message}", err=True)

@@ -28,6 +28,7 @@ from stochfric.cli.options import (
     VarianceRuleChoice,
     fail,
     option_group,
+    write_failed,
 )
 from stochfric.cli.surface import (
     SurfaceOptions,
@@ -216,7 +217,7 @@ def friction_process_command(
     except ValueError as exc:  # e.g. a fit without enough points
         raise fail(str(exc)) from None
     except OSError as exc:  # disk full while writing: the previous files stay intact
-        raise fail(f"could not write the results: {exc}") from None
+        raise write_failed(exc) from None
     _echo_warnings(payload["warnings"])
     _echo_checks(payload)
     if as_json:
@@ -358,15 +359,20 @@ def _print(payload: dict[str, Any], analysis: Any) -> None:
         f"{analysis.path.samples.mu.shape[1]} windows, a_y = {analysis.path.window_shift_m / um:.4g} µm"
     )
     used = analysis.fits["mu_mean"].used
-    typer.echo(f"{'u [µm]':>8} {'p [MPa]':>9} {'Ac/Anom':>9} {'E[μ]':>7} {'σ_μ':>7} {'ℓ_corr[µm]':>10} "
+    typer.echo(f"{'u [µm]':>8} {'p [MPa]':>9} {'Ac/Anom':>9} {'E[μ]':>7} {'σ_μ':>7} {'ℓ_corr ± SE [µm]':>18} "
                f"{'E[S] [m]':>10} {'fit':>4}")
     for k in range(len(payload["pressure_pa"])):
         typer.echo(
             f"{payload['approach_m'][k] / um:8.4g} {payload['pressure_pa'][k] / 1e6:9.4g} "
             f"{payload['area_fraction'][k]:9.3g} {payload['mu_mean'][k]:7.4f} {payload['mu_std'][k]:7.4f} "
-            f"{_num(analysis.correlation_length_m[k] / um, '10.4g'):>10} {payload['psd_level_m'][k]:10.3g} "
+            f"{_num(analysis.correlation_length_m[k] / um, '.4g'):>9} ± "
+            f"{_num(analysis.correlation_length_se_m[k] / um, '<6.2g')} {payload['psd_level_m'][k]:10.3g} "
             f"{'yes' if used[k] else 'no':>4}"
         )
+    ci = payload.get("correlation_length_ci95_m") or []
+    typer.echo(f"ℓ_corr    95 % interval over {payload.get('correlation_length_surfaces', '?')} long surfaces [µm]: "
+               + " ".join(f"[{_num(lo / um if lo is not None else None, '.3g')}, "
+                          f"{_num(hi / um if hi is not None else None, '.3g')}]" for lo, hi in ci))
     for key, label in (("mu_mean", "E[μ]"), ("mu_std", "σ_μ"), ("psd_level", "E[S]")):
         f = payload["fit"][key]
         typer.echo(

@@ -17,7 +17,7 @@ import numpy as np
 import numpy.typing as npt
 import typer
 
-from stochfric.cli.options import GROUP, MethodChoice, SummitRuleChoice, fail, option_group
+from stochfric.cli.options import GROUP, MethodChoice, SummitRuleChoice, fail, option_group, write_failed
 from stochfric.contact.asperity import ContactError, ContactResult, asperity_contact
 from stochfric.contact.figures import write_contact_figures
 from stochfric.contact.halfspace import halfspace_contact
@@ -359,6 +359,8 @@ def surface_command(
             payload["figures"] = figures
     except _INPUT_ERRORS as exc:
         raise fail(str(exc)) from None
+    except OSError as exc:  # disk full while writing a figure or the NetCDF: the previous files stay
+        raise write_failed(exc) from None
     if _echo_result(payload, as_json):
         return
     um = MICROMETRE
@@ -487,6 +489,8 @@ def contact_command(
             payload["figures"] = [str(p) for p in write_contact_figures(plot, results)]
     except _INPUT_ERRORS as exc:
         raise fail(str(exc)) from None
+    except OSError as exc:  # disk full while writing a figure or the NetCDF: the previous files stay
+        raise write_failed(exc) from None
     if _echo_result(payload, as_json):
         return
     um = MICROMETRE

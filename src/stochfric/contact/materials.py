@@ -135,6 +135,14 @@ class Material:
         if unknown:
             raise MaterialError(f"unknown material field(s) {sorted(unknown)}; allowed: {sorted(allowed)}")
         kwargs = {k: v for k, v in data.items() if k in allowed}
+        for key, value in kwargs.items():
+            if key in ("name", "description"):
+                if not isinstance(value, str):
+                    raise MaterialError(f"material field {key} must be a string, got {value!r}")
+            elif value is None and key in ("e2_pa", "hardness_pa"):
+                continue  # rigid counter-body; hardness from the yield strength
+            elif isinstance(value, bool) or not isinstance(value, int | float):
+                raise MaterialError(f"material field {key} must be a number in SI units, got {value!r}")
         if kwargs.get("e2_pa") is None:
             kwargs["e2_pa"] = math.inf
         missing = {"name", "e1_pa", "nu1", "yield_strength_pa", "shear_strength_pa"} - set(kwargs)
@@ -203,5 +211,8 @@ def load_material(spec: str | Path) -> Material:
             raise MaterialError(f"cannot read material file {p}: {exc}") from None
         if not isinstance(data, dict):
             raise MaterialError(f"material file {p} must hold a JSON object")
-        return Material.from_mapping(data)
+        try:
+            return Material.from_mapping(data)
+        except (MaterialError, ValueError) as exc:
+            raise MaterialError(f"material file {p}: {exc}") from None
     return get_material(text)

@@ -38,8 +38,10 @@ class AnalysisConfig:
     ``window_shift_points`` is a_y in grid points of y; ``length_factor`` the long surfaces'
     length in units of the original (thesis: 53 mm / 5.3 mm = 10), which is also the number of
     non-overlapping windows per long surface in the ergodicity check; ``amplitude`` the
-    amplitude estimate of the measured map (``"hann"``: edge jump removed, default; ``"raw"``:
-    the thesis's DFT of the map as it is, :func:`stochfric.surface.synthesis.amplitude_spectrum`);
+    amplitude estimate of the measured map (``"tukey"``, default, and ``"hann"``: edge jump removed;
+    ``"raw"``: the thesis's DFT of the map as it is, :func:`stochfric.surface.synthesis.amplitude_spectrum`);
+    ``surrogate`` the surrogate method, ``"auto"`` by default as in ``stochfric friction-process``
+    (:meth:`surrogate_for`; ``"phase"`` is the thesis's random phases);
     ``window_tiles`` the most tiles per side of the measured-window check
     (:func:`~stochfric.process.checks.window_tiles`).
     """
@@ -48,7 +50,7 @@ class AnalysisConfig:
     long_surfaces: int = 10
     length_factor: int = 10
     window_shift_points: int = 16
-    surrogate: str = "phase"
+    surrogate: str = AUTO_SURROGATE
     amplitude: str = DEFAULT_AMPLITUDE
     summit_rule: str = "thesis"
     iaaft_tol: float = 1e-3

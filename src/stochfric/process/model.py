@@ -79,5 +79,9 @@ def load_process_model(path: str | os.PathLike[str]) -> FrictionProcessModel:
         raise ValueError(f"{path} is not a friction-process model file")
     try:
         return process_model_from_dict(data)
-    except (KeyError, TypeError) as exc:
-        raise ValueError(f"{path} is not a valid friction-process model: missing {exc}") from None
+    except KeyError as exc:
+        raise ValueError(f"{path} is not a valid friction-process model: the field {exc} is missing") from None
+    except (TypeError, AttributeError) as exc:
+        raise ValueError(f"{path} is not a valid friction-process model: a field has the wrong type ({exc})") from None
+    except ValueError as exc:
+        raise ValueError(f"{path}: {exc}") from None

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import multiprocessing
 import os
+import signal
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from typing import Any, TypeVar
@@ -29,6 +30,12 @@ def default_workers() -> int:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # pragma: no cover - not Linux
         return max(1, os.cpu_count() or 1)
+
+
+def _quiet_worker() -> None:
+    """Worker initializer: Ctrl-C goes to the whole process group, but only the parent answers it
+    (it stops the workers); a worker printing its own KeyboardInterrupt traceback would only be noise."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
 
 
 def _call(index: int) -> Any:
@@ -56,14 +63,21 @@ def map_indexed(
         return out
     results: list[Any] = [None] * count
     _JOB = job
+    pool = ProcessPoolExecutor(max_workers=min(n, count), mp_context=multiprocessing.get_context("fork"),
+                               initializer=_quiet_worker)
     try:
-        with ProcessPoolExecutor(max_workers=min(n, count), mp_context=multiprocessing.get_context("fork")) as pool:
-            finished = 0
-            for index, value in pool.map(_call, range(count)):
-                results[index] = value
-                finished += 1
-                if done is not None:
-                    done(finished)
+        finished = 0
+        for index, value in pool.map(_call, range(count)):
+            results[index] = value
+            finished += 1
+            if done is not None:
+                done(finished)
+    except BaseException:  # Ctrl-C or a failed job: stop the workers now, do not wait for their jobs
+        for proc in list(getattr(pool, "_processes", {}).values()):
+            proc.terminate()
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
     finally:
         _JOB = None
+    pool.shutdown(wait=True)
     return results

@@ -131,55 +131,106 @@ def model_choices_text(summary: dict[str, Any]) -> str:
     lvl = summary.get("process_level", "sigma_mu")
     lvl_txt = ("; contact-process variance: psd_level (REPRODUCTION MODE: from the thesis's E[S](p) fit, "
                "normalised by its check σ = 0.08 at 0.5 MPa)" if lvl == "psd_level" else "")
+    standing = f" The white model is a {summary['white_model']}." if summary.get("white_model") else ""
     return (f"Contact process read along: {_PATH_TEXT.get(str(pc), str(pc))}; white-noise intensity rule: "
-            f"{_WHITE_TEXT.get(str(wi), str(wi))}; σ_ζ of the white model = {sz_txt}{eff_txt}{lvl_txt}.")
+            f"{_WHITE_TEXT.get(str(wi), str(wi))}; σ_ζ of the white model = {sz_txt}{eff_txt}{lvl_txt}.{standing}")
+
+
+def _pct(a: float) -> str:
+    return f"{100 * a:g} %"
+
+
+def risk_text(e: dict[str, Any], grid: Sequence[float], runs: int | None = None, compact: bool = False) -> str:
+    """A D_max(α) entry of the summary as "0.205 [0.19, 0.21]"; an open upper end as "≥ 0.25 (grid end)",
+    or, when the runs cannot resolve α, "≥ 0.25 (10 runs cannot resolve 10 %)" (``compact``: "≥ 0.25*");
+    "< grid start" below the grid."""
+    start = f"< grid start ({min(grid):g})"
+    v, (lo, hi) = e["value"], e["interval"]
+    lo_t = start if lo is None else f"{lo:.4g}"
+    if hi is None:
+        hi_t = start
+    elif e.get("high_open") and e.get("resolved", True):
+        hi_t = f"≥ {hi:.4g} (grid end)"
+    elif e.get("high_open"):
+        who = runs if runs is not None else "these"
+        hi_t = f"≥ {hi:.4g}" + ("*" if compact else f" ({who} runs cannot resolve {_pct(e['risk_level'])})")
+    else:
+        hi_t = f"{hi:.4g}"
+    return f"{start if v is None else f'{v:.4g}'} [{lo_t}, {hi_t}]"
+
+
+def _unresolved_note(summary: dict[str, Any]) -> str:
+    """"*: open upper end, 10 runs cannot resolve 10 % (≥ 36 runs needed), …" or ""."""
+    risk = summary.get("d_max_risk") or {}
+    alphas = [float(a) for a in summary.get("risk_levels", [])]
+    need = summary.get("risk_levels_runs_to_resolve") or [None] * len(alphas)
+    bad = [j for j in range(len(alphas))
+           if any(not e[j].get("resolved", True) for per_force in risk.values() for e in per_force)]
+    if not bad:
+        return ""
+    return ("*: open upper end — " + str(summary.get("runs", "these")) + " runs cannot resolve " + ", ".join(
+        _pct(alphas[j]) + (f" (≥ {need[j]} runs needed)" if need[j] else "") for j in bad)
+        + ": 0 sticking runs do not exclude P ≥ α.")
 
 
 def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:
-    """(table HTML, reading text) for a damping study summary."""
+    """(table HTML, reading: short bullet lines "• …") for a damping study summary."""
     forces = summary["normal_force_n"]
-    stoch = list(summary.get("d_max_stochastic", {}))
-    header = ["N [N]", "D_H", "D_max^d"] + [f"D_max^s {m} [lo, hi]" for m in stoch] + [
-        f"safe limit ({m})" for m in stoch]
+    grid = summary.get("damping_ratio") or [math.nan]
+    ext = summary.get("d_max_sample_extreme", {})
+    risk = summary.get("d_max_risk", {})
+    stoch = list(risk) or list(ext)
+    alphas = [float(a) for a in summary.get("risk_levels", [])] if risk else []
+    runs = summary.get("runs")
+    conf = summary.get("confidence", 0.95)
+    header = (["N [N]", "D_H", "D_max^d"] + [f"D_max({_pct(a)}) {m} [low, high]" for m in stoch for a in alphas]
+              + [f"sample extreme {m} (thesis D_max^s)" for m in stoch])
     rows = []
     lines = []
     for i, nf in enumerate(forces):
         dd = summary.get("d_max_deterministic", [None] * len(forces))[i]
-        grid = summary.get("damping_ratio") or [math.nan]
         row: list[Any] = [nf, summary["d_hopf"][i],
                           dmax_text(dd, grid) if "d_max_deterministic" in summary else None]
-        for m in stoch:
-            e = summary["d_max_stochastic"][m][i]
-            lo, hi = e["interval"]
-            row.append(dmax_text(e["value"], grid) if e["value"] is None else
-                       f"{dmax_text(e['value'], grid)} [{_fmt(lo)}, {_fmt(hi) if hi is not None else '> grid'}]")
-        for m in stoch:
-            row.append(summary.get("d_safe", {}).get(m, [None] * len(forces))[i])
+        row += [risk_text(risk[m][i][j], grid, runs, compact=True) for m in stoch for j in range(len(alphas))]
+        row += [dmax_text(ext[m][i]["value"], grid) if m in ext else None for m in stoch]
         rows.append(row)
         txt = f"N = {nf:g} N: D_H = {summary['d_hopf'][i]:.3g}, D_max^d = {dmax_text(dd, grid)}"
-        for m in stoch:
-            v = summary["d_max_stochastic"][m][i]["value"]
-            rel = ""
-            if v is not None and dd is not None:
-                rel = " (above D_max^d: the deterministic limit is unsafe)" if v > dd else (
-                    " (equal to D_max^d)" if v == dd else " (below D_max^d)")
-            txt += f"; D_max^s({m}) = {dmax_text(v, grid)}{rel}"
-        lines.append(txt + ".")
+        for j, a in enumerate(alphas):
+            txt += f"; D_max({_pct(a)}): " + ", ".join(f"{m} {risk_text(risk[m][i][j], grid, runs, compact=True)}"
+                                                       for m in stoch)
+        lines.append(txt)
+    if alphas:
+        lines.append(f"D_max(α) = largest D with P(stick-slip) ≥ α; [low, high] from the per-D Clopper–Pearson "
+                     f"{100 * conf:g} % bands of P (each end a one-sided {50 * (1 + conf):g} % bound).")
+        note = _unresolved_note(summary)
+        if note:
+            lines.append(note)
+    if ext:
+        lines.append("Sample extreme (thesis D_max^s: largest D at which any of the " + (f"{runs} " if runs else "")
+                     + "runs stuck; grows with the runs, not a limit): " + "; ".join(
+                         f"{m} " + ", ".join(dmax_text(e["value"], grid) for e in ext[m]) for m in ext) + ".")
     if summary.get("d_max_deterministic"):
         ok = all(d is None or d >= h - 1e-12 for d, h in zip(summary["d_max_deterministic"], summary["d_hopf"],
                                                               strict=True))
-        lines.append("D_max^d ≥ D_H at every force: the Hopf bifurcation is subcritical (stick-slip from a large "
-                     "start survives above the linear stability boundary)." if ok else
+        lines.append("D_max^d ≥ D_H at every force: subcritical Hopf bifurcation (stick-slip from a large start "
+                     "above the linear boundary)." if ok else
                      "D_max^d < D_H at some force (check the grid and the stick window).")
     ph = summary.get("phase")
     if ph:
         frac = ph.get("has_cycle_fraction", {})
         parts = "; ".join(f"{m} " + ", ".join(_fmt(v, ".2g") for v in vals) for m, vals in frac.items())
-        lines.append(f"Phase curves at N = {ph['normal_force_n']:g} N for D = "
+        lines.append(f"Phase curves at N = {ph['normal_force_n']:g} N, D = "
                      + ", ".join(f"{v:g}" for v in ph["damping_ratio"])
-                     + f" ({ph.get('damping_rule', 'auto')}); fraction of the phase runs still sticking after the "
-                     f"transient: {parts}.")
-    return _table(header, rows), " ".join(lines)
+                     + f" ({ph.get('damping_rule', 'auto')}); fraction still sticking after the transient: {parts}.")
+    return _table(header, rows), "\n".join(f"• {x}" for x in lines)
+
+
+def reading_html(reading: str) -> str:
+    """A reading as HTML: bullet lines ("• …", one per line) as a list, other text as a paragraph."""
+    items = [x[2:] for x in reading.split("\n") if x.startswith("• ")]
+    if items and len(items) == len(reading.split("\n")):
+        return "<ul class='reading'>" + "".join(f"<li>{rich_text(x)}</li>" for x in items) + "</ul>"
+    return f"<p class='reading'>{rich_text(reading)}</p>"
 
 
 def forcing_reading(summary: dict[str, Any]) -> tuple[str, str]:
@@ -199,23 +250,56 @@ def forcing_reading(summary: dict[str, Any]) -> tuple[str, str]:
     return _table(["q", "median σ_contact/σ_white", "95 % interval"], rows), txt
 
 
+def lyapunov_signs(summary: dict[str, Any], model: str) -> list[str]:
+    """Per forcing amplitude, the η-sign string of ``model``: ``+``/``-`` beyond 2 SE (a diverging cell's
+    lower bound counts), ``0`` within, ``.`` undefined; a cell is the sign shared by every N, else ``~``."""
+    if not all(k in summary for k in ("lyapunov", "lyapunov_se", "forcing_q", "eta", "normal_force_n")):
+        return []
+    lam = summary["lyapunov"][model]  # [q][N][η]
+    se = summary["lyapunov_se"][model]
+    out = []
+    for qi, _q in enumerate(summary["forcing_q"]):
+        chars = []
+        for ei in range(len(summary["eta"])):
+            signs = set()
+            for ni in range(len(summary["normal_force_n"])):
+                v, e = lam[qi][ni][ei], se[qi][ni][ei]
+                if v is None or not math.isfinite(v):
+                    signs.add(".")
+                    continue
+                e = e if e is not None and math.isfinite(e) else 0.0
+                signs.add("+" if v - 2 * e > 0 else "-" if v + 2 * e < 0 else "0")
+            chars.append(signs.pop() if len(signs) == 1 else "~")
+        out.append("".join(chars))
+    return out
+
+
 def lyapunov_reading(summary: dict[str, Any]) -> tuple[str, str]:
     """(table, reading) for a Lyapunov study summary."""
     rows = []
     for m in summary["models"]:
         c = summary["status_counts"][m]
         sig = summary.get("significance", {}).get(m, {})
-        rows.append([m, c.get("ok"), c.get("merged"), c.get("too-few-transitions"), c.get("nonlinear"),
-                     sig.get("positive"), sig.get("negative")])
+        rows.append([m, c.get("ok"), c.get("diverging"), c.get("merged"), c.get("too-few-transitions"),
+                     c.get("nonlinear"), sig.get("positive"), sig.get("negative")])
+    integ = summary.get("integrator", "euler")
+    mode = summary.get("integrator_mode", "reproduction" if integ == "euler" else "converged")
+    signs = "; ".join(f"{m} q = {q:g}: {line}" for m in summary["models"]
+                      for q, line in zip(summary.get("forcing_q", []), lyapunov_signs(summary, m), strict=False))
     txt = ("Exponent per slip→stick transition from the linear regime (twin check; NaN = undefined, with the "
-           "reason counted). Cells positive / negative by more than 2 standard errors: " + ", ".join(
+           "reason counted; diverging = the separation grew ≥ 100-fold before the check failed, the value a lower "
+           "bound). Cells positive / negative by more than 2 standard errors: " + ", ".join(
                f"{m} {summary.get('significance', {}).get(m, {}).get('positive')} / "
                f"{summary.get('significance', {}).get(m, {}).get('negative')}" for m in summary["models"])
-           + f"; perturbation δ = {summary['perturbation']:g}, τ_end = {summary['tau_end']:g}. For the contact "
-           "model the path offset of the two runs is a neutral direction, so a positive value is no evidence "
-           "of chaos by itself.")
-    return _table(["model", "ok", "merged (w = 0)", "too few transitions", "nonlinear (undefined)",
-                   "λ > 2 SE", "λ < −2 SE"], rows), txt
+           + f"; perturbation δ = {summary['perturbation']:g}, τ_end = {summary['tau_end']:g}, integrator {integ} "
+           f"({mode}" + (f", white noise {summary.get('sde_integrator')} at Δτ = {summary.get('dt'):g}"
+                         if "white" in summary["models"] and summary.get("dt") is not None else "")
+           + ")" + ((". Sign over η (η = " + ", ".join(f"{e:g}" for e in summary["eta"]) + "; + / − beyond 2 SE, "
+                     "0 within, . undefined, ~ the forces differ): " + signs) if signs else "")
+           + ". For the contact model the path offset of "
+           "the two runs is a neutral direction, so a positive value is no evidence of chaos by itself.")
+    return _table(["model", "ok", "diverging (lower bound)", "merged (w = 0)", "too few transitions",
+                   "nonlinear (undefined)", "λ > 2 SE", "λ < −2 SE"], rows), txt
 
 
 def normal_force_reading(summary: dict[str, Any]) -> tuple[str, str]:
@@ -275,39 +359,111 @@ def _above(v: float | None, ref: float | None) -> bool:
 
 
 def damping_headline(summary: dict[str, Any]) -> str:
-    """One-line answer of a damping study: the limits at the phase force (the thesis's case) and the
-    verdict whether the deterministic limit is safe, plus where it is unsafe over all forces."""
+    """One-line answer of a damping study at the phase force (the thesis's case): D_max^d, and D_max(α) of
+    each stochastic model at the first risk level α with its interval; the verdict whether P(stick-slip) ≥ α
+    above D_max^d (interval wholly above it), is excluded there, or is not resolved; over all forces where
+    it is.  Results without D_max(α) (saved before issue 19): the sample extremes, labelled, no verdict."""
     forces = list(summary["normal_force_n"])
     grid = summary.get("damping_ratio") or [math.nan]
-    stoch = list(summary.get("d_max_stochastic", {}))
     det = summary.get("d_max_deterministic")
+    risk = summary.get("d_max_risk") or {}
+    stoch = list(risk)
     nf = float((summary.get("phase") or {}).get("normal_force_n", forces[(len(forces) - 1) // 2]))
     i = min(range(len(forces)), key=lambda k: abs(forces[k] - nf))
     parts = []
     if det is not None:
         parts.append(f"{_limit_words(det[i], grid)} {_WITH['deterministic']}")
-    for m in stoch:
-        e = summary["d_max_stochastic"][m][i]
-        parts.append(f"{_limit_words(e['value'], grid, e['interval'], first=not parts)} {_WITH.get(m, m)}")
-    line = f"{summary.get('preset', '')}, N = {forces[i]:g} N: " + ", ".join(parts)
-    if det is not None and stoch:
-        vals = [summary["d_max_stochastic"][m][i]["value"] for m in stoch]
-        unsafe = [m for m, v in zip(stoch, vals, strict=True) if _above(v, det[i])]
-        edge = det[i] is not None and det[i] >= max(grid) - 1e-12
-        if unsafe:
-            line += f" — the deterministic limit is not safe ({' and '.join(unsafe)} sticks beyond it)"
-        elif edge:
+    head = f"{summary.get('preset', '')}, N = {forces[i]:g} N: "
+    if not stoch:
+        ext = summary.get("d_max_sample_extreme") or {}
+        parts += [f"{_limit_words(e[i]['value'], grid, first=False)} {_WITH.get(m, m)} in some run (sample extreme, "
+                  "no risk level)" for m, e in ext.items()]
+        return head + ", ".join(parts) + "."
+    a = float(risk[stoch[0]][i][0]["risk_level"])
+    runs = summary.get("runs")
+    grid_end = max(grid)
+    rparts = [f"{risk_text(risk[m][i][0], grid, runs, compact=True)} {_WITH.get(m, m)}" for m in stoch]
+    line = head + "".join(f"{x}, " for x in parts) + f"P(stick-slip) ≥ {_pct(a)} up to D = " + ", ".join(rparts)
+    if det is not None:
+        def above(m: str, k: int) -> bool:  # the whole interval above D_max^d
+            lo = risk[m][k][0]["interval"][0]
+            return det[k] is not None and lo is not None and lo > det[k] + 1e-12
+
+        def unresolved(m: str, k: int) -> bool:  # the interval reaches above D_max^d
+            hi = risk[m][k][0]["interval"][1]
+            return hi is not None and (det[k] is None or hi > det[k] + 1e-12)
+
+        over = [m for m in stoch if above(m, i)]
+        if det[i] is not None and det[i] >= grid_end - 1e-12:
             line += " — the limits reach the grid end: extend the D grid to compare them"
+        elif over:
+            line += (f" — the deterministic limit is exceeded at {_pct(a)} risk ({' and '.join(over)}: "
+                     f"P(stick-slip) ≥ {_pct(a)} above D_max^d)")
+        elif any(unresolved(m, i) for m in stoch):
+            line += (f" — the deterministic limit is neither confirmed nor exceeded at {_pct(a)} risk (intervals reach "
+                     "above it: more runs)")
         else:
-            line += " — the deterministic limit is safe here"
+            line += f" — the deterministic limit holds at {_pct(a)} risk (P(stick-slip) < {_pct(a)} above it)"
         if len(forces) > 1:
             per = []
             for m in stoch:
-                bad = [forces[k] for k in range(len(forces))
-                       if _above(summary["d_max_stochastic"][m][k]["value"], det[k])]
+                bad = [forces[k] for k in range(len(forces)) if above(m, k)]
                 per.append(f"{m}: " + (", ".join(f"{f:g}" for f in bad) + " N" if bad else "none"))
-            line += f". Forces where a stochastic model sticks beyond D_max^d ({len(forces)} forces): " + "; ".join(per)
+            line += (f". Forces where P(stick-slip) ≥ {_pct(a)} above D_max^d ({len(forces)} forces): "
+                     + "; ".join(per))
+    if any(not risk[m][i][0].get("resolved", True) for m in stoch):
+        line += f" (*{runs if runs is not None else 'these'} runs cannot resolve {_pct(a)})"
     return line + "."
+
+
+def _det_verdict(risk: dict[str, Any], det: float | None, k: int, j: int, grid: Sequence[float]) -> str:
+    """Whether the deterministic limit D_max^d at force ``k`` holds at risk level ``j`` for every stochastic model."""
+    if det is not None and det >= max(grid) - 1e-12:
+        return "at the grid end: extend the D grid"
+    over, open_ = [], []
+    for m, per_force in risk.items():
+        lo, hi = per_force[k][j]["interval"]
+        if lo is not None and (det is None or lo > det + 1e-12):
+            over.append(m)
+        elif hi is not None and (det is None or hi > det + 1e-12):
+            open_.append(m)
+    if over:
+        return "<b>not safe</b>: " + ", ".join(over) + " stick-slips above it"
+    if open_:
+        return "not resolved (" + ", ".join(open_) + ": more runs)"
+    return "holds"
+
+
+def verdict_section(results: Sequence[Any]) -> str:
+    """The one-look answer at the top of the report: per preset (damping study), per normal force, the
+    deterministic limit D_max^d, the stick-slip limit D_max(α) of each stochastic model with its interval at
+    the first risk level, and whether the deterministic limit holds at that risk (issue 20 §5)."""
+    out = []
+    for res in results:
+        s = res.summary
+        if res.kind != "damping" or not s.get("d_max_risk"):
+            continue
+        risk, grid, runs = s["d_max_risk"], s.get("damping_ratio") or [math.nan], s.get("runs")
+        det = s.get("d_max_deterministic") or [None] * len(s["normal_force_n"])
+        hopf = s.get("d_hopf") or [None] * len(s["normal_force_n"])
+        a = float(next(iter(risk.values()))[0][0]["risk_level"])
+        header = ["N [N]", "D_H (linear)", "D_max^d (deterministic)",
+                  *[f"D_max({_pct(a)}) {m} [interval]" for m in risk], f"deterministic limit at {_pct(a)} risk"]
+        rows = []
+        for k, nf in enumerate(s["normal_force_n"]):
+            rows.append([f"{nf:g}", _fmt(hopf[k], ".3g"), dmax_text(det[k], grid),
+                         *[risk_text(risk[m][k][0], grid, runs, compact=True) for m in risk],
+                         _det_verdict(risk, det[k], k, 0, grid)])
+        table = _table(header, rows).replace("&lt;b&gt;", "<b>").replace("&lt;/b&gt;", "</b>")
+        note = _unresolved_note(s)
+        out.append(f"<h3>{html.escape(str(s.get('preset', '')))}</h3>" + table
+                   + (f"<p class='note'>{html.escape(note)}</p>" if note else ""))
+    if not out:
+        return ""
+    return ("<h2>Verdict</h2><p>Will it stick-slip? D_max(α) is the largest damping ratio D at which stick-slip "
+            "(a slip→stick transition after the transient) has probability ≥ α, with its 95 % interval "
+            "(docs/studies.md, damping); the deterministic limit is <i>not safe</i> where a stochastic model's "
+            "whole interval lies above it. Above D_max(α) the risk is below α.</p>" + "".join(out))
 
 
 def normal_force_headline(summary: dict[str, Any]) -> str:
@@ -361,12 +517,6 @@ WARNING_HELP = {
         "stick-slip cycles and forced solutions, so X_gh may carry discretisation error.",
         "rerun with a smaller time step (--dt 0.001, or dt in the study file) or check a few cells with "
         "--integrator accurate; results that do not move are converged."),
-    "process-exhausted": (
-        "The mass slid further than the generated contact-analysis friction process is long, so the process "
-        "was read periodically: the same roughness came round again, which makes the contact model's friction "
-        "partly periodic rather than random.",
-        "use a longer process (a process model file with a longer length via --process, or "
-        "simulate --process-length), or a shorter τ_end; the message gives how many times it repeated."),
     "slip-shorter-than-grid": (
         "Some slip phases were shorter than one grid spacing of the friction process, so friction there was "
         "interpolated between two grid points (thesis 4.1.3) and barely varies.",
@@ -399,7 +549,7 @@ def warnings_section(results: Sequence[Any]) -> str:
 
 READERS = {"damping": damping_reading, "forcing": forcing_reading, "lyapunov": lyapunov_reading,
            "normal-force": normal_force_reading}
-TITLES = {"damping": "Damping: D_max^d, D_max^s and the Hopf boundary (method §6.2)",
+TITLES = {"damping": "Damping: P(stick-slip | D), D_max(α), D_max^d and the Hopf boundary (method §6.2)",
           "forcing": "Forcing: bifurcation diagrams over η (method §6.3)",
           "lyapunov": "Largest Lyapunov exponent (method §6.4)",
           "normal-force": "Normal force: phase diagrams, PDFs, E[X_gh] ± σ, VarK (method §6.1)"}
@@ -475,7 +625,11 @@ def write_report(
     body = [f"<h1>{html.escape(title)}</h1>",
             "<p>Friction oscillator driven by deterministic, white-noise and contact-analysis friction, side by "
             "side (N. Gaus, KIT 2013, chapter 4). Dimensionless x = y/L (L = 1 m), τ = ω0 t; forces in N. "
-            "\"method §…\" refers to the sections of docs/method.md in the stochfric repository.</p>"]
+            "\"method §…\" refers to the sections of docs/method.md in the stochfric repository. "
+            "White-noise friction is a phenomenological time-domain noise: its intensity σ_ζ is fixed by no surface "
+            "measurement, and it is not the limit of the measured contact process — at a fixed spectral level the "
+            "contact model's σ(X_gh) grows as ℓ^β (β ≈ −0.2 … −0.3) as the correlation length ℓ shrinks "
+            "(docs/method.md §5.1a, <code>stochfric study white-limit</code>).</p>"]
     jobs: list[FigureJob] = [
         (FIGURES[res.kind], (res.dataset, d),
          {"prefix": f"{k:02d}_{res.kind.replace('-', '_')}_{res.summary.get('preset', '')}"})
@@ -490,7 +644,7 @@ def write_report(
         body.append(f"<h2 id='s{k}'>{rich_text(TITLES.get(kind, kind))} — {html.escape(str(preset))}</h2>")
         table, reading = READERS[kind](res.summary)
         readings.append(f"<li><a href='#s{k}'>{html.escape(kind)}</a>: {rich_text(HEADLINES[kind](res.summary))}</li>")
-        body.append(f"<p class='reading'>{rich_text(reading)}</p>")
+        body.append(reading_html(reading))
         choices = model_choices_text(res.summary)
         if choices:
             body.append(f"<p class='choices'>{rich_text(choices)}</p>")
@@ -502,8 +656,9 @@ def write_report(
             body.append("<p>Simulation warnings: " + html.escape(", ".join(f"{x['code']} ×{x['count']}" for x in w))
                         + " (explained under Reading).</p>")
         body.append(_provenance(res))
+    verdict = verdict_section(results)
     if readings:
-        body.insert(2, "<h2>Reading</h2><p>One answer per study; details, tables and figures in its section."
+        body.insert(2, verdict + "<h2>Reading</h2><p>One answer per study; details, tables and figures in its section."
                     "</p><ul class='answers'>" + "".join(readings) + "</ul>" + warnings_section(results))
     if chapter3 is not None:
         body.append("<h2>Chapter 3: contact analysis of the shipped real surface</h2>")

@@ -3,7 +3,7 @@
 A sweep is a list of independent :class:`~stochfric.studies.tasks.TaskSpec`; an executor
 runs :func:`~stochfric.studies.tasks.execute_task` on each and yields ``(task, arrays)``
 as tasks finish, in any order.  Every task draws its random numbers from the stream fixed
-by the root seed and its grid index (:func:`~stochfric.studies.tasks.task_seed`), so the
+by the root seed and its cells' own parameter values (:func:`~stochfric.studies.tasks.cell_stream_key`), so the
 same seed gives identical arrays on every executor and with any number of workers.
 
 :func:`run_tasks` adds checkpointing (:class:`~stochfric.studies.store.CheckpointStore`):
@@ -15,7 +15,9 @@ many tasks are saved.  Worker processes watch their parent and exit when it dies
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
 import threading
 import time
 from abc import ABC, abstractmethod
@@ -84,6 +86,25 @@ def _exit_with_parent(parent_pid: int, poll_s: float = PARENT_POLL_S) -> None:
         os._exit(1)
 
     threading.Thread(target=watch, name="stochfric-parent-watch", daemon=True).start()
+    # Ctrl-C reaches the whole process group; the parent answers it (terminates the workers, says
+    # how many tasks are saved), so a worker prints no traceback of its own
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
+
+
+@contextlib.contextmanager
+def _workers_ignore_ctrl_c() -> Iterator[None]:
+    """Ignore SIGINT while worker processes are started, so that they start with it ignored (an ignored
+    signal stays ignored across ``exec``, and Python then installs no KeyboardInterrupt handler): a
+    Ctrl-C while a worker is still importing would otherwise print that worker's partial traceback.
+    The parent's handler is restored at once; it answers Ctrl-C for all (terminates the workers)."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, previous)
 
 
 class ProcessExecutor(Executor):
@@ -108,8 +129,9 @@ class ProcessExecutor(Executor):
                                    initializer=_exit_with_parent, initargs=(os.getpid(),))
         futures: dict[Future[TaskResult], TaskSpec] = {}
         try:
-            for t in tasks:
-                futures[pool.submit(fn, t, 1)] = t
+            with _workers_ignore_ctrl_c():  # the workers start here and inherit the ignored SIGINT
+                for t in tasks:
+                    futures[pool.submit(fn, t, 1)] = t
             pending = set(futures)
             while pending:
                 done, pending = wait(pending, return_when=FIRST_COMPLETED)

@@ -112,6 +112,14 @@ class Surface:
     n_undefined_filled: int = 0
     info: dict[str, Any] = field(default_factory=dict)
 
+    def __repr__(self) -> str:
+        h = np.asarray(self.heights_m)
+        nx, ny = h.shape
+        lx, ly = (v * 1e6 for v in self.physical_size_m)
+        sq = float(np.std(h)) * 1e6
+        return (f"Surface({Path(str(self.source)).name}: {nx} × {ny} points, {lx:.4g} × {ly:.4g} µm, "
+                f"Sq = {sq:.4g} µm, {self.n_undefined_filled} undefined points filled)")
+
     def __post_init__(self) -> None:
         h = np.asarray(self.heights_m)
         if h.ndim != 2:

@@ -95,7 +95,7 @@ def test_surrogate_options_and_keywords_are_the_same(fine: Surface) -> None:
     assert by_kw.info == by_opts.info
     # keywords override the options' fields
     assert SurrogateOptions.of(opts, rule="thesis") == SurrogateOptions(amplitude="raw")
-    cfg = AnalysisConfig(amplitude="raw", summit_rule="8-neighbour")
+    cfg = AnalysisConfig(surrogate="phase", amplitude="raw", summit_rule="8-neighbour")
     assert cfg.surrogate_options == opts
     path_kw = path_contact(fine, MAT, u, long_surfaces=2, length_factor=2, shift_points=148, seed=1, amplitude="raw")
     path_opts = path_contact(fine, MAT, u, long_surfaces=2, length_factor=2, shift_points=148, seed=1,

@@ -3,7 +3,7 @@
 tests/test_report_html.py renders the output of real (small) studies; this file feeds the report
 results written by hand, with the integrators switched off, so that every number on the page is one
 this test put in: the Lyapunov section's table and headline, the warnings explained, the provenance,
-HTML escaping, the damping verdict ("is the deterministic limit safe?") and the phase portrait of a
+HTML escaping, the damping verdict (is P(stick-slip) ≥ α above the deterministic limit?) and the phase portrait of a
 hand-built simulation result.
 """
 
@@ -27,10 +27,12 @@ from stochfric.report import plot_phase_portrait, write_report
 from stochfric.report.html import (
     WARNING_HELP,
     damping_headline,
+    damping_reading,
     dmax_text,
     forcing_reading,
     model_choices_text,
     normal_force_headline,
+    reading_html,
     rich_text,
 )
 from stochfric.studies.base import StudyResult
@@ -61,7 +63,7 @@ def _lyapunov_result() -> StudyResult:
                    "white": {"ok": 5, "merged": 1, "too-few-transitions": 0, "nonlinear": 0}},
         "significance": {"deterministic": {"positive": 2, "negative": 0, "defined": 4},
                          "white": {"positive": 1, "negative": 1, "defined": 5}},
-        "warnings": [{"code": "process-exhausted", "count": 3}, {"code": "no-such-code", "count": 1}],
+        "warnings": [{"code": "slip-shorter-than-grid", "count": 3}, {"code": "no-such-code", "count": 1}],
     }
     return StudyResult(kind="lyapunov", dataset=ds, summary=summary)
 
@@ -95,8 +97,8 @@ def test_the_page_is_written_with_its_figure(page: tuple[Path, str]) -> None:
 def test_the_lyapunov_table_and_headline_show_the_given_numbers(page: tuple[Path, str]) -> None:
     _, text = page
     rows = re.findall(r"<tr>(<td>.*?)</tr>", text)
-    assert "<td>deterministic</td><td>4</td><td>1</td><td>0</td><td>1</td><td>2</td><td>0</td>" in rows
-    assert "<td>white</td><td>5</td><td>1</td><td>0</td><td>0</td><td>1</td><td>1</td>" in rows
+    assert "<td>deterministic</td><td>4</td><td>—</td><td>1</td><td>0</td><td>1</td><td>2</td><td>0</td>" in rows
+    assert "<td>white</td><td>5</td><td>—</td><td>1</td><td>0</td><td>0</td><td>1</td><td>1</td>" in rows
     reading = text[text.index("<h2>Reading</h2>"):text.index("<h2 id='s0'>")]
     assert ("brake, Lyapunov exponent on the stick line: cells with λ &gt; 0 by more than 2 SE: "
             "deterministic 2, white 1.") in reading
@@ -106,12 +108,12 @@ def test_the_lyapunov_table_and_headline_show_the_given_numbers(page: tuple[Path
 
 def test_every_warning_is_counted_and_explained(page: tuple[Path, str]) -> None:
     _, text = page
-    assert "<dt>process-exhausted: lyapunov (brake) ×3</dt>" in text
-    what, todo = WARNING_HELP["process-exhausted"]
+    assert "<dt>slip-shorter-than-grid: lyapunov (brake) ×3</dt>" in text
+    what, todo = WARNING_HELP["slip-shorter-than-grid"]
     assert rich_text(what) in text and rich_text(todo) in text
     assert "<dt>no-such-code: lyapunov (brake) ×1</dt>" in text  # an unknown code still appears
     assert "See the warning messages of the simulations." in text
-    assert "Simulation warnings: process-exhausted ×3, no-such-code ×1" in text
+    assert "Simulation warnings: slip-shorter-than-grid ×3, no-such-code ×1" in text
 
 
 def test_provenance_is_shown_without_the_process_internals(page: tuple[Path, str]) -> None:
@@ -125,28 +127,54 @@ def test_provenance_is_shown_without_the_process_internals(page: tuple[Path, str
 # --- the readings, from hand-built summaries ---------------------------------------------------------
 
 
-def _damping_summary(det: list[float | None], white: list[float | None]) -> dict[str, Any]:
-    return {"preset": "brake", "normal_force_n": [1000.0, 2000.0, 3000.0],
-            "damping_ratio": [0.05, 0.1, 0.15, 0.2, 0.25],
-            "d_hopf": [0.02, 0.04, 0.06], "d_max_deterministic": det, "phase": {"normal_force_n": 2000.0},
-            "d_max_stochastic": {"white": [{"value": v, "interval": [v, None]} for v in white]}}
+def _damping_summary(det: list[float | None], white: list[tuple[float | None, float | None, float | None]],
+                     resolved: bool = True) -> dict[str, Any]:
+    """Three forces; ``white``: D_max(10 %) per force as (value, low, high)."""
+    grid = [0.05, 0.1, 0.15, 0.2, 0.25]
+    return {"preset": "brake", "normal_force_n": [1000.0, 2000.0, 3000.0], "damping_ratio": grid, "runs": 100,
+            "d_hopf": [0.02, 0.04, 0.06], "d_max_deterministic": det,
+            "phase": {"normal_force_n": 2000.0, "damping_ratio": [0.05, 0.15], "has_cycle_fraction": {"white": [1, 0]}},
+            "risk_levels": [0.1], "risk_levels_runs_to_resolve": [36],
+            "d_max_risk": {"white": [[{"risk_level": 0.1, "value": v, "interval": [lo, hi], "resolved": resolved,
+                                       "high_open": hi is not None and hi >= 0.25}] for v, lo, hi in white]},
+            "d_max_sample_extreme": {"white": [{"value": hi, "interval": [hi, None]} for _, _, hi in white]}}
 
 
-def test_damping_headline_says_where_the_deterministic_limit_is_unsafe() -> None:
-    line = damping_headline(_damping_summary([0.1, 0.15, 0.2], [0.1, 0.2, 0.2]))
-    assert line == ("brake, N = 2000 N: stick-slip up to D = 0.15 deterministically, up to 0.2 [0.2, > grid] "
-                    "with white noise — the deterministic limit is not safe (white sticks beyond it). Forces "
-                    "where a stochastic model sticks beyond D_max^d (3 forces): white: 2000 N.")
+def test_damping_headline_says_where_the_deterministic_limit_is_exceeded_at_the_risk_level() -> None:
+    line = damping_headline(_damping_summary([0.1, 0.15, 0.2], [(0.1, 0.1, 0.1), (0.2, 0.2, 0.2), (0.2, 0.15, 0.2)]))
+    assert line == ("brake, N = 2000 N: stick-slip up to D = 0.15 deterministically, P(stick-slip) ≥ 10 % up to "
+                    "D = 0.2 [0.2, 0.2] with white noise — the deterministic limit is exceeded at 10 % risk (white: "
+                    "P(stick-slip) ≥ 10 % above D_max^d). Forces where P(stick-slip) ≥ 10 % above D_max^d "
+                    "(3 forces): white: 2000 N.")
+    assert "safe" not in line
 
 
-def test_damping_headline_safe_and_at_the_grid_edges() -> None:
-    safe = damping_headline(_damping_summary([0.1, 0.15, 0.2], [0.1, 0.15, None]))
-    assert "— the deterministic limit is safe here" in safe and "white: none" in safe
-    edge = damping_headline(_damping_summary([0.1, 0.25, 0.2], [0.1, 0.25, 0.2]))
+def test_damping_headline_holds_unresolved_and_at_the_grid_edges() -> None:
+    holds = damping_headline(_damping_summary([0.1, 0.15, 0.2], [(0.1, 0.1, 0.1), (0.15, 0.1, 0.15), (None,) * 3]))
+    assert "— the deterministic limit holds at 10 % risk (P(stick-slip) < 10 % above it)" in holds
+    assert "white: none" in holds and "safe" not in holds
+    open_ = damping_headline(_damping_summary([0.1, 0.15, 0.2], [(0.1, 0.1, 0.1), (0.15, 0.1, 0.25)] * 2,
+                                              resolved=False))
+    assert "0.15 [0.1, ≥ 0.25*]" in open_ and "neither confirmed nor exceeded" in open_
+    assert open_.endswith("(*100 runs cannot resolve 10 %).")
+    edge = damping_headline(_damping_summary([0.1, 0.25, 0.2], [(0.1, 0.1, 0.1), (0.25, 0.25, 0.25), (0.2,) * 3]))
     assert "stick-slip up to D = 0.25 or beyond (the grid end) deterministically" in edge
     assert "— the limits reach the grid end: extend the D grid to compare them" in edge
-    none = damping_headline(_damping_summary([0.1, None, 0.2], [0.1, None, 0.2]))
+    none = damping_headline(_damping_summary([0.1, None, 0.2], [(0.1, 0.1, 0.1), (None,) * 3, (0.2,) * 3]))
     assert "no stick-slip even at D = 0.05 (the grid start) deterministically" in none
+
+
+def test_damping_reading_is_short_bullets_and_names_the_sample_extreme() -> None:
+    table, reading = damping_reading(_damping_summary([0.1, 0.15, 0.2], [(0.1, 0.1, 0.1), (0.15, 0.1, 0.25),
+                                                                        (0.2, 0.15, 0.2)], resolved=False))
+    lines = reading.split("\n")
+    assert all(x.startswith("• ") for x in lines) and all(len(x) < 260 for x in lines)
+    assert "safe" not in reading and "safe" not in table
+    assert any("Sample extreme (thesis D_max^s" in x and "not a limit" in x for x in lines)
+    assert any(x.startswith("• *: open upper end — 100 runs cannot resolve 10 % (≥ 36 runs needed)") for x in lines)
+    assert "D<sub>max</sub>(10 %) white [low, high]" in table and "0.15 [0.1, ≥ 0.25*]" in table
+    html = reading_html(reading)
+    assert html.startswith("<ul class='reading'><li>") and html.count("<li>") == len(lines)
 
 
 def test_dmax_text_and_rich_text() -> None:
