@@ -102,14 +102,14 @@ def test_human_output_and_report(app: typer.Typer, tmp_path: Path) -> None:
         (["study", "damping", "--phase-damping", "0.1,1.5"], "--phase-damping"),
         (["study", "damping", "--phase-force", "-5"], "--phase-force:"),
         # issue 19: the risk levels of D_max(α)
-        (["study", "damping", "--risk-levels", "1.5"], "--risk-levels: Value error, risk levels must lie in (0, 1)"),
-        (["study", "damping", "--risk-levels", "0,0.1"], "--risk-levels: Value error, risk levels must lie in (0, 1)"),
-        (["study", "damping", "--risk-levels", "-0.1"], "--risk-levels: Value error, risk levels must lie in (0, 1)"),
-        (["study", "damping", "--risk-levels", "nan"], "--risk-levels: Value error, risk levels must lie in (0, 1)"),
-        (["study", "damping", "--risk-levels", ""], "--risk-levels: Value error, give at least one risk level"),
-        (["study", "damping", "--risk-levels", " , "], "--risk-levels: Value error, give at least one risk level"),
-        (["study", "damping", "--risk-levels", "ten"], "--risk-levels: Value error, 'ten' is not a comma-separated"),
-        (["study", "damping", "--risk-levels", "0.1,0.1"], "--risk-levels: Value error, a risk level is listed twice"),
+        (["study", "damping", "--risk-levels", "1.5"], "--risk-levels: risk levels must lie in (0, 1)"),
+        (["study", "damping", "--risk-levels", "0,0.1"], "--risk-levels: risk levels must lie in (0, 1)"),
+        (["study", "damping", "--risk-levels", "-0.1"], "--risk-levels: risk levels must lie in (0, 1)"),
+        (["study", "damping", "--risk-levels", "nan"], "--risk-levels: risk levels must lie in (0, 1)"),
+        (["study", "damping", "--risk-levels", ""], "--risk-levels: give at least one risk level"),
+        (["study", "damping", "--risk-levels", " , "], "--risk-levels: give at least one risk level"),
+        (["study", "damping", "--risk-levels", "ten"], "--risk-levels: 'ten' is not a comma-separated"),
+        (["study", "damping", "--risk-levels", "0.1,0.1"], "--risk-levels: a risk level is listed twice"),
     ],
 )
 def test_errors_exit_2(app: typer.Typer, args: list[str], needle: str) -> None:
@@ -218,3 +218,16 @@ def test_reproduce_quick(app: typer.Typer, tmp_path: Path) -> None:
         assert (tmp_path / name).exists() and f'src="{name}"' in page, name
     assert "Phase curves at N = 5600 N" in page and "Phase curves at N = 1400 N" in page
     assert page.count("white-noise intensity rule: sigma_mu") == 8  # every study shows its choices
+
+
+def test_position_reproduction_mode_runs_the_forced_studies_on_euler(app: typer.Typer) -> None:
+    """The forced studies default to 'accurate' (issue 19 §3), but path_coordinate 'position' exists for Euler
+    only: without an integrator it runs on euler (recorded as a reproduction); with 'accurate' it is refused."""
+    from stochfric.studies.config import ForcingConfig, LyapunovConfig
+
+    assert ForcingConfig().integrator == "accurate"
+    assert ForcingConfig(path_coordinate="position").integrator == "euler"
+    assert LyapunovConfig(path_coordinate="position").integrator == "euler"
+    res = runner.invoke(app, ["study", "forcing", "--path-coordinate", "position", "--integrator", "accurate"])
+    assert res.exit_code == 2
+    assert res.output.startswith("error: path_coordinate 'position' (a reproduction mode) runs on the fixed-step")

@@ -239,6 +239,21 @@ class _ForcedConfig(StudyConfig):
         """Deprecated name of :attr:`damping_ratio`."""
         return self.damping_ratio
 
+    @model_validator(mode="before")
+    @classmethod
+    def _position_runs_on_euler(cls, data: Any) -> Any:
+        """The reproduction mode ``path_coordinate = "position"`` exists for the fixed-step Euler scheme only:
+        without an explicit integrator it runs on ``euler`` (recorded as a reproduction); an explicit
+        ``accurate`` with it is refused, saying what to change."""
+        if not isinstance(data, dict) or data.get("path_coordinate") != "position":
+            return data
+        if data.get("integrator") is None:
+            return {**data, "integrator": "euler"}
+        if data["integrator"] == "accurate":
+            raise ValueError("path_coordinate 'position' (a reproduction mode) runs on the fixed-step Euler scheme "
+                             "only: give integrator = 'euler' (--integrator euler) or another path coordinate")
+        return data
+
     @field_validator("eta", "forcing_q")
     @classmethod
     def _non_negative(cls, v: tuple[float, ...]) -> tuple[float, ...]:

@@ -80,7 +80,8 @@ def _format_errors(exc: ValidationError, names: Callable[[str], str] | None = No
                 continue  # the discriminator tag pydantic inserts
             else:
                 loc += f".{part}" if loc else str(part)
-        lines.append(f"{loc or '(file)'}: {e['msg']}")
+        msg = str(e["msg"]).removeprefix("Value error, ")
+        lines.append(f"{loc}: {msg}" if loc else msg)  # a whole-config rule names its own fields
     return "; ".join(lines)
 
 
