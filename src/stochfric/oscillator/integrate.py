@@ -58,11 +58,11 @@ MODELS = ("deterministic", "white", "contact")
 #: √Δτ increment — a reproduction mode whose intensity depends on the time step.
 WHITE_INCREMENTS = ("ito", "thesis")
 INTEGRATORS = ("euler", "milstein", "accurate")
-#: Random streams of the white-noise model (docs/performance.md): ``philox`` (default) draws
-#: R_k inside the compiled kernel from the counter-based Philox4x32-10 stream keyed by the
-#: trajectory's spawned seed (:mod:`stochfric.oscillator.philox`); ``pcg64`` is the stream of
-#: versions before issue 13: numpy's ``Generator(PCG64(seed)).standard_normal`` per trajectory,
-#: drawn into a buffer (the same numbers as then, about 4× slower end to end).
+#: Random streams of the white-noise model (docs/performance.md): ``philox-ziggurat`` (default) draws
+#: R_k inside the compiled kernel from the counter-based Philox4x32-10 stream keyed by the trajectory's
+#: spawned seed and turns it into normals by a ziggurat; ``philox-boxmuller`` the same blocks by
+#: Box–Muller (:mod:`stochfric.oscillator.philox`); ``pcg64`` numpy's
+#: ``Generator(PCG64(seed)).standard_normal`` per trajectory, drawn into a buffer (about 4× slower).
 WHITE_STREAMS = ("philox-ziggurat", "philox-boxmuller", "pcg64")
 PATH_COORDINATES = {"mass": _k.PATH_MASS, "relative": _k.PATH_RELATIVE, "position": _k.PATH_POSITION}
 

@@ -4,7 +4,8 @@
   small perturbation of steady sliding), Δτ / integrator, common random numbers over D;
 * Lyapunov study: the perturbation δ of the comparison run.
 
-``python -m stochfric.studies.sensitivity [--preset brake]`` prints Markdown tables.
+``python examples/sensitivity.py [--preset brake]`` prints Markdown tables (an example script: the library
+holds no command-line scripts; the studies it calls are the library's).
 """
 
 from __future__ import annotations
@@ -13,10 +14,10 @@ import argparse
 import math
 from typing import Any
 
-from .common import make_setup
-from .config import DampingConfig, LyapunovConfig
-from .damping import damping_study
-from .lyapunov import lyapunov_study
+from stochfric.studies.common import make_setup
+from stochfric.studies.config import DampingConfig, LyapunovConfig
+from stochfric.studies.damping import damping_study
+from stochfric.studies.lyapunov import lyapunov_study
 
 
 def _fmt(v: Any) -> str:
