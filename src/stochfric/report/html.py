@@ -621,7 +621,6 @@ def write_report(
     """
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
-    results = [res.current() for res in results]  # results saved before docs/glossary.md: today's names
     body = [f"<h1>{html.escape(title)}</h1>",
             "<p>Friction oscillator driven by deterministic, white-noise and contact-analysis friction, side by "
             "side (N. Gaus, KIT 2013, chapter 4). Dimensionless x = y/L (L = 1 m), τ = ω0 t; forces in N. "

@@ -27,12 +27,15 @@ import xarray as xr
 from ..io_utils import package_versions, write_netcdf_atomic, write_text_atomic
 from ..progress import Progress
 from . import tasks as task_module
-from .common import StudySetup, model_choices, setup_for
+from .common import StudyError, StudySetup, model_choices, setup_for
 from .executors import Executor, SweepStats, run_tasks
 from .grids import pad_events
-from .names import SummaryDict, current_dataset, current_summary
 from .store import CheckpointStore
 from .tasks import TaskSpec, warnings_of
+
+#: Version of a study's saved summary and dataset (2: seeds by cell, D_max(α), converged forced studies,
+#: today's names); :meth:`StudyResult.load` refuses another.
+STUDY_SCHEMA = "stochfric.study/2"
 
 
 def jsonable(obj: Any) -> Any:
@@ -72,26 +75,25 @@ class StudyResult:
         return self.dataset
 
     def to_json_dict(self) -> dict[str, Any]:
-        """The CLI's ``--json`` object (pre-glossary top-level keys still read: :class:`~.names.SummaryDict`)."""
-        return SummaryDict(jsonable(self.summary))
-
-    def current(self) -> StudyResult:
-        """This result under today's names and dimension order (:mod:`~stochfric.studies.names`): itself
-        unless it was built from files written before the glossary."""
-        summary, ds = current_summary(self.kind, self.summary), current_dataset(self.kind, self.dataset)
-        if summary is self.summary and ds is self.dataset:
-            return self
-        return StudyResult(self.kind, ds, summary, self.stats)
+        """The CLI's ``--json`` object (the summary as plain JSON values)."""
+        out: dict[str, Any] = jsonable(self.summary)
+        return out
 
     @classmethod
     def load(cls, directory: str | Path, kind: str) -> StudyResult:
-        """The result :meth:`save` wrote to ``directory`` (``<kind>.nc``, ``<kind>.json``), under today's
-        names also when it was written before the glossary (with a :class:`DeprecationWarning`)."""
+        """The result :meth:`save` wrote to ``directory`` (``<kind>.nc``, ``<kind>.json``).  A result of
+        another schema (:data:`STUDY_SCHEMA`: written by an older stochfric) is refused with one line
+        saying to rerun; :class:`StudyError`."""
         d = Path(directory)
         summary = json.loads((d / f"{kind}.json").read_text(encoding="utf-8"))
+        found = summary.get("schema") if isinstance(summary, dict) else None
+        if found != STUDY_SCHEMA:
+            raise StudyError(f"{d / (kind + '.json')} was written by another stochfric ({found or 'no schema'}; this "
+                             f"one reads {STUDY_SCHEMA}): rerun the study (stochfric study {kind} …, or stochfric "
+                             "reproduce)")
         with xr.open_dataset(d / f"{kind}.nc", engine="h5netcdf") as ds:
             dataset = ds.load()
-        return cls(kind, dataset, summary).current()
+        return cls(kind, dataset, summary)
 
     def to_netcdf(self, path: str | Path) -> Path:
         """Write the dataset to NetCDF (h5netcdf) atomically."""
@@ -254,7 +256,8 @@ class Study:
         """The summary fields every study starts with: case, the study's ``grid`` values, seed, time
         grid, ``more``, models and the modelling choices (σ_ζ at ``forces``)."""
         cfg, setup = self.config, self.setup
-        return {"study": self.kind, "preset": setup.preset.name, "process_source": setup.process_source, **grid,
+        return {"schema": STUDY_SCHEMA, "study": self.kind, "preset": setup.preset.name,
+                "process_source": setup.process_source, **grid,
                 "runs": cfg.runs, "seed": cfg.seed, "tau_end": setup.tau_end, "dt": setup.dt, **more,
                 "models": list(cfg.models), **model_choices(cfg, setup, forces)}
 
@@ -263,6 +266,7 @@ class Study:
         """The study's dataset with its provenance attributes (config, case, seed, versions, executor)."""
         ds = xr.Dataset(data, coords=coords)
         ds.attrs.update(provenance_attrs(self.kind, self.config, self.setup, self.config.seed, executor))
+        ds.attrs["schema"] = STUDY_SCHEMA
         ds.attrs.update(attrs)
         ds.attrs["checkpoint_hash"] = checkpoint_hash or ""
         return ds

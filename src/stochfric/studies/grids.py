@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -82,3 +83,13 @@ def pad_events(arrs: Sequence[npt.NDArray[np.float64]]) -> list[npt.NDArray[np.f
             a = np.concatenate([a, pad], axis=-1)
         out.append(a)
     return out
+
+
+#: The order of the grid dimensions in every study's dataset (those it has), before the
+#: per-run and per-event ones (``run``, ``event``, …).
+DIMENSION_ORDER = ("model", "stochastic_model", "forcing_q", "normal_force_n", "damping_ratio", "eta")
+
+
+def ordered(ds: Any) -> Any:
+    """The dataset ``ds`` with every variable's grid dimensions in :data:`DIMENSION_ORDER`, the others after."""
+    return ds.transpose(*DIMENSION_ORDER, ..., missing_dims="ignore")

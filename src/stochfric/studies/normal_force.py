@@ -21,10 +21,12 @@ from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
 from .base import Study, StudyResult, warning_counts
 from .config import NormalForceConfig
 from .executors import Executor, SweepStats
-from .grids import window_mask
-from .names import NORMAL_FORCE_LAYOUT, ordered
+from .grids import ordered, window_mask
 from .stats import sample_summary, std_ratio
 from .tasks import TaskSpec, runs_for
+
+#: The normal-force study's per-model tables are indexed ``[normal_force_n][damping_ratio]``.
+NORMAL_FORCE_LAYOUT = "model -> [normal_force_n][damping_ratio]"
 
 _SE_FIELDS = ("mean", "std", "vark", "se_mean_iid", "se_std_iid", "se_vark_iid", "se_mean_boot", "se_std_boot",
               "se_vark_boot", "n", "n_runs")
