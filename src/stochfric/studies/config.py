@@ -20,9 +20,8 @@ change the numbers) plus the content of a ``process_file``.
 from __future__ import annotations
 
 import json
-import warnings
 from pathlib import Path
-from typing import Annotated, Any, ClassVar, Literal
+from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
@@ -86,26 +85,6 @@ class StudyConfig(BaseModel):
     stick_window: float = Field(default=STICK_WINDOW, ge=0.0, lt=1.0)
     x0: tuple[float, float] | None = None
 
-    #: Field names before the glossary (docs/glossary.md), still read with a DeprecationWarning:
-    #: old name → new name.  The checkpoint key keeps the old names, so checkpoints written
-    #: before the rename still resume.
-    renamed_fields: ClassVar[dict[str, str]] = {}
-
-    @model_validator(mode="before")
-    @classmethod
-    def _deprecated_names(cls, data: Any) -> Any:
-        if not isinstance(data, dict) or not any(old in data for old in cls.renamed_fields):
-            return data
-        out = dict(data)
-        for old, new in cls.renamed_fields.items():
-            if old in out:
-                if new in out:
-                    raise ValueError(f"give {new} only ({old} is its deprecated name)")
-                warnings.warn(f"study config field {old!r} is deprecated: use {new!r} (docs/glossary.md)",
-                              DeprecationWarning, stacklevel=2)
-                out[new] = out.pop(old)
-        return out
-
     @model_validator(mode="before")
     @classmethod
     def _no_booleans_as_numbers(cls, data: Any) -> Any:
@@ -129,8 +108,6 @@ class StudyConfig(BaseModel):
     def hash_config(self) -> dict[str, Any]:
         """Everything that changes the numbers (for the checkpoint key)."""
         d = self.model_dump(mode="json")
-        for old, new in self.renamed_fields.items():
-            d[old] = d.pop(new)
         if self.process_file is not None:
             try:
                 d["process_file_content"] = json.loads(Path(self.process_file).read_text(encoding="utf-8"))
@@ -163,22 +140,9 @@ class DampingConfig(StudyConfig):
     phase_runs: int = Field(default=3, ge=0, le=1000, description="runs kept per D (stochastic models); 0: none")
     save_every: int = Field(default=10, ge=1, description="keep every k-th step of the phase trajectories")
 
-    renamed_fields = {"damping": "damping_ratio", "normal_forces": "normal_force_n", "phase_force": "phase_force_n"}
 
-    @property
-    def damping(self) -> tuple[float, ...]:
-        """Deprecated name of :attr:`damping_ratio`."""
-        return self.damping_ratio
 
-    @property
-    def normal_forces(self) -> tuple[float, ...] | None:
-        """Deprecated name of :attr:`normal_force_n`."""
-        return self.normal_force_n
 
-    @property
-    def phase_force(self) -> float | None:
-        """Deprecated name of :attr:`phase_force_n`."""
-        return self.phase_force_n
 
     @field_validator("damping_ratio")
     @classmethod
@@ -232,12 +196,7 @@ class _ForcedConfig(StudyConfig):
         default="accurate", description="deterministic and contact models: accurate (adaptive RK45 with events, "
                                         "default) | euler (reproduction mode: the thesis's fixed Δτ)")
     damping_ratio: float | None = Field(default=None, ge=0, lt=1)
-    renamed_fields = {"damping": "damping_ratio"}
 
-    @property
-    def damping(self) -> float | None:
-        """Deprecated name of :attr:`damping_ratio`."""
-        return self.damping_ratio
 
     @model_validator(mode="before")
     @classmethod
@@ -277,12 +236,7 @@ class ForcingConfig(_ForcedConfig):
     kind: Literal["forcing"] = "forcing"
     normal_force_n: float | None = Field(default=None, gt=0, description="normal force N [N] (default: the "
                                                                           "preset's forcing-study force)")
-    renamed_fields = {**_ForcedConfig.renamed_fields, "normal_force": "normal_force_n"}
 
-    @property
-    def normal_force(self) -> float | None:
-        """Deprecated name of :attr:`normal_force_n`."""
-        return self.normal_force_n
 
 
 class LyapunovConfig(_ForcedConfig):
@@ -296,12 +250,7 @@ class LyapunovConfig(_ForcedConfig):
     linearity_tolerance: float = Field(
         default=0.1, gt=0, lt=1,
         description="a pair is linear when the twin run (2δ) separates by 2w within this relative tolerance")
-    renamed_fields = {**_ForcedConfig.renamed_fields, "normal_forces": "normal_force_n"}
 
-    @property
-    def normal_forces(self) -> tuple[float, ...] | None:
-        """Deprecated name of :attr:`normal_force_n`."""
-        return self.normal_force_n
 
 
 class NormalForceConfig(StudyConfig):
@@ -314,17 +263,8 @@ class NormalForceConfig(StudyConfig):
     runs: int = Field(default=30, ge=1, le=100_000)
     phase_runs: int = Field(default=5, ge=0)
     save_every: int = Field(default=10, ge=1)
-    renamed_fields = {"dampings": "damping_ratio", "normal_forces": "normal_force_n"}
 
-    @property
-    def dampings(self) -> tuple[float, ...] | None:
-        """Deprecated name of :attr:`damping_ratio`."""
-        return self.damping_ratio
 
-    @property
-    def normal_forces(self) -> tuple[float, ...] | None:
-        """Deprecated name of :attr:`normal_force_n`."""
-        return self.normal_force_n
 
 
 AnyStudyConfig = Annotated[

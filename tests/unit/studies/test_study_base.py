@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import warnings
 from typing import Any
 
 import numpy as np
@@ -64,66 +63,25 @@ def test_warning_counts() -> None:
     assert warning_counts(w) == [{"code": "a", "count": 1}, {"code": "b", "count": 2}]
 
 
-def test_old_config_names_load_with_a_deprecation_warning() -> None:
-    with pytest.warns(DeprecationWarning, match="'damping' is deprecated"):
-        old = DampingConfig(damping="0.1:0.2:3")
-    assert old == DampingConfig(damping_ratio="0.1:0.2:3") and old.damping == (0.1, 0.15, 0.2)
-    with pytest.warns(DeprecationWarning, match="dampings"):
-        assert NormalForceConfig(dampings="0.1,0.2").damping_ratio == (0.1, 0.2)
-    with pytest.warns(DeprecationWarning):
-        assert ForcingConfig(damping=0.1).damping_ratio == LyapunovConfig(damping=0.1).damping_ratio == 0.1
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeprecationWarning)
-        with pytest.raises(ValueError, match="damping_ratio only"):
-            DampingConfig(damping="0.1:0.2:3", damping_ratio="0.1:0.2:3")
-    # the checkpoint key keeps the old field name: checkpoints written before the rename resume
+@pytest.mark.parametrize(("cls", "old"), [
+    (DampingConfig, {"damping": "0.1:0.2:3"}), (DampingConfig, {"normal_forces": (4000.0,)}),
+    (DampingConfig, {"phase_force": 4000.0}), (ForcingConfig, {"normal_force": 4000.0}),
+    (ForcingConfig, {"damping": 0.1}), (LyapunovConfig, {"normal_forces": (4000.0,)}),
+    (NormalForceConfig, {"dampings": (0.1,)}),
+], ids=lambda v: getattr(v, "__name__", ""))
+def test_config_names_before_the_glossary_are_unknown_fields(cls: Any, old: dict[str, Any]) -> None:
+    """No compatibility layer (issue 21 §1): the old names are refused like any unknown field."""
+    with pytest.raises(ValueError, match=f"{next(iter(old))}\n  Extra inputs are not permitted"):
+        cls(**old)
+
+
+def test_the_checkpoint_key_is_the_config_under_its_own_names() -> None:
     cfg = DampingConfig(damping_ratio=(0.1, 0.2))
-    assert "damping" in cfg.hash_config() and "damping_ratio" not in cfg.hash_config()
     d = cfg.model_dump(mode="json")
-    for old, new in (("damping", "damping_ratio"), ("normal_forces", "normal_force_n"),
-                     ("phase_force", "phase_force_n")):
-        d[old] = d.pop(new)
     d.pop("risk_levels")  # analysis only (issue 19): not in the checkpoint key
-    assert config_hash(cfg.hash_config()) == config_hash(d)
-
-
-#: (config class, fields under the glossary's names, the same under the names before it, the checkpoint
-#: key written before the rename, at 6f09680): a checkpoint written then must still resume.
-_RENAMED_FORCES = [
-    (DampingConfig, {"normal_force_n": (4000.0, 6000.0), "phase_force_n": 4000.0},
-     {"normal_forces": (4000.0, 6000.0), "phase_force": 4000.0}, "33ca24bfa66fe10a"),
-    # the forced studies' default integrator is accurate since issue 19 (other numbers, a new key); with
-    # integrator = "euler" they keep the keys written at 6f09680 (447582a778574350, 56fdf99dc0d6f058)
-    (ForcingConfig, {"normal_force_n": 4000.0}, {"normal_force": 4000.0}, "42562ff8babe3550"),
-    (LyapunovConfig, {"normal_force_n": (4000.0,)}, {"normal_forces": (4000.0,)}, "b1f0fd40def5e6b3"),
-    (NormalForceConfig, {"normal_force_n": (720.0, 8000.0)}, {"normal_forces": (720.0, 8000.0)}, "6ea32df5afdb1c2c"),
-]
-
-
-@pytest.mark.parametrize(("cls", "new", "old", "key"), _RENAMED_FORCES, ids=lambda v: getattr(v, "__name__", ""))
-def test_renamed_force_fields_read_the_old_names_and_keep_the_checkpoint_key(
-        cls: Any, new: dict[str, Any], old: dict[str, Any], key: str) -> None:
-    cfg = cls(**new)
-    with pytest.warns(DeprecationWarning, match=r"is deprecated: use '(normal|phase)_force_n'"):
-        assert cls(**old) == cfg
-    for name, value in old.items():  # read-only properties under the old names
-        assert getattr(cfg, name) == value
-        with pytest.raises(ValueError, match="frozen"):
-            setattr(cfg, name, value)
-    h = cfg.hash_config()
-    assert set(old) <= set(h) and not set(new) & set(h)
-    assert config_hash(h) == key
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", DeprecationWarning)
-        with pytest.raises(ValueError, match="give normal_force_n only"):
-            cls(**old, normal_force_n=new["normal_force_n"])
-
-
-def test_the_default_configs_keep_their_checkpoint_keys() -> None:
+    assert cfg.hash_config() == d
     keys = [config_hash(c().hash_config()) for c in (DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig)]
-    # damping and normal force as at 6f09680; forcing and Lyapunov changed with their default integrator (issue 19).
-    # The checkpoint directory adds the store's schema (stochfric.checkpoint/2: seeds by cell) to these keys.
-    assert keys == ["f0b697b65c0e5c07", "e508e26bc15e0f7a", "0712e3b420dc3d00", "b1a3344e28a5337c"]
+    assert len(set(keys)) == 4
 
 
 def test_study_error_is_the_case_error() -> None:

@@ -8,7 +8,7 @@ import pytest
 from pydantic import ValidationError
 
 from stochfric.studies.common import StudyError
-from stochfric.studies.config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
+from stochfric.studies.config import DampingConfig, LyapunovConfig
 from stochfric.studies.run_config import load_run_file, parse_run_file
 
 GOOD = """
@@ -98,42 +98,16 @@ def test_config_is_frozen_and_hashable_dict() -> None:
     assert h["runs"] == 2 and h["kind"] == "damping"
 
 
-def test_a_toml_file_with_the_names_before_the_glossary_still_loads(tmp_path: Path) -> None:
+def test_a_toml_file_with_the_names_before_the_glossary_is_refused_naming_the_field(tmp_path: Path) -> None:
+    """No compatibility layer (issue 21 §1): an old field name is an unknown field, named in one line."""
     f = tmp_path / "old.toml"
     f.write_text("""
-[defaults]
-preset = "brake"
-
 [[study]]
 kind = "damping"
 normal_forces = [4000, 5600]
-damping = "0.1:0.2:3"
-phase_force = 4000
-
-[[study]]
-kind = "forcing"
-normal_force = 4000
-damping = 0.1
-
-[[study]]
-kind = "lyapunov"
-normal_forces = [2000, 4000]
-
-[[study]]
-kind = "normal-force"
-normal_forces = [720, 8000]
-dampings = [5e-6, 0.15]
 """)
-    with pytest.warns(DeprecationWarning) as record:
-        d, fo, ly, nf = load_run_file(f).study
-    warned = {str(w.message).split("'")[1] for w in record if issubclass(w.category, DeprecationWarning)}
-    assert warned == {"normal_forces", "damping", "phase_force", "normal_force", "dampings"}
-    assert d == DampingConfig(normal_force_n=(4000.0, 5600.0), damping_ratio="0.1:0.2:3", phase_force_n=4000.0)
-    assert fo == ForcingConfig(normal_force_n=4000.0, damping_ratio=0.1)
-    assert ly == LyapunovConfig(normal_force_n=(2000.0, 4000.0))
-    assert nf == NormalForceConfig(normal_force_n=(720.0, 8000.0), damping_ratio=(5e-6, 0.15))
-    assert (d.normal_forces, d.phase_force, fo.normal_force, ly.normal_forces, nf.normal_forces) == (
-        (4000.0, 5600.0), 4000.0, 4000.0, (2000.0, 4000.0), (720.0, 8000.0))
+    with pytest.raises(StudyError, match=r"study\[0\]\.normal_forces: Extra inputs are not permitted"):
+        load_run_file(f)
 
 
 def test_model_choices_in_toml() -> None:
