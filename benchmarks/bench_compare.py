@@ -55,6 +55,7 @@ from scipy.integrate import solve_ivp
 
 from stochfric.oscillator import reference
 from stochfric.oscillator.integrate import simulate, trajectory_seed
+from stochfric.oscillator.options import ExecutionOptions, IntegrationOptions
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 from bench_oscillator import DT, Case, brake_case
@@ -293,11 +294,12 @@ def run_comparison(size: str = "quick", *, log: Callable[[str], None] | None = N
     reps = int(cfg["repeats"])
     out = Comparison(size=size)
 
-    def sim(model: str, runs: int, **kw: Any) -> Any:
+    def sim(model: str, runs: int, integrator: str = "euler") -> Any:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            return simulate(case.params, model=model, law=case.law, process=case.process,
-                            x0=case.x0, tau_end=tau, dt=DT, runs=runs, seed=1, workers=1, **kw)
+            return simulate(case.params, model=model, law=case.law, process=case.process, x0=case.x0, runs=runs,
+                            seed=1, integration=IntegrationOptions(integrator=integrator, tau_end=tau, dt=DT),  # type: ignore[arg-type]
+                            execution=ExecutionOptions(workers=1))
 
     rate: dict[tuple[str, str], float] = {}
     first_x: dict[str, float] = {}

@@ -62,14 +62,15 @@ import scipy
 
 from stochfric import vector_width
 from stochfric.oscillator import kernels as _k
-from stochfric.oscillator import philox as _ph
 from stochfric.oscillator import reference
-from stochfric.oscillator import ziggurat as _zig
-from stochfric.oscillator.case import build_case
+from stochfric.oscillator.case import PhysicalInput, build_case
 from stochfric.oscillator.friction_laws import FrictionLaw, law_III
 from stochfric.oscillator.integrate import pack_rows, simulate
+from stochfric.oscillator.options import ExecutionOptions, IntegrationOptions, NoiseOptions
 from stochfric.oscillator.parameters import OscillatorParameters
 from stochfric.process.model import BandLimitedProcessModel
+from stochfric.random import philox as _ph
+from stochfric.random import ziggurat as _zig
 
 #: Problem sizes per mode.  ``runs``: trajectories per rate measurement; ``tau_end``: τ per
 #: run; ``repeats``: timing repeats (best taken); ``scale_runs``: ensemble of the scaling
@@ -144,7 +145,7 @@ class Report:
 def brake_case(normal_force: float = 5600.0) -> Case:
     """Brake preset as the CLI builds it (:func:`~stochfric.oscillator.case.build_case`: D = 5·10⁻⁶,
     pressure law 4.13)."""
-    c = build_case("brake", normal_force=normal_force)
+    c = build_case("brake", physical=PhysicalInput(normal_force=normal_force))
     return Case("brake", c.params, c.law, c.process, None, (0.0, c.params.gamma0))
 
 
@@ -253,15 +254,14 @@ def _time(fn: Callable[[], object], repeats: int) -> tuple[float, float]:
 
 
 def _sim(case: Case, model: str, integrator: str, runs: int, tau_end: float,
-         workers: int | None = 1, seed: int = 1, **kw: Any) -> Any:
+         workers: int | None = 1, seed: int = 1, white_stream: str = "philox-ziggurat") -> Any:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # e.g. "process exhausted" on long contact runs
-        return simulate(
-            case.params, model=model, law=case.law, process=case.process,
-            sigma_zeta=case.sigma_zeta if model == "white" else None, x0=case.x0,
-            tau_end=tau_end, dt=DT, integrator=integrator, runs=runs, seed=seed,
-            workers=workers, **kw,
-        )
+        return simulate(case.params, model=model, law=case.law, process=case.process, x0=case.x0, runs=runs,
+                        seed=seed, noise=NoiseOptions(sigma_zeta=case.sigma_zeta if model == "white" else None,
+                                                      white_stream=white_stream),  # type: ignore[arg-type]
+                        integration=IntegrationOptions(integrator=integrator, tau_end=tau_end, dt=DT),  # type: ignore[arg-type]
+                        execution=ExecutionOptions(workers=workers))
 
 
 class _PerTrajectory:
@@ -297,7 +297,7 @@ CONFIGS = (
 def _white_increments(case: Case, runs: int, tau_end: float, seed: int = 1
                       ) -> npt.NDArray[np.float64]:
     """The increments ``simulate`` draws for runs ``0..runs-1`` of parameter set 0 (its default
-    stream, :func:`stochfric.oscillator.ziggurat.step_normals`)."""
+    stream, :func:`stochfric.random.ziggurat.step_normals`)."""
     nsteps = round(tau_end / DT)
     keys = _ph.trajectory_keys(np.random.SeedSequence(seed),
                                np.column_stack([np.zeros(runs, dtype=np.int64), np.arange(runs)]))
@@ -500,32 +500,45 @@ CONTACT_TARGET_NS = 6.0
 
 #: Run in a subprocess against the source tree of another revision (``--before REF``): the
 #: rates of ``simulate`` for the models of issue 13, with that revision's package.  Uses only
-#: API that exists in every revision since the presets (simulate, PhysicalParameters, brake).
+#: API that exists in every revision since the presets (simulate, PhysicalParameters, brake), in
+#: the form of that revision (presets in ``process`` or ``oscillator``; flat or grouped options).
 _BEFORE_SNIPPET = r"""
-import json, sys, time, warnings
+import inspect, json, sys, time, warnings
 warnings.simplefilter("ignore")
 from stochfric.oscillator.friction_laws import pressure_law
 from stochfric.oscillator.integrate import simulate
 from stochfric.oscillator.parameters import PhysicalParameters
-from stochfric.process.presets import brake
+try:
+    from stochfric.oscillator.presets import brake
+except ImportError:
+    from stochfric.process.presets import brake
 runs, tau, reps, dt = int(sys.argv[1]), float(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4])
 pre = brake()
 p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
-                       normal_force=5600.0, damping_ratio=pre.study_parameters["damping_undamped"],
-                       contact_area=pre.contact_area).to_dimensionless()
-law = pressure_law(pre.process.mean(p.pressure))
+                       normal_force=5600.0, damping_ratio=5e-6, contact_area=0.016).to_dimensionless()
+law = pressure_law(pre.process.mean(5600.0 / 0.016))
+grouped = "integration" in inspect.signature(simulate).parameters
+
+
+def run(n, tau_end, model, integ):
+    kw = dict(model=model, law=law, process=pre.process, x0=(0.0, p.gamma0), seed=1, runs=n)
+    if not grouped:
+        return simulate(p, dt=dt, tau_end=tau_end, integrator=integ, workers=1, **kw)
+    from stochfric.oscillator.options import ExecutionOptions, IntegrationOptions
+    return simulate(p, integration=IntegrationOptions(integrator=integ, tau_end=tau_end, dt=dt),
+                    execution=ExecutionOptions(workers=1), **kw)
+
+
 out = {}
 for model, integ, n in (("deterministic", "euler", runs), ("white", "euler", runs),
                         ("white", "milstein", runs), ("contact", "euler", runs),
                         ("deterministic", "accurate", max(1, runs // 16)),
                         ("contact", "accurate", max(1, runs // 16))):  # = BEFORE_CONFIGS
-    kw = dict(model=model, law=law, process=pre.process, x0=(0.0, p.gamma0), dt=dt,
-              integrator=integ, seed=1, workers=1)
-    simulate(p, runs=1, tau_end=1.0, **kw)
+    run(1, 1.0, model, integ)
     best = float("inf")
     for _ in range(reps):
         t0 = time.perf_counter()
-        simulate(p, runs=n, tau_end=tau, **kw)
+        run(n, tau, model, integ)
         best = min(best, time.perf_counter() - t0)
     out[f"{model} {integ}"] = best / (n * round(tau / dt))
 print(json.dumps(out))
@@ -756,6 +769,7 @@ def main(argv: list[str] | None = None) -> int:
                     help="also time the package of git revision REV (subprocess) for before/after")
     args = ap.parse_args(argv)
     size = "quick" if args.quick else "full"
+    vector_width.configure()  # "auto" unless STOCHFRIC_VECTOR_WIDTH says otherwise: before numba compiles
     t0 = time.perf_counter()
     rep = run_benchmarks(size, log=lambda m: print(m, file=sys.stderr, flush=True),
                          before=args.before)

@@ -15,14 +15,14 @@ import tempfile
 import time
 
 from stochfric.report.html import write_report
-from stochfric.studies.common import parse_grid
 from stochfric.studies.config import DampingConfig
 from stochfric.studies.damping import damping_study
 from stochfric.studies.executors import ProcessExecutor, SerialExecutor
+from stochfric.studies.grids import parse_grid
 from stochfric.studies.reproduce import reproduce
 
-THESIS_MAP = DampingConfig(normal_force_n=(1800.0, 2800.0, 3800.0, 4800.0, 5600.0, 6800.0, 8000.0),
-                           damping_ratio=parse_grid("0.05:0.25:41"), runs=10, seed=1)
+THESIS_MAP = DampingConfig(normal_forces=(1800.0, 2800.0, 3800.0, 4800.0, 5600.0, 6800.0, 8000.0),
+                           damping_ratios=parse_grid("0.05:0.25:41"), runs=10, seed=1)
 
 
 def bench_damping_map() -> dict[str, float]:

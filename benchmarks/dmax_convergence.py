@@ -57,7 +57,7 @@ def run(runs: list[int], seed: int = 0, damping: str = "0.05:0.35:61",
     for preset, force in CASES:
         for r in runs:
             t0 = time.perf_counter()
-            cfg = DampingConfig.model_validate({"preset": preset, "normal_force_n": (force,), "damping_ratio": damping,
+            cfg = DampingConfig.model_validate({"preset": preset, "normal_forces": (force,), "damping_ratios": damping,
                                                 "runs": r, "seed": seed, "models": MODELS, "phase_runs": 0,
                                                 "risk_levels": risk_levels})
             s = damping_study(cfg).to_json_dict()

@@ -25,9 +25,11 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from stochfric.oscillator.case import CaseSetup, case_setup, law_for
 from stochfric.oscillator.integrate import simulate
-from stochfric.process.presets import Preset, psd_level_process
-from stochfric.studies.common import StudySetup, law_for, make_setup, window_mask
+from stochfric.oscillator.options import ExecutionOptions, NoiseOptions
+from stochfric.oscillator.presets import Preset
+from stochfric.studies.grids import window_mask
 from stochfric.studies.stats import sample_summary
 
 CASES = {"brake": (720.0, 2720.0, 8000.0), "sheet": (400.0, 880.0, 1750.0)}
@@ -54,7 +56,7 @@ def psd_level_fit(pre: Preset, p: float) -> float:
     return max(f.a * p**f.b + f.c, 0.0)
 
 
-def readings(setup: StudySetup) -> Iterator[tuple[str, Any, str]]:
+def readings(setup: CaseSetup) -> Iterator[tuple[str, Any, str]]:
     """(name, process model, path coordinate) of every candidate run through the kernel."""
     base: Any = setup.process  # the presets' BandLimitedProcessModel (a dataclass)
     pre = setup.preset
@@ -74,9 +76,9 @@ def readings(setup: StudySetup) -> Iterator[tuple[str, Any, str]]:
     yield "position X_1 (eq. 4.36/4.38 as printed)", base, "position"
     yield "position X_1 and variance σ_μ²/2", ScaledProcess(base, lambda p: 1 / math.sqrt(2.0)), \
         "position"
-    yield "psd_level: E[S](p), thesis check 0.08 (mass path)", psd_level_process(pre), "mass"
-    yield "psd_level and position X_1", psd_level_process(pre), "position"
-    yield "psd_level and relative path", psd_level_process(pre), "relative"
+    yield "psd_level: E[S](p), thesis check 0.08 (mass path)", pre.process_with_level("psd_level"), "mass"
+    yield "psd_level and position X_1", pre.process_with_level("psd_level"), "position"
+    yield "psd_level and relative path", pre.process_with_level("psd_level"), "relative"
 
 
 def _row(x_gh: npt.NDArray[np.float64], t_gh: npt.NDArray[np.float64]) -> tuple[float, float, float, float]:
@@ -97,13 +99,14 @@ def main() -> None:
     print("cells: E[X_gh] ± SE, σ(X_gh) ± SE (units 1e-4), σ/σ_default ± SE; brake 720/2720/8000 N, "
           "sheet 400/880/1750 N")
     for preset, forces in CASES.items():
-        setup = make_setup(preset)
+        setup = case_setup(preset)
         ps = [setup.parameters(f, 5e-6) for f in forces]
         ref: list[tuple[float, float]] = []
         results: list[tuple[str, list[tuple[float, float, float, float]]]] = []
         for name, proc, pc in readings(setup):
             r = simulate(ps, model="contact", law=functools.partial(law_for, setup.process), process=proc,
-                         runs=a.runs, seed=a.seed, path_coordinate=pc, workers=2)
+                         runs=a.runs, seed=a.seed, noise=NoiseOptions(path_coordinate=pc),
+                         execution=ExecutionOptions(workers=2))
             results.append((name, [_row(r.x_gh[i], r.t_gh[i]) for i in range(len(forces))]))
         ref = [(v[2], v[3]) for v in results[0][1]]
         for name, rows in results:

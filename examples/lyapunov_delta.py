@@ -27,7 +27,7 @@ def main() -> None:
           "cells λ > 2SE / λ < −2SE | median (4.43) as printed, all cells |")
     print("|---|---|---|---|---|---|")
     for d in DELTAS:
-        cfg = LyapunovConfig.model_validate({"normal_force_n": (4000.0,), "eta": "0.1:3:30", "runs": 10, "seed": 1,
+        cfg = LyapunovConfig.model_validate({"normal_forces": (4000.0,), "eta": "0.1:3:30", "runs": 10, "seed": 1,
                                              "perturbation": d})
         s = lyapunov_study(cfg).to_json_dict()
         out[d] = s

@@ -120,7 +120,7 @@ def damping(preset: str, runs: int, seed: int) -> list[str]:
     """D_max^d and D_max^s per mode at one force, D = 0.05 … 0.25 × 41 (as `study damping`)."""
     lines = []
     for name, mode in MODES.items():
-        cfg = DampingConfig(preset=preset, normal_force_n=(DAMPING_FORCE[preset],), runs=runs, seed=seed,
+        cfg = DampingConfig(preset=preset, normal_forces=(DAMPING_FORCE[preset],), runs=runs, seed=seed,
                             **mode)  # type: ignore[arg-type]
         s = damping_study(cfg).to_json_dict()
         det = s["d_max_deterministic"][0]

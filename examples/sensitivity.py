@@ -14,7 +14,7 @@ import argparse
 import math
 from typing import Any
 
-from stochfric.studies.common import make_setup
+from stochfric.oscillator.case import case_setup
 from stochfric.studies.config import DampingConfig, LyapunovConfig
 from stochfric.studies.damping import damping_study
 from stochfric.studies.lyapunov import lyapunov_study
@@ -29,12 +29,12 @@ def _fmt(v: Any) -> str:
 def damping_sensitivity(preset: str = "brake", normal_force: float | None = None, seed: int = 2013,
                         runs: int = 10) -> list[dict[str, Any]]:
     """D_max^d and the sample extreme D_max^s (white, contact) for variants of the open choices."""
-    setup = make_setup(preset)
-    nf = normal_force if normal_force is not None else float(setup.preset.study_parameters["damping_study_force_n"])
+    setup = case_setup(preset)
+    nf = normal_force if normal_force is not None else float(setup.preset.study_parameters.damping_study_force)
     case = setup.case(nf, 0.0)
     p, law = case.params, case.law
     x1s = p.n * float(law.kinetic(p.belt_speed))  # static rest position (4.8): n μ(v0)
-    base: dict[str, Any] = {"preset": preset, "normal_force_n": (nf,), "runs": runs, "seed": seed}
+    base: dict[str, Any] = {"preset": preset, "normal_forces": (nf,), "runs": runs, "seed": seed}
     variants: list[tuple[str, dict[str, Any]]] = [
         ("default: w = 0.5, τ_end = 50, Δτ = 0.005, euler, x0 = (0, γ0), CRN", {}),
         ("stick window w = 0.25", {"stick_window": 0.25}),
@@ -67,11 +67,11 @@ def damping_sensitivity(preset: str = "brake", normal_force: float | None = None
 
 def lyapunov_sensitivity(preset: str = "brake", seed: int = 2013, runs: int = 10) -> list[dict[str, Any]]:
     """Per δ = 1e-7 … 1e-5: the share of defined cells with λ > 2 SE and the undefined/merged counts."""
-    setup = make_setup(preset)
-    nf = float(setup.preset.study_parameters["forcing_study_force_n"])
+    setup = case_setup(preset)
+    nf = float(setup.preset.study_parameters.forcing_study_force)
     rows = []
     for delta in (1e-7, 1e-6, 1e-5):
-        cfg = LyapunovConfig.model_validate({"preset": preset, "normal_force_n": (nf,), "eta": "0.1:3:30",
+        cfg = LyapunovConfig.model_validate({"preset": preset, "normal_forces": (nf,), "eta": "0.1:3:30",
                                              "runs": runs, "seed": seed, "perturbation": delta})
         s = lyapunov_study(cfg).to_json_dict()
         row: dict[str, Any] = {"perturbation": delta}

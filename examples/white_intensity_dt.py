@@ -15,8 +15,10 @@ import warnings
 
 import numpy as np
 
+from stochfric.oscillator.case import case_setup, law_for
 from stochfric.oscillator.integrate import simulate
-from stochfric.studies.common import law_for, make_setup, window_mask
+from stochfric.oscillator.options import ExecutionOptions, IntegrationOptions, NoiseOptions
+from stochfric.studies.grids import window_mask
 from stochfric.studies.stats import sample_summary
 
 CASES = {"brake": (720.0, 2720.0, 8000.0), "sheet": (400.0, 880.0, 1750.0)}
@@ -35,10 +37,11 @@ def main() -> None:
         for mode in ("sigma_mu", "thesis"):
             cells: dict[float, list[str]] = {f: [] for f in forces}
             for dt in DTS:
-                st = make_setup(preset, white_intensity=mode, dt=dt)
+                st = case_setup(preset, white_intensity=mode, dt=dt)
                 ps = [st.parameters(f, 5e-6) for f in forces]
                 r = simulate(ps, model="white", law=functools.partial(law_for, st.process), process=st.process,
-                             runs=a.runs, seed=a.seed, dt=dt, white_increment=st.white_increment, workers=2)
+                             runs=a.runs, seed=a.seed, noise=NoiseOptions(white_increment=st.white_increment),
+                             integration=IntegrationOptions(dt=dt), execution=ExecutionOptions(workers=2))
                 for i, f in enumerate(forces):
                     mk = window_mask(r.t_gh[i], 50.0, 0.5)
                     s = sample_summary([r.x_gh[i, j][mk[j]] for j in range(a.runs)], n_boot=200,

@@ -3,6 +3,8 @@
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
 import numpy.typing as npt
 
@@ -10,55 +12,62 @@ from stochfric.oscillator import accurate as A
 from stochfric.oscillator import kernels as K
 
 
+class OneRun(NamedTuple):
+    """The outputs of one trajectory: ``M`` and its rows of :class:`~stochfric.oscillator.kernels.KernelOutput`
+    (``x_gh``/``t_gh`` NaN beyond ``M``, unsaved ``traj`` rows NaN)."""
+
+    m: int
+    x_gh: npt.NDArray[np.float64]
+    t_gh: npt.NDArray[np.float64]
+    traj: npt.NDArray[np.float64]
+    diag: npt.NDArray[np.float64]
+
+
 def _rows(
-    prm: npt.NDArray[np.float64], shape: int, lawp: npt.NDArray[np.float64], x10: float, x20: float,
-    proc: npt.NDArray[np.float64], n_proc: int,
+    prm: npt.NDArray[np.float64], shape: int, lawp: npt.NDArray[np.float64], x0: tuple[float, float],
+    proc: npt.NDArray[np.float64] | None,
 ) -> K.KernelRows:
-    """The one-row :class:`~stochfric.oscillator.kernels.KernelRows` of a single trajectory."""
+    """The one-row :class:`~stochfric.oscillator.kernels.KernelRows` of a single trajectory (``proc``:
+    its process realisation, one period; ``None``: no process)."""
+    procv = np.zeros(1) if proc is None else np.ascontiguousarray(proc, dtype=np.float64)
     return K.KernelRows(
         np.ascontiguousarray(prm, dtype=np.float64).reshape(1, -1), np.full(1, shape, dtype=np.int64),
-        np.ascontiguousarray(lawp, dtype=np.float64).reshape(1, -1), np.array([[x10, x20]], dtype=np.float64),
-        np.ascontiguousarray(proc, dtype=np.float64).reshape(1, -1), np.full(1, n_proc, dtype=np.int64),
+        np.ascontiguousarray(lawp, dtype=np.float64).reshape(1, -1), np.array([x0], dtype=np.float64),
+        procv.reshape(1, -1), np.full(1, procv.size, dtype=np.int64),
     )
+
+
+def _output(capacity: int, nsave: int) -> K.KernelOutput:
+    return K.KernelOutput(np.full((1, capacity), np.nan), np.full((1, capacity), np.nan), np.zeros(1, dtype=np.int64),
+                          np.full((1, nsave, 3), np.nan), np.zeros((1, K.N_DIAG)))
+
+
+def _one(m: int, out: K.KernelOutput) -> OneRun:
+    return OneRun(m, out.x_gh[0], out.t_gh[0], out.traj[0], out.diag[0])
 
 
 def run_fixed_step(
-    prm: npt.NDArray[np.float64], shape: int, lawp: npt.NDArray[np.float64], x10: float, x20: float,
-    nsteps: int, dt: float, scheme: int, noise: int, path_mode: int, dw: npt.NDArray[np.float64],
-    proc: npt.NDArray[np.float64], n_proc: int, xgh: npt.NDArray[np.float64], tgh: npt.NDArray[np.float64],
-    traj: npt.NDArray[np.float64], decimate: int, diag: npt.NDArray[np.float64],
-) -> int:
+    prm: npt.NDArray[np.float64], shape: int, lawp: npt.NDArray[np.float64], x0: tuple[float, float],
+    grid: K.FixedStepGrid, scheme: int, noise: int, path_mode: int, dw: npt.NDArray[np.float64],
+    proc: npt.NDArray[np.float64] | None = None, capacity: int = 8, nsave: int = 0,
+) -> OneRun:
     """:func:`~stochfric.oscillator.kernels.run_fixed_step_batch` for a single row with the
-    increments ``dw`` given (``WHITE_GIVEN``); fills ``xgh``/``tgh`` (as many as fit), ``traj``
-    (``(k, 3)``) and ``diag`` and returns ``M``."""
-    xgh2 = np.full((1, xgh.shape[0]), np.nan)
-    tgh2 = np.full((1, tgh.shape[0]), np.nan)
-    counts = np.zeros(1, dtype=np.int64)
-    traj2 = np.zeros((1, traj.shape[0], 3))
-    diag2 = np.zeros((1, diag.shape[0]))
+    increments ``dw`` given (``WHITE_GIVEN``); room for ``capacity`` events and ``nsave`` states."""
+    out = _output(capacity, nsave)
     K.run_fixed_step_batch(
-        _rows(prm, shape, lawp, x10, x20, proc, n_proc), K.KernelOutput(xgh2, tgh2, counts, traj2, diag2),
-        K.FixedStepGrid(int(nsteps), float(dt), int(decimate)), int(scheme), int(noise), int(path_mode),
+        _rows(prm, shape, lawp, x0, proc), out, grid, int(scheme), int(noise), int(path_mode),
         K.WhiteInput(K.WHITE_GIVEN, np.ascontiguousarray(dw, dtype=np.float64).reshape(1, -1),
                      np.zeros(1, dtype=np.uint64)),
     )
-    m = min(int(counts[0]), xgh.shape[0])
-    xgh[:m] = xgh2[0, :m]
-    tgh[:m] = tgh2[0, :m]
-    traj[:, :] = traj2[0]
-    diag[:] = diag2[0]
-    return int(counts[0])
+    return _one(int(out.counts[0]), out)
 
 
 def run_accurate(
-    prm: npt.NDArray[np.float64], shape: int, lawp: npt.NDArray[np.float64], x10: float, x20: float,
-    tau_end: float, h0: float, max_step: float, rtol: float, atol: float, noise: int, path_mode: int,
-    proc: npt.NDArray[np.float64], n_proc: int, xgh: npt.NDArray[np.float64], tgh: npt.NDArray[np.float64],
-    traj: npt.NDArray[np.float64], save_dt: float, diag: npt.NDArray[np.float64],
-) -> int:
-    """:func:`~stochfric.oscillator.accurate.run_accurate` for one trajectory, writing into the
-    given 1-D ``xgh``/``tgh``/``diag`` and 2-D ``traj`` (views of one-row outputs); returns ``M``."""
-    out = K.KernelOutput(xgh.reshape(1, -1), tgh.reshape(1, -1), np.zeros(1, dtype=np.int64),
-                         traj.reshape(1, *traj.shape), diag.reshape(1, -1))
-    return int(A.run_accurate(_rows(prm, shape, lawp, x10, x20, proc, n_proc), out, 0,
-                              A.AccurateSettings(tau_end, h0, max_step, rtol, atol, save_dt), noise, path_mode))
+    prm: npt.NDArray[np.float64], shape: int, lawp: npt.NDArray[np.float64], x0: tuple[float, float],
+    settings: A.AccurateSettings, noise: int, path_mode: int, proc: npt.NDArray[np.float64] | None = None,
+    capacity: int = 16, nsave: int = 0,
+) -> OneRun:
+    """:func:`~stochfric.oscillator.accurate.run_accurate` for one trajectory, with room for
+    ``capacity`` events and ``nsave`` states."""
+    out = _output(capacity, nsave)
+    return _one(int(A.run_accurate(_rows(prm, shape, lawp, x0, proc), out, 0, settings, noise, path_mode)), out)

@@ -8,8 +8,6 @@ import pytest
 from typer.testing import CliRunner
 
 from stochfric.cli import app
-from stochfric.cli.options import WhiteStreamChoice
-from stochfric.oscillator.integrate import WHITE_STREAMS
 from stochfric.oscillator.result import load_result
 
 runner = CliRunner()
@@ -65,7 +63,7 @@ def test_simulate_writes_netcdf_and_plot(tmp_path) -> None:
     assert plot.read_bytes()[:4] == b"\x89PNG"
     plot3 = tmp_path / "forced.png"
     res = runner.invoke(app, ["simulate", "--preset", "brake", "--forcing-amplitude", "500",
-                              "--forcing-frequency", "1.2", "--tau-end", "10", "--plot",
+                              "--eta", "1.2", "--tau-end", "10", "--plot",
                               str(plot3)])
     assert res.exit_code == 0, res.output
     assert plot3.stat().st_size > 1000
@@ -92,7 +90,7 @@ def test_simulate_errors_are_one_line_messages(args: list[str], fragment: str) -
 
 
 def test_simulate_with_a_process_model_file(tmp_path) -> None:
-    from stochfric.process.presets import sheet
+    from stochfric.oscillator.presets import sheet
 
     path = sheet().process.save(tmp_path / "model.json")
     args = ["--mass", "1", "--stiffness", "1e5", "--belt-speed", "1", "--normal-force", "880",
@@ -141,7 +139,6 @@ def test_simulate_white_streams() -> None:
     for name, d in got.items():
         assert d["white_stream"] == name
     assert runner.invoke(app, [*base, "--white-stream", "mt19937"]).exit_code == 2
-    assert tuple(c.value for c in WhiteStreamChoice) == WHITE_STREAMS  # the CLI offers every stream
 
 
 def test_simulate_white_intensity_thesis_mode() -> None:
@@ -166,3 +163,12 @@ def test_simulate_process_level_psd_level() -> None:
     assert _json(base)["process"]["kind"] == "band_limited"
     res = runner.invoke(app, ["simulate", "--gamma0", "1", "--n", "10", "--process-level", "psd_level"])
     assert res.exit_code == 2 and "preset" in res.output
+
+
+def test_case_errors_name_the_flags() -> None:
+    """The case speaks in field names; the command line shows its flags (cli.options.FLAGS)."""
+    res = runner.invoke(app, ["simulate", "--preset", "brake", "--normal-force", "1000", "--n", "0.001"])
+    assert res.exit_code == 2
+    assert "give the normal force as --normal-force N [N] or --n, not both" in res.stderr
+    res = runner.invoke(app, ["simulate", "--gamma0", "1", "--n", "1", "--model", "contact"])
+    assert res.exit_code == 2 and "give a --preset or a --process" in res.stderr

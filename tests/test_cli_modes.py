@@ -50,4 +50,4 @@ def test_study_netcdf_records_every_mode(tmp_path: Path) -> None:
         assert isinstance(ds.attrs.get(key), str) and ds.attrs[key], key
     assert ds.attrs["process_level"] == "sigma_mu"
     summary = StudyResult.load(tmp_path, "forcing").summary
-    assert summary["white_model"].startswith("phenomenological white noise in time")
+    assert summary.white_model is not None and summary.white_model.startswith("phenomenological white noise in time")

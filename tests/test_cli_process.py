@@ -13,6 +13,7 @@ from typer.testing import CliRunner
 
 from stochfric.cli.process import register
 from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.options import IntegrationOptions
 from stochfric.oscillator.parameters import PhysicalParameters
 from stochfric.process.ensemble import default_window_shift_points
 from stochfric.process.model import TabulatedProcessModel, load_process_model
@@ -62,7 +63,8 @@ def test_json_outputs_files_and_figures(app: typer.Typer, tmp_path: Path) -> Non
     ).to_dimensionless()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # the 0.4 mm process is exhausted: expected for a 0.13 mm surface
-        sim = simulate(params, model="contact", process=model, runs=1, seed=1, tau_end=2.0)
+        sim = simulate(params, model="contact", process=model, runs=1, seed=1,
+                       integration=IntegrationOptions(tau_end=2.0))
     assert sim.process is not None and sim.process["kind"] == "tabulated"
 
 

@@ -19,7 +19,7 @@ reproduce_mod = importlib.import_module("stochfric.studies.reproduce")
 
 
 def _tiny_plan(quick: bool, seed: int = 2013) -> list[Any]:
-    return [DampingConfig(preset=p, normal_force_n=(5600.0,) if p == "brake" else (1400.0,), damping_ratio=(0.1, 0.2),
+    return [DampingConfig(preset=p, normal_forces=(5600.0,) if p == "brake" else (1400.0,), damping_ratios=(0.1, 0.2),
                           runs=2, tau_end=10.0, phase_runs=0, models=("deterministic", "white"), seed=seed)
             for p in ("brake", "sheet")]
 
@@ -66,7 +66,7 @@ def test_simulate_header_names_a_preset_only_when_there_is_one() -> None:
 
 def test_reproduce_ctrl_c_says_what_is_saved(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     import stochfric.studies.executors as executors
-    from stochfric.studies.common import execute_task
+    from stochfric.studies.tasks import execute_task
 
     class StopInSecondStudy(executors.Executor):
         def __init__(self) -> None:

@@ -70,8 +70,8 @@ def test_count_options_name_their_real_minimum(option: str, value: str, message:
 
 def test_a_boolean_is_not_a_seed(tmp_path) -> None:  # type: ignore[no-untyped-def]
     toml = tmp_path / "s.toml"
-    toml.write_text('[defaults]\nseed = true\n[[study]]\nkind = "damping"\nnormal_force_n = [5600]\n'
-                    'damping_ratio = "0.05:0.25:3"\nruns = 2\n', encoding="utf-8")
+    toml.write_text('[defaults]\nseed = true\n[[study]]\nkind = "damping"\nnormal_forces = [5600]\n'
+                    'damping_ratios = "0.05:0.25:3"\nruns = 2\n', encoding="utf-8")
     res = CliRunner().invoke(app, ["run", str(toml)])
     assert res.exit_code == 2 and "seed must be a number, not the boolean true" in res.stderr
 
@@ -117,4 +117,4 @@ def test_lyapunov_perturbation_larger_than_the_attractor_is_refused() -> None:
     from stochfric.studies.config import LyapunovConfig
     from stochfric.studies.lyapunov import LyapunovStudy
 
-    LyapunovStudy(LyapunovConfig(normal_force_n=(4000.0,), perturbation=1e-4))  # the δ table's largest: accepted
+    LyapunovStudy(LyapunovConfig(normal_forces=(4000.0,), perturbation=1e-4))  # the δ table's largest: accepted

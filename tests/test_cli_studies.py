@@ -162,7 +162,7 @@ def test_phase_options(app: typer.Typer) -> None:
 
 
 def test_process_file(app: typer.Typer, tmp_path: Path) -> None:
-    from stochfric.process.presets import get_preset
+    from stochfric.oscillator.presets import get_preset
 
     path = tmp_path / "model.json"
     get_preset("brake").process.save(path)
@@ -186,11 +186,11 @@ dir = "{(tmp_path / 'out').as_posix()}"
 report = true
 [[study]]
 kind = "damping"
-normal_force_n = [5600]
-damping_ratio = "0.1:0.2:3"
+normal_forces = [5600]
+damping_ratios = "0.1:0.2:3"
 white_intensity = "spectral_level"
 path_coordinate = "relative"
-phase_damping = [0.1, 0.2]
+phase_damping_ratios = [0.1, 0.2]
 [[study]]
 kind = "forcing"
 eta = [1.0]

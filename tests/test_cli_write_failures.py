@@ -68,7 +68,7 @@ def test_material_file_with_a_wrong_value_names_the_file_and_the_key(tmp_path: P
     ("mu_mean", "null", "wrong type"),
 ])
 def test_process_model_file_with_a_wrong_value_names_the_file(tmp_path: Path, key: str, value: str, says: str) -> None:
-    from stochfric.process.presets import brake
+    from stochfric.oscillator.presets import brake
 
     good = tmp_path / "good.json"
     brake().process.save(good)

@@ -6,6 +6,7 @@ missing); the file checks always run.
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import json
 import os
@@ -21,10 +22,11 @@ import matplotlib.image as mpimg
 import pytest
 
 import stochfric.report.study_figures as study_figures
+from stochfric.oscillator.options import IntegrationOptions
 from stochfric.report.html import WARNING_HELP, damping_reading, process_statistics_section, write_report
 from stochfric.studies.chapter3 import chapter3_analysis
 from stochfric.studies.config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
-from stochfric.studies.damping import damping_study
+from stochfric.studies.damping import SampleExtreme, damping_study
 from stochfric.studies.forcing import forcing_study
 from stochfric.studies.lyapunov import lyapunov_study
 from stochfric.studies.normal_force import normal_force_study
@@ -82,9 +84,9 @@ def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
     d = tmp_path_factory.mktemp("report")
     results = [
         normal_force_study(NormalForceConfig(runs=3, phase_runs=2, seed=1)),
-        damping_study(DampingConfig(normal_force_n=(4000.0, 6000.0), damping_ratio="0.08:0.2:5", runs=3, seed=1)),
+        damping_study(DampingConfig(normal_forces=(4000.0, 6000.0), damping_ratios="0.08:0.2:5", runs=3, seed=1)),
         forcing_study(ForcingConfig(eta="0.5:2:3", runs=3, seed=1)),
-        lyapunov_study(LyapunovConfig(normal_force_n=(4000.0,), eta=(1.2, 2.0), runs=2, tau_end=60.0, seed=1)),
+        lyapunov_study(LyapunovConfig(normal_forces=(4000.0,), eta=(1.2, 2.0), runs=2, tau_end=60.0, seed=1)),
     ]
     RESULTS[:] = results
     save = study_figures._save
@@ -138,7 +140,8 @@ def test_friction_process_section(tmp_path: Path) -> None:
                                 contact_area=0.016).to_dimensionless()
     # the measured surface is 1.2 mm long: a brake-like cycle slides further and reads further,
     # independent segments of the process (it never repeats)
-    res = simulate(params, model="contact", process=model, runs=2, seed=1, tau_end=5.0)
+    res = simulate(params, model="contact", process=model, runs=2, seed=1,
+                   integration=IntegrationOptions(tau_end=5.0))
     assert not any(w.code == "process-exhausted" for w in res.warnings)
     assert res.diagnostics["process_segments"].min() > 1
     assert res.process is not None and res.stick_count.shape == (1, 2)
@@ -197,10 +200,11 @@ def test_no_overlapping_ticks_and_no_blank_panels(report: Path) -> None:
 def test_grid_edges_are_named(report: Path) -> None:
     # the contact model still sticks at the last grid D (0.2) at 6000 N in this run
     assert "> grid" in FIGURES["01_damping_brake_dmax.png"]["texts"]
-    summary = {"normal_force_n": [1000.0, 2000.0], "damping_ratio": [0.05, 0.1, 0.15], "d_hopf": [0.01, 0.02],
-               "d_max_deterministic": [None, 0.15], "models": ["deterministic", "white"],
-               "d_max_sample_extreme": {"white": [{"value": 0.1, "interval": [0.1, None]},
-                                              {"value": 0.15, "interval": [0.15, None]}]}}
+    damping = next(r for r in RESULTS if r.kind == "damping").summary
+    summary = dataclasses.replace(
+        damping, normal_force_n=[1000.0, 2000.0], damping_ratio=[0.05, 0.1, 0.15], d_hopf=[0.01, 0.02],
+        d_max_deterministic=[None, 0.15], models=["deterministic", "white"], d_max_risk={}, phase=None,
+        d_max_sample_extreme={"white": [SampleExtreme(0.1, (0.1, None)), SampleExtreme(0.15, (0.15, None))]})
     table, reading = damping_reading(summary)
     assert "<td>0.01</td><td>&lt; grid start (0.05)</td>" in table  # D_max^d below the grid, not "—"
     assert "<td>≥ 0.15 (&gt; grid)</td>" in table  # D_max^d at the grid's end
@@ -217,7 +221,7 @@ def test_reading_answers_first_and_explains_warnings(report: Path) -> None:
     assert "— the deterministic limit is" in damping
     assert "D_max" not in reading and "<sub>" in reading  # real subscripts, no raw thesis names
     codes = {m.group(1) for m in re.finditer(r"<dt>([a-z-]+):", reading)}
-    warned = {w["code"] for res in RESULTS for w in res.summary.get("warnings") or []}
+    warned = {w.code for res in RESULTS for w in res.summary.warnings}
     assert codes == warned, "every warning of the run is explained, and only those"
     for code in codes:
         assert code in WARNING_HELP

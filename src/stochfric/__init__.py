@@ -8,15 +8,16 @@ from its home module on first use (``import stochfric`` itself stays light)::
     raw = sf.read_surface(sf.default_surface_path())          # a measured map (instrument file)
     fine, coarse, prep = sf.prepare_with_report(raw, sf.Preparation(detrend="auto", step=2))
     analysis = sf.analyse(coarse, sf.load_material("brake-pad"), approach_m, sf.AnalysisConfig(seed=1))
-    case = sf.build_case("brake", normal_force=2720.0, model="contact", process_file=…)
-    result = sf.simulate(case.params, **case.simulate_kwargs("contact"), runs=100, seed=1)
-    study = sf.run_study(sf.DampingConfig(preset="brake", normal_force_n=(5600.0,)))
+    case = sf.build_case("brake", physical=sf.PhysicalInput(normal_force=2720.0), model="contact")
+    result = sf.simulate(case, model="contact", runs=100, seed=1,
+                         integration=sf.IntegrationOptions(integrator=sf.Integrator.ACCURATE))
+    study = sf.run_study(sf.DampingConfig(preset="brake", normal_forces=(5600.0,)))
     sf.write_report([study], "out")
 
-Importing the package does no work — no compilation, no registration, no logging set-up — except
-one setting: the SIMD width numba compiles for on Intel Xeons with AVX-512
-(:mod:`stochfric.vector_width`; it changes speed, never a number; ``STOCHFRIC_VECTOR_WIDTH=native``
-turns it off).
+Importing the package does no work — no compilation, no registration, no logging set-up, no
+change to numba's settings.  The SIMD width numba compiles for on Intel Xeons with AVX-512 is an
+explicit call, :func:`stochfric.vector_width.configure` (it changes speed, never a number); the
+command line makes it when ``STOCHFRIC_VECTOR_WIDTH`` is set.
 """
 
 from __future__ import annotations
@@ -24,10 +25,7 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
-from . import vector_width as _vector_width
-
 __version__ = "0.1.0"
-_vector_width.configure()
 
 #: The curated API: name → home module (the object keeps its home name; one implementation).
 API: dict[str, str] = {
@@ -50,8 +48,23 @@ API: dict[str, str] = {
     "StatisticalContactAnalysis": "stochfric.process.analysis_result",
     "load_process_model": "stochfric.process.model",
     # the friction oscillator (§5)
+    "get_preset": "stochfric.oscillator.presets",
     "build_case": "stochfric.oscillator.case",
+    "case_setup": "stochfric.oscillator.case",
+    "Case": "stochfric.oscillator.case",
+    "PhysicalInput": "stochfric.oscillator.case",
+    "DimensionlessInput": "stochfric.oscillator.case",
+    "FrictionInput": "stochfric.oscillator.case",
     "simulate": "stochfric.oscillator.integrate",
+    "Model": "stochfric.oscillator.options",
+    "Integrator": "stochfric.oscillator.options",
+    "PathCoordinate": "stochfric.oscillator.options",
+    "WhiteStream": "stochfric.oscillator.options",
+    "WhiteIntensity": "stochfric.oscillator.options",
+    "NoiseOptions": "stochfric.oscillator.options",
+    "IntegrationOptions": "stochfric.oscillator.options",
+    "OutputOptions": "stochfric.oscillator.options",
+    "ExecutionOptions": "stochfric.oscillator.options",
     "SimulationResult": "stochfric.oscillator.result",
     "load_result": "stochfric.oscillator.result",
     # studies and the report (§6)

@@ -3,8 +3,7 @@
 * :data:`Progress` — ``progress(done, total)``: one stage, e.g. the realisations of the surrogate
   ensemble (``process.ensemble``) or the tasks of one study (``studies.base``).
 * :data:`StagedProgress` — ``progress(stage, done, total)``: work in named stages, e.g. the
-  statistical contact analysis (``"ensemble"``, ``"path"``, …, ``process.statistics.analyse``) or
-  the studies of ``reproduce`` (``"brake/damping"``, …).
+  statistical contact analysis (``process.statistics.analyse``) or the studies of ``reproduce``.
 
 Callbacks report only; they never change a number.
 """

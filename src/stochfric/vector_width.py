@@ -3,22 +3,23 @@
 LLVM (and therefore numba) compiles for 256-bit vectors on every Intel CPU with AVX-512, even where
 the hardware runs 512-bit instructions at full clock (Xeon since Sapphire Rapids; LLVM issue
 102047): the subtarget tuning ``prefer-256-bit``.  stochfric's lock-step kernels advance 32
-trajectories per step in branch-free loops, and the white-noise generator (Philox4x32-10 +
-Box–Muller, ``oscillator/philox.py``) is pure arithmetic, so they gain from the full width: on an
-Intel Xeon (Emerald Rapids) the Philox + Box–Muller normal costs 3.4 instead of 4.8 ns and the
-white-noise ensemble 6.2 instead of 7.8 ns per step (docs/performance.md).
+trajectories per step in branch-free loops, and the white-noise generators
+(:mod:`stochfric.random.philox`, :mod:`stochfric.random.ziggurat`) are pure arithmetic, so they
+gain from the full width.
 
-:func:`configure` removes the tuning flag for the CPUs of :data:`FULL_WIDTH_CPUS` only, before
-numba compiles anything, through numba's own setting ``NUMBA_CPU_FEATURES`` (the host's feature
-list plus ``-prefer-256-bit``).  The width changes no number: the loops are element-wise across
-trajectories and are compiled without fast-math, so every lane computes the same IEEE operations
-in the same order (tested: the same X_gh bit for bit).  It is applied when ``stochfric`` is
-imported and affects every numba function compiled later in the process, and, being an environment
-variable, the processes it starts (the local process pool of the studies uses it that way).
+Nothing happens on import.  :func:`configure` removes the tuning flag, before numba compiles
+anything, through numba's own setting ``NUMBA_CPU_FEATURES`` (the host's feature list plus
+``-prefer-256-bit``).  It is called explicitly (``stochfric.vector_width.configure("auto")``), or
+by the command line when ``STOCHFRIC_VECTOR_WIDTH`` is set.  The width changes no number: the
+loops are element-wise across trajectories and are compiled without fast-math, so every lane
+computes the same IEEE operations in the same order (tested: the same X_gh bit for bit).  Once
+applied it affects every numba function compiled later in the process and, being an environment
+variable, the processes it starts (the local process pool of the studies).
 
-``STOCHFRIC_VECTOR_WIDTH``: ``auto`` (default: full width on :data:`FULL_WIDTH_CPUS`), ``512`` (on
-any x86 CPU with AVX-512, e.g. Ice Lake, whose 512-bit clock penalty is small) or ``native``
-(leave numba's choice).  A user's own ``NUMBA_CPU_NAME``/``NUMBA_CPU_FEATURES`` always win.
+Choices (argument, or ``STOCHFRIC_VECTOR_WIDTH``): ``auto`` (full width on
+:data:`FULL_WIDTH_CPUS`), ``512`` (on any x86 CPU with AVX-512, e.g. Ice Lake, whose 512-bit clock
+penalty is small) or ``native`` (leave numba's choice).  A user's own
+``NUMBA_CPU_NAME``/``NUMBA_CPU_FEATURES`` always win.
 """
 
 from __future__ import annotations
@@ -47,13 +48,15 @@ def wide_features(choice: str, cpu_name: str, features: dict[str, bool], flat: s
     return flat + ",-prefer-256-bit"
 
 
-def configure() -> str | None:
-    """Apply the vector-width rule of the module docstring; returns the feature string set, or
-    ``None`` when numba's default is kept.  Raises ``ValueError`` for an unknown
-    ``STOCHFRIC_VECTOR_WIDTH``."""
-    choice = os.environ.get(ENV, "auto").strip().lower()
-    if choice not in CHOICES:
-        raise ValueError(f"{ENV}={choice!r}: choose one of {', '.join(CHOICES)}")
+def configure(choice: str | None = None) -> str | None:
+    """Apply the vector width ``choice`` (``None``: ``STOCHFRIC_VECTOR_WIDTH``, else ``auto``) by the
+    rule of the module docstring; returns the feature string set, or ``None`` when numba's default is
+    kept.  Raises ``ValueError`` (a one-line message naming the choices) for an unknown choice."""
+    given = os.environ.get(ENV, "auto") if choice is None else choice
+    name = given.strip().lower()
+    if name not in CHOICES:
+        source = f"{ENV}={given!r}" if choice is None else f"vector width {given!r}"
+        raise ValueError(f"{source}: choose one of {', '.join(CHOICES)}")
     if os.environ.get("NUMBA_CPU_NAME") or os.environ.get("NUMBA_CPU_FEATURES"):
         return None  # the user's own numba target
     if platform.machine().lower() not in ("x86_64", "amd64"):
@@ -61,12 +64,12 @@ def configure() -> str | None:
     import llvmlite.binding as ll  # ~20 ms; numba's own dependency
 
     feats = ll.get_host_cpu_features()
-    flat = wide_features(choice, ll.get_host_cpu_name(), dict(feats), feats.flatten())
+    flat = wide_features(name, ll.get_host_cpu_name(), dict(feats), feats.flatten())
     if flat is None:
         return None
     global applied
     os.environ["NUMBA_CPU_FEATURES"] = applied = flat
-    if "numba" in sys.modules:  # imported before stochfric: make numba re-read its environment
+    if "numba" in sys.modules:  # imported already: make numba re-read its environment
         from numba.core import config
 
         config.reload_config()

@@ -11,18 +11,19 @@ import pytest
 
 from stochfric.oscillator.friction_laws import law_III, pressure_law
 from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.options import IntegrationOptions, OutputOptions
 from stochfric.oscillator.parameters import OscillatorParameters, PhysicalParameters
+from stochfric.oscillator.presets import brake
 from stochfric.oscillator.reference import hopf_damping
-from stochfric.process.presets import brake
 
 
 @pytest.fixture(scope="module")
 def brake_case() -> tuple[OscillatorParameters, object]:
     pre = brake()
     p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
-                           normal_force=5600.0, contact_area=pre.contact_area_m2).to_dimensionless()
-    assert p.pressure is not None
-    return p, pressure_law(pre.process.mean(p.pressure))
+                           normal_force=5600.0, contact_area=pre.contact_area).to_dimensionless()
+    assert p.pressure_pa is not None
+    return p, pressure_law(pre.process.mean(p.pressure_pa))
 
 
 def test_hopf_boundary_equals_zero_trace_of_the_numerical_jacobian(brake_case) -> None:
@@ -53,8 +54,9 @@ def test_small_oscillations_about_steady_sliding_grow_or_decay_at_the_linear_rat
     q = p.replace(damping_ratio=d)
     xs = q.n * float(law.kinetic(q.belt_speed))  # rest position (4.8)
     eps = 1e-3 * q.gamma0
-    res = simulate(q, law=law, integrator="accurate", x0=(xs + eps, 0.0), tau_end=40.0,
-                   dt=0.01, save_trajectory=True, save_every=1)
+    res = simulate(q, law=law, x0=(xs + eps, 0.0),
+                   integration=IntegrationOptions(integrator="accurate", tau_end=40.0, dt=0.01),
+                   output=OutputOptions(save_trajectory=True, save_every=1))
     assert res.stick_count[0, 0] == 0
     tr = res.trajectory[0, 0]
     t, x = tr[:, 0], tr[:, 1] - xs
@@ -69,12 +71,12 @@ def test_stick_slip_survives_just_above_the_hopf_boundary(brake_case) -> None:
     cycle reached from sticking at (0, γ0) persists; far above D_H it dies out."""
     p, law = brake_case
     dh = hopf_damping(p, law)
-    above = simulate(p.replace(damping_ratio=dh + 0.01), law=law, integrator="accurate",
-                     tau_end=100.0)
+    above = simulate(p.replace(damping_ratio=dh + 0.01), law=law,
+                     integration=IntegrationOptions(integrator="accurate", tau_end=100.0))
     m = int(above.stick_count[0, 0])
     assert m >= 10
     xg = above.x_gh[0, 0, :m]
     assert abs(xg[-1] - xg[-2]) < 1e-8  # a settled limit cycle
-    far = simulate(p.replace(damping_ratio=dh + 0.1), law=law, integrator="accurate",
-                   tau_end=100.0)
+    far = simulate(p.replace(damping_ratio=dh + 0.1), law=law,
+                   integration=IntegrationOptions(integrator="accurate", tau_end=100.0))
     assert far.stick_count[0, 0] == 0

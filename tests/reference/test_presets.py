@@ -15,7 +15,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from stochfric.process.presets import PRESETS, Preset, brake, get_preset, sheet
+from stochfric.oscillator.presets import PRESETS, Preset, StudyParameters, brake, get_preset, sheet
 
 TABLE_4_4 = {1e5: 0.1001, 5e5: 0.0805, 1e6: 0.0594}
 TABLE_4_4_FIT = {1e5: 0.09951, 5e5: 0.07670, 1e6: 0.06674}
@@ -26,8 +26,8 @@ def test_brake_oscillator_parameters() -> None:
     b = brake()
     assert b.omega0 == pytest.approx(707.1, abs=0.05)  # thesis: 707 rad/s
     assert b.gamma0 == pytest.approx(1.414e-3, rel=1e-3)  # thesis: 1.4e-3
-    assert (b.mass, b.stiffness, b.belt_speed, b.contact_area_m2) == (2.0, 1e6, 1.0, 0.016)
-    assert b.normal_force_range_n == (500.0, 20000.0)
+    assert (b.mass, b.stiffness, b.belt_speed, b.contact_area) == (2.0, 1e6, 1.0, 0.016)
+    assert b.normal_force_range == (500.0, 20000.0)
     assert (b.tau_end, b.dt) == (50.0, 0.005)
     assert b.pressure(8000.0) == pytest.approx(5e5)
 
@@ -36,40 +36,28 @@ def test_sheet_oscillator_parameters() -> None:
     s = sheet()
     assert s.omega0 == pytest.approx(316.2, abs=0.05)  # thesis: 316 rad/s
     assert s.gamma0 == pytest.approx(3.162e-3, rel=1e-3)  # thesis: 3.16e-3
-    assert (s.mass, s.stiffness, s.belt_speed, s.contact_area_m2) == (1.0, 1e5, 1.0, 1e-3)
-    assert s.normal_force_range_n == (100.0, 2000.0)
+    assert (s.mass, s.stiffness, s.belt_speed, s.contact_area) == (1.0, 1e5, 1.0, 1e-3)
+    assert s.normal_force_range == (100.0, 2000.0)
     assert s.pressure_range_pa == pytest.approx((1e5, 2e6))
-    # the names before docs/glossary.md are still read
-    assert (s.contact_area, s.normal_force_range, s.default_normal_force, s.pressure_range) == (
-        s.contact_area_m2, s.normal_force_range_n, s.default_normal_force_n, s.pressure_range_pa)
 
 
 def test_study_parameters() -> None:
     b, s = brake().study_parameters, sheet().study_parameters
-    assert b["damping_undamped"] == s["damping_undamped"] == 5e-6
-    assert (b["damping_damped"], s["damping_damped"]) == (0.15, 0.17)
-    assert (b["damping_study_force_n"], s["damping_study_force_n"]) == (5600.0, 1400.0)
-    assert (b["forcing_study_force_n"], s["forcing_study_force_n"]) == (4000.0, 1100.0)
-    assert b["normal_force_study_forces_n"] == (720.0, 2720.0, 8000.0)
-    assert s["normal_force_study_forces_n"] == (400.0, 880.0, 1750.0)
-    with pytest.raises(TypeError):
-        b["damping_damped"] = 0.2  # type: ignore[index]
-
-
-def test_study_parameters_read_and_accept_the_keys_before_the_glossary() -> None:
-    b = brake()
-    assert set(b.study_parameters) == {"damping_undamped", "damping_damped", "damping_study_force_n",
-                                       "forcing_study_force_n", "normal_force_study_forces_n"}
-    with pytest.warns(DeprecationWarning, match="'damping_study_force' is deprecated: use 'damping_study_force_n'"):
-        assert b.study_parameters["damping_study_force"] == 5600.0
-    with pytest.warns(DeprecationWarning, match="normal_force_study_forces"):
-        assert b.study_parameters.get("normal_force_study_forces") == (720.0, 2720.0, 8000.0)
-    with pytest.warns(DeprecationWarning, match="forcing_study_force"):
-        old = replace(b, study_parameters={"forcing_study_force": 4000.0})
-    assert dict(old.study_parameters) == {"forcing_study_force_n": 4000.0}
-    assert replace(b, study_parameters=b.study_parameters) == b
-    with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match="give forcing_study_force_n only"):
-        replace(b, study_parameters={"forcing_study_force": 4000.0, "forcing_study_force_n": 4000.0})
+    assert b.damping_undamped == s.damping_undamped == 5e-6
+    assert (b.damping_damped, s.damping_damped) == (0.15, 0.17)
+    assert (b.damping_study_force, s.damping_study_force) == (5600.0, 1400.0)
+    assert (b.forcing_study_force, s.forcing_study_force) == (4000.0, 1100.0)
+    assert b.normal_force_study_forces == (720.0, 2720.0, 8000.0)
+    assert s.normal_force_study_forces == (400.0, 880.0, 1750.0)
+    with pytest.raises(AttributeError):
+        b.damping_damped = 0.2  # type: ignore[misc]
+    with pytest.raises(ValueError, match="damping_damped"):
+        replace(b, damping_damped=1.5)
+    with pytest.raises(ValueError, match="normal_force_study_forces"):
+        replace(b, normal_force_study_forces=())
+    with pytest.raises(TypeError, match="StudyParameters"):
+        replace(brake(), study_parameters={"damping_undamped": 5e-6})
+    assert isinstance(brake().study_parameters, StudyParameters)
 
 
 def test_fit_parameters_as_printed() -> None:
@@ -109,7 +97,7 @@ def test_process_bands() -> None:
 
 @pytest.mark.parametrize("preset", [brake(), sheet()], ids=["brake", "sheet"])
 def test_spectrum_variance_is_sigma_mu_squared_over_the_force_range(preset: Preset) -> None:
-    for force in np.geomspace(*preset.normal_force_range_n, 7):
+    for force in np.geomspace(*preset.normal_force_range, 7):
         p = preset.pressure(float(force))
         assert preset.process.variance(p) == pytest.approx(preset.process.std(p) ** 2, rel=1e-13)
 
@@ -146,8 +134,8 @@ def test_preset_validation() -> None:
 
     b = brake()
     with pytest.raises(ValueError, match="outside"):
-        dataclasses.replace(b, default_normal_force_n=100.0)
+        dataclasses.replace(b, default_normal_force=100.0)
     with pytest.raises(ValueError, match="mass"):
         dataclasses.replace(b, mass=-2.0)
-    with pytest.raises(ValueError, match="normal_force_range_n"):
-        dataclasses.replace(b, normal_force_range_n=(2000.0, 500.0))
+    with pytest.raises(ValueError, match="normal_force_range"):
+        dataclasses.replace(b, normal_force_range=(2000.0, 500.0))

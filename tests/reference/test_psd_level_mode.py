@@ -8,13 +8,15 @@ import math
 import numpy as np
 import pytest
 
-from stochfric.process.presets import get_preset, process_with_level, psd_level_process
-from stochfric.studies.common import StudyError, make_setup
+from stochfric.oscillator.case import CaseError, case_setup
+from stochfric.oscillator.presets import get_preset
+from stochfric.process.presets import BRAKE_PSD_LEVEL_FIT, brake_process, process_with_level, psd_level_process
 
 
 def test_calibration_reproduces_the_thesis_check_and_scales_with_es() -> None:
     b = get_preset("brake")
-    m = psd_level_process(b)
+    m = psd_level_process(brake_process(), BRAKE_PSD_LEVEL_FIT)
+    assert b.process_with_level("psd_level") == m
     assert m.std(5e5) == pytest.approx(0.08, rel=1e-12)  # the thesis's Fig. 3.23 check
     fit = b.recorded_psd_level_fit
     assert fit is not None
@@ -24,7 +26,7 @@ def test_calibration_reproduces_the_thesis_check_and_scales_with_es() -> None:
     got = [m.std(b.pressure(f)) / b.process.std(b.pressure(f)) for f in (720.0, 2720.0, 8000.0)]
     np.testing.assert_allclose(got, [1.309, 1.199, 1.094], atol=1e-3)
     s = get_preset("sheet")
-    ms = psd_level_process(s)
+    ms = s.process_with_level("psd_level")
     got = [ms.std(s.pressure(f)) / s.process.std(s.pressure(f)) for f in (400.0, 880.0, 1750.0)]
     np.testing.assert_allclose(got, [2.255, 2.255, 2.289], atol=1e-3)
     assert ms.calibration == m.calibration  # one normalisation for both surfaces
@@ -32,7 +34,7 @@ def test_calibration_reproduces_the_thesis_check_and_scales_with_es() -> None:
 
 def test_realisations_spectrum_and_white_intensity() -> None:
     s = get_preset("sheet")
-    m = psd_level_process(s)
+    m = s.process_with_level("psd_level")
     p = s.pressure(880.0)
     x = m.generate(p, np.random.default_rng(1))
     assert np.var(x) == pytest.approx(m.std(p) ** 2, rel=1e-10)  # periodic grid: exact grid variance
@@ -45,13 +47,15 @@ def test_realisations_spectrum_and_white_intensity() -> None:
 
 
 def test_setup_and_errors(tmp_path) -> None:  # type: ignore[no-untyped-def]
-    st = make_setup("brake", process_level="psd_level")
+    st = case_setup("brake", process_level="psd_level")
     assert st.process_level == "psd_level" and st.process.std(5e5) == pytest.approx(0.08)
     assert "psd_level" in st.process_source and st.describe()["process_level"] == "psd_level"
-    assert process_with_level(get_preset("brake"), "sigma_mu") == get_preset("brake").process
-    with pytest.raises(StudyError, match="process level"):
-        make_setup("brake", process_level="loud")
+    assert process_with_level(brake_process(), None, "sigma_mu") == get_preset("brake").process
+    with pytest.raises(ValueError, match="no E\\[S\\]\\(p\\) fit"):
+        process_with_level(brake_process(), None, "psd_level")
+    with pytest.raises(CaseError, match="process_level"):
+        case_setup("brake", process_level="loud")
     f = tmp_path / "m.json"
     get_preset("brake").process.save(f)
-    with pytest.raises(StudyError, match="cannot be combined"):
-        make_setup("brake", process_file=f, process_level="psd_level")
+    with pytest.raises(CaseError, match="cannot be combined"):
+        case_setup("brake", process_file=f, process_level="psd_level")

@@ -65,12 +65,11 @@ def _friction_final_states(dw: np.ndarray, dt: float, scheme: int) -> tuple[np.n
     out = np.zeros((paths, 2))
     ok = np.ones(paths, dtype=bool)
     for i in range(paths):
-        diag = np.zeros(K.N_DIAG)
-        m = run_fixed_step(prm, law.shape, law.param_array, 3.0, 0.0, dw.shape[1], dt, scheme,
-                             K.NOISE_WHITE, K.PATH_RELATIVE, dw[i], np.zeros(1), 1,
-                             np.zeros(4), np.zeros(4), np.zeros((0, 3)), 1, diag)
+        one = run_fixed_step(prm, law.shape, law.param_array, (3.0, 0.0), K.FixedStepGrid(dw.shape[1], dt, 1),
+                             scheme, K.NOISE_WHITE, K.PATH_RELATIVE, dw[i], capacity=4)
+        diag = one.diag
         out[i] = diag[K.D_X1], diag[K.D_X2]
-        ok[i] = m == 0 and diag[K.D_N_NO_STICK] == 0 and diag[K.D_N_BREAKAWAY] == 0
+        ok[i] = one.m == 0 and diag[K.D_N_NO_STICK] == 0 and diag[K.D_N_BREAKAWAY] == 0
     return out, ok
 
 
@@ -110,11 +109,9 @@ def test_zero_intensity_white_noise_equals_the_deterministic_euler(scheme: int) 
     prm = np.zeros(K.N_PRM)
     prm[K.P_GAMMA0], prm[K.P_N], prm[K.P_VSCALE], prm[K.P_MUS] = 1.0, 10.0, 1.0, 0.4
     prm[K.P_PROC_DX] = 1.0
-    d1, d2 = np.zeros(K.N_DIAG), np.zeros(K.N_DIAG)
-    run_fixed_step(prm, law.shape, law.param_array, 3.0, 0.0, 400, 0.005, scheme,
-                     K.NOISE_WHITE, 1, dw[0], np.zeros(1), 1, np.zeros(4), np.zeros(4),
-                     np.zeros((0, 3)), 1, d1)
-    run_fixed_step(prm, law.shape, law.param_array, 3.0, 0.0, 400, 0.005, K.SCHEME_EULER,
-                     K.NOISE_NONE, 1, dw[0], np.zeros(1), 1, np.zeros(4), np.zeros(4),
-                     np.zeros((0, 3)), 1, d2)
+    grid = K.FixedStepGrid(400, 0.005, 1)
+    d1 = run_fixed_step(prm, law.shape, law.param_array, (3.0, 0.0), grid, scheme, K.NOISE_WHITE, K.PATH_RELATIVE,
+                        dw[0], capacity=4).diag
+    d2 = run_fixed_step(prm, law.shape, law.param_array, (3.0, 0.0), grid, K.SCHEME_EULER, K.NOISE_NONE,
+                        K.PATH_RELATIVE, dw[0], capacity=4).diag
     assert d1[K.D_X1] == d2[K.D_X1] and d1[K.D_X2] == d2[K.D_X2]

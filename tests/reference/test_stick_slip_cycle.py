@@ -13,6 +13,7 @@ import pytest
 
 from stochfric.oscillator.friction_laws import law_II, law_III
 from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.options import IntegrationOptions, OutputOptions
 from stochfric.oscillator.parameters import OscillatorParameters
 from stochfric.oscillator.reference import constant_friction_cycle, simulate_solve_ivp
 
@@ -24,8 +25,8 @@ def test_accurate_integrator_reproduces_the_analytic_cycle_to_1e8(damping: float
     p = DEMO.replace(damping_ratio=damping)
     cyc = constant_friction_cycle(n=10.0, gamma0=1.0, mu_static=0.4, mu_kinetic=0.25,
                                   damping_ratio=damping)
-    res = simulate(p, law=law_II(), integrator="accurate", tau_end=30.0, dt=0.001,
-                   save_trajectory=True, save_every=1)
+    res = simulate(p, law=law_II(), integration=IntegrationOptions(integrator="accurate", tau_end=30.0, dt=0.001),
+                   output=OutputOptions(save_trajectory=True, save_every=1))
     xg = res.x_gh[0, 0][np.isfinite(res.x_gh[0, 0])]
     tg = res.t_gh[0, 0][np.isfinite(res.t_gh[0, 0])]
     assert xg.size >= 3
@@ -45,9 +46,10 @@ def test_accurate_integrator_reproduces_the_analytic_cycle_to_1e8(damping: float
 
 
 def test_accurate_is_independent_of_its_initial_step_and_tolerance() -> None:
-    a = simulate(DEMO, law=law_III(), integrator="accurate", tau_end=50.0, dt=0.01)
-    b = simulate(DEMO, law=law_III(), integrator="accurate", tau_end=50.0, dt=0.0005,
-                 rtol=1e-12, atol=1e-14, max_step=0.05)
+    a = simulate(DEMO, law=law_III(), integration=IntegrationOptions(integrator="accurate", tau_end=50.0, dt=0.01))
+    b = simulate(DEMO, law=law_III(),
+                 integration=IntegrationOptions(integrator="accurate", tau_end=50.0, dt=0.0005, rtol=1e-12,
+                                                atol=1e-14, max_step=0.05))
     np.testing.assert_allclose(a.x_gh[0, 0], b.x_gh[0, 0], atol=1e-8)
     assert a.stick_count[0, 0] == b.stick_count[0, 0] == 6
 
@@ -60,7 +62,7 @@ def test_euler_error_is_first_order_in_dt(damping: float) -> None:
     errs = []
     dts = [0.004, 0.002, 0.001]
     for dt in dts:
-        r = simulate(p, law=law_II(), integrator="euler", tau_end=20.0, dt=dt)
+        r = simulate(p, law=law_II(), integration=IntegrationOptions(integrator="euler", tau_end=20.0, dt=dt))
         errs.append(abs(r.x_gh[0, 0, 0] - cyc.x_slip_end))
     # O(Δτ): halving Δτ halves the error (order within 0.8 … 1.2), and the error constant
     # stays below 5 (the slip phase lasts ≈ 4.3–5.1 time units)
@@ -72,17 +74,19 @@ def test_euler_error_is_first_order_in_dt(damping: float) -> None:
         # end of the slip by −R² Δτ T_slip / (2 nΔμ) (= −4.68 Δτ here)
         rad2 = (10 * 0.15) ** 2 + 1.0
         c_expected = -rad2 * cyc.slip_duration / (2 * 10 * 0.15)
-        r = simulate(p, law=law_II(), integrator="euler", tau_end=20.0, dt=dts[-1])
+        r = simulate(p, law=law_II(), integration=IntegrationOptions(integrator="euler", tau_end=20.0, dt=dts[-1]))
         assert (r.x_gh[0, 0, 0] - cyc.x_slip_end) / dts[-1] == pytest.approx(c_expected, rel=0.01)
     else:
         assert errs[-1] < 20 * dts[-1]  # measured constant 14.6 at D = 0.1
 
 
 def test_euler_converges_to_accurate_with_order_one_on_law_III() -> None:
-    ref = simulate(DEMO, law=law_III(), integrator="accurate", tau_end=20.0).x_gh[0, 0, 0]
+    ref = simulate(DEMO, law=law_III(),
+                   integration=IntegrationOptions(integrator="accurate", tau_end=20.0)).x_gh[0, 0, 0]
     dts = np.array([0.004, 0.002, 0.001, 0.0005])
     errs = np.array([
-        abs(simulate(DEMO, law=law_III(), dt=float(dt), tau_end=20.0).x_gh[0, 0, 0] - ref)
+        abs(simulate(DEMO, law=law_III(),
+                     integration=IntegrationOptions(dt=float(dt), tau_end=20.0)).x_gh[0, 0, 0] - ref)
         for dt in dts
     ])
     slope = np.polyfit(np.log(dts), np.log(errs), 1)[0]
@@ -100,7 +104,7 @@ def test_euler_converges_to_accurate_with_order_one_on_law_III() -> None:
 )
 def test_accurate_agrees_with_scipy_solve_ivp_with_events(params, x0, law) -> None:
     xs, ts = simulate_solve_ivp(params, law, x0, 40.0)
-    r = simulate(params, law=law, x0=x0, integrator="accurate", tau_end=40.0)
+    r = simulate(params, law=law, x0=x0, integration=IntegrationOptions(integrator="accurate", tau_end=40.0))
     m = int(r.stick_count[0, 0])
     assert m == xs.size > 2
     np.testing.assert_allclose(r.x_gh[0, 0, :m], xs, atol=1e-8)

@@ -10,8 +10,9 @@ import pytest
 
 from stochfric.oscillator.friction_laws import law_II, law_III, pressure_law
 from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.options import IntegrationOptions, OutputOptions
 from stochfric.oscillator.parameters import OscillatorParameters, PhysicalParameters
-from stochfric.process.presets import brake
+from stochfric.oscillator.presets import brake
 
 DEMO = OscillatorParameters(gamma0=1.0, n=10.0)
 
@@ -20,10 +21,11 @@ def test_fig_4_6_euler_inner_cycle_grows_without_damping() -> None:
     """Law II, x0 = (2, 0): the exact solution is the circle of radius 0.5 about n μ_k = 2.5
     that never reaches the stick line; Euler multiplies the radius by √(1 + Δτ²) per step."""
     dt, tau_end = 0.001, 50.0
-    eu = simulate(DEMO, law=law_II(), x0=(2.0, 0.0), dt=dt, tau_end=tau_end,
-                  save_trajectory=True, save_every=1)
-    ac = simulate(DEMO, law=law_II(), x0=(2.0, 0.0), integrator="accurate", dt=dt,
-                  tau_end=tau_end, save_trajectory=True, save_every=10)
+    eu = simulate(DEMO, law=law_II(), x0=(2.0, 0.0), integration=IntegrationOptions(dt=dt, tau_end=tau_end),
+                  output=OutputOptions(save_trajectory=True, save_every=1))
+    ac = simulate(DEMO, law=law_II(), x0=(2.0, 0.0),
+                  integration=IntegrationOptions(integrator="accurate", dt=dt, tau_end=tau_end),
+                  output=OutputOptions(save_trajectory=True, save_every=10))
     assert eu.stick_count[0, 0] == ac.stick_count[0, 0] == 0
     r_eu = np.hypot(eu.trajectory[0, 0, :, 1] - 2.5, eu.trajectory[0, 0, :, 2])
     r_ac = np.hypot(ac.trajectory[0, 0, :, 1] - 2.5, ac.trajectory[0, 0, :, 2])
@@ -36,10 +38,11 @@ def test_fig_4_6_euler_inner_cycle_grows_without_damping() -> None:
 def test_fig_4_7_unforced_euler_keeps_the_character_at_coarse_steps() -> None:
     """Law III from (0, γ0): Δτ = 0.001 / 0.01 / 0.05 all give the period-1 cycle; the
     error in X_gh grows with Δτ (only 0.05 is visibly off in the thesis's plot)."""
-    ref = simulate(DEMO, law=law_III(), integrator="accurate", tau_end=50.0).x_gh[0, 0, 0]
+    ref = simulate(DEMO, law=law_III(),
+                   integration=IntegrationOptions(integrator="accurate", tau_end=50.0)).x_gh[0, 0, 0]
     errs = []
     for dt in (0.001, 0.01, 0.05):
-        r = simulate(DEMO, law=law_III(), dt=dt, tau_end=50.0)
+        r = simulate(DEMO, law=law_III(), integration=IntegrationOptions(dt=dt, tau_end=50.0))
         assert bool(r.warnings) == (dt > 0.02)  # the coarse-step warning, in the result
         m = int(r.stick_count[0, 0])
         xg = r.x_gh[0, 0, :m]
@@ -59,15 +62,16 @@ def test_fig_4_8_forced_two_periodic_solution_and_dt_effects() -> None:
     """q = 0.5, η = 1.15, x0 = (3.2, γ0), law III: the exact solution is two-periodic; Euler
     keeps that up to Δτ = 0.01, and Δτ = 0.1 makes it look chaotic (with a warning)."""
     p = DEMO.replace(q=0.5, eta=1.15)
-    ac = simulate(p, law=law_III(), x0=(3.2, 1.0), integrator="accurate", tau_end=300.0)
+    ac = simulate(p, law=law_III(), x0=(3.2, 1.0),
+                  integration=IntegrationOptions(integrator="accurate", tau_end=300.0))
     xa = ac.x_gh[0, 0, : int(ac.stick_count[0, 0])]
     assert _period2_defect(xa[-8:]) < 1e-7  # converged to the 2-cycle (transient decays slowly)
     assert abs(xa[-1] - xa[-2]) > 0.5  # two distinct stick positions
-    e1 = simulate(p, law=law_III(), x0=(3.2, 1.0), dt=0.001, tau_end=300.0)
+    e1 = simulate(p, law=law_III(), x0=(3.2, 1.0), integration=IntegrationOptions(dt=0.001, tau_end=300.0))
     x1 = e1.x_gh[0, 0, : int(e1.stick_count[0, 0])]
     assert _period2_defect(x1) < 1e-3
     assert sorted(x1[-2:]) == pytest.approx(sorted(xa[-2:]), abs=0.03)
-    e3 = simulate(p, law=law_III(), x0=(3.2, 1.0), dt=0.1, tau_end=300.0)
+    e3 = simulate(p, law=law_III(), x0=(3.2, 1.0), integration=IntegrationOptions(dt=0.1, tau_end=300.0))
     assert any("apparent chaos" in w.message for w in e3.warnings)
     x3 = e3.x_gh[0, 0, : int(e3.stick_count[0, 0])]
     assert _period2_defect(x3) > 0.3
@@ -80,10 +84,10 @@ def test_fig_4_15_belt_speed_reached_without_sticking() -> None:
     pre = brake()
     p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=1.0,
                            normal_force=720.0, damping_ratio=5e-6,
-                           contact_area=pre.contact_area_m2).to_dimensionless()
-    assert p.pressure is not None
-    law = pressure_law(pre.process.mean(p.pressure))
-    r = simulate(p, law=law, integrator="accurate", tau_end=50.0)
+                           contact_area=pre.contact_area).to_dimensionless()
+    assert p.pressure_pa is not None
+    law = pressure_law(pre.process.mean(p.pressure_pa))
+    r = simulate(p, law=law, integration=IntegrationOptions(integrator="accurate", tau_end=50.0))
     m = int(r.stick_count[0, 0])
     assert m >= 5
     assert r.diagnostics["n_belt_speed_without_stick"][0, 0] == m
@@ -92,6 +96,6 @@ def test_fig_4_15_belt_speed_reached_without_sticking() -> None:
     xg = r.x_gh[0, 0, :m]
     assert np.all(xg > -lim) and np.all(xg < lim)
     # and Euler converges to it with order one
-    errs = [abs(simulate(p, law=law, dt=dt, tau_end=10.0).x_gh[0, 0, 0] - xg[0])
+    errs = [abs(simulate(p, law=law, integration=IntegrationOptions(dt=dt, tau_end=10.0)).x_gh[0, 0, 0] - xg[0])
             for dt in (1e-3, 1e-4)]
     assert errs[1] < errs[0] / 5

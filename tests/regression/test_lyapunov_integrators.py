@@ -6,8 +6,11 @@
   contradict (no ``+`` against ``-``; one known exception, where Euler at Δτ/8 is still locked) and the
   classes agree in at least 90 % of the cells (a cell
   within 2 SE of zero in one and just beyond it in the other is a borderline case, not a contradiction).
-  Fast: the quick plan (both presets); slow: the full plan.  The contact model is not compared: Euler
-  at Δτ/8 gives no defined exponent there (its switching logic fails the twin check in every cell).
+  Fast: the quick plan (both presets); slow: the full plan.
+* The contact model (where Euler at Δτ/8 defines no exponent: its switching logic fails the twin check in
+  every cell) and the deterministic model against the tolerance of ``accurate`` itself: rtol 1e-11 (the
+  default) against 1e-13, same seed: no opposite signs, the same cells defined (but for one in ten), and
+  every value defined in both within 2 combined SE.
 * A pair whose separation grows by orders of magnitude before the twin check fails is ``diverging``
   with its slope up to there as a lower bound, never ``nonlinear``.
 * ``accurate`` on the forced brake case of the Lyapunov study against scipy's solve_ivp with events.
@@ -15,15 +18,18 @@
 
 from __future__ import annotations
 
+import dataclasses
 import itertools
 import math
 import warnings
+from typing import Any
 
 import numpy as np
 import pytest
 
 from stochfric.oscillator.case import law_for
 from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.options import IntegrationOptions
 from stochfric.oscillator.reference import simulate_solve_ivp
 from stochfric.studies.config import LyapunovConfig
 from stochfric.studies.lyapunov import DIVERGING_GROWTH, LyapunovStudy, diverging_rate, linear_prefix, lyapunov_study
@@ -58,7 +64,7 @@ def _check_plan(quick: bool) -> None:
         fine = _classes(cfg, integrator="euler", dt=0.005 / 8)
         both = (acc != ".") & (fine != ".")
         contra = both & (((acc == "+") & (fine == "-")) | ((acc == "-") & (fine == "+")))
-        cells = list(itertools.product(cfg.forcing_q, cfg.normal_force_n, [round(e, 6) for e in cfg.eta]))
+        cells = list(itertools.product(cfg.forcing_q, cfg.normal_forces, [round(e, 6) for e in cfg.eta]))
         bad = {(cfg.preset, *cells[i]) for i in np.flatnonzero(contra)}
         assert bad <= EULER_NOT_CONVERGED, (bad, "".join(acc), "".join(fine))
         assert both.sum() >= 0.8 * acc.size, (cfg.preset, "".join(acc), "".join(fine))
@@ -73,6 +79,44 @@ def test_sign_of_lambda_agrees_between_accurate_and_euler_dt_over_8_quick_plan()
 @pytest.mark.slow
 def test_sign_of_lambda_agrees_between_accurate_and_euler_dt_over_8_full_plan() -> None:
     _check_plan(quick=False)
+
+
+def _exponents(cfg: LyapunovConfig, model: str, monkeypatch: pytest.MonkeyPatch, rtol: float
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """λ and SE of ``model`` with the ``accurate`` tolerances rtol (atol = rtol/100) in every study task."""
+    import stochfric.studies.tasks as tasks
+
+    def tightened(*args: Any, integration: Any = None, **kwargs: Any) -> Any:
+        return simulate(*args, integration=dataclasses.replace(integration, rtol=rtol, atol=rtol / 100),
+                        **kwargs)
+
+    monkeypatch.setattr(tasks, "simulate", tightened)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        s = lyapunov_study(cfg.model_copy(update={"models": (model,)})).to_json_dict()
+    return np.array(s["lyapunov"][model], float).ravel(), np.array(s["lyapunov_se"][model], float).ravel()
+
+
+def _check_tolerance(quick: bool, monkeypatch: pytest.MonkeyPatch) -> None:
+    for cfg in (c for c in plan(quick) if c.kind == "lyapunov"):
+        for model in ("contact", "deterministic"):
+            la, sa = _exponents(cfg, model, monkeypatch, 1e-11)
+            lb, sb = _exponents(cfg, model, monkeypatch, 1e-13)
+            a, b = sign_class(la, sa), sign_class(lb, sb)
+            both = (a != ".") & (b != ".")
+            assert not np.any(both & (((a == "+") & (b == "-")) | ((a == "-") & (b == "+")))), (a, b)
+            assert np.sum((a != ".") != (b != ".")) <= 0.1 * a.size, (cfg.preset, model, "".join(a), "".join(b))
+            se = np.hypot(np.nan_to_num(sa), np.nan_to_num(sb))
+            assert np.all(np.abs(la - lb)[both] <= 2 * se[both] + 1e-12), (cfg.preset, model, la, lb)
+
+
+def test_lambda_does_not_move_with_the_tolerance_of_accurate_quick_plan(monkeypatch: pytest.MonkeyPatch) -> None:
+    _check_tolerance(True, monkeypatch)
+
+
+@pytest.mark.slow
+def test_lambda_does_not_move_with_the_tolerance_of_accurate_full_plan(monkeypatch: pytest.MonkeyPatch) -> None:
+    _check_tolerance(False, monkeypatch)
 
 
 def test_a_separation_grown_by_orders_of_magnitude_is_diverging_with_a_lower_bound() -> None:
@@ -90,7 +134,7 @@ def test_a_separation_grown_by_orders_of_magnitude_is_diverging_with_a_lower_bou
 
 def test_the_study_reports_diverging_cells_with_a_finite_lower_bound() -> None:
     """Sheet, N = 1100 N, the quick plan's η: contact pairs that diverge by orders of magnitude (issue 19)."""
-    cfg = LyapunovConfig(preset="sheet", models=("contact",), normal_force_n=(1100.0,), forcing_q=(5e-5, 5e-4),
+    cfg = LyapunovConfig(preset="sheet", models=("contact",), normal_forces=(1100.0,), forcing_q=(5e-5, 5e-4),
                          eta="0.2:3:8", runs=4, seed=2013)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -115,11 +159,12 @@ def test_the_study_reports_diverging_cells_with_a_finite_lower_bound() -> None:
 
 def test_accurate_agrees_with_solve_ivp_on_the_forced_brake_case() -> None:
     """Brake, N = 4000 N, q = 5e-4, η = 1.2 (the cell where Euler at Δτ = 0.005 locks a spurious cycle)."""
-    st = LyapunovStudy(LyapunovConfig(preset="brake", normal_force_n=(4000.0,)))
+    st = LyapunovStudy(LyapunovConfig(preset="brake", normal_forces=(4000.0,)))
     p = st.setup.parameters(4000.0, st.damping_ratio, 5e-4 * st.setup.preset.stiffness, 1.2)
     law = law_for(st.setup.process, p)
     xs, ts = simulate_solve_ivp(p, law, (0.0, p.gamma0), 40.0)
-    r = simulate(p, law=law, x0=(0.0, p.gamma0), integrator="accurate", tau_end=40.0)
+    r = simulate(p, law=law, x0=(0.0, p.gamma0),
+                 integration=IntegrationOptions(integrator="accurate", tau_end=40.0))
     m = int(r.stick_count[0, 0])
     assert m == xs.size > 3
     scale = float(np.max(np.abs(xs)))

@@ -23,7 +23,7 @@ RTOL = 1e-6
 
 
 def test_damping_brake_5600() -> None:
-    s = damping_study(DampingConfig(normal_force_n=(5600.0,), runs=10, seed=0)).to_json_dict()
+    s = damping_study(DampingConfig(normal_forces=(5600.0,), runs=10, seed=0)).to_json_dict()
     assert s["d_hopf"][0] == pytest.approx(0.09461801564752419, rel=1e-9)
     assert s["d_max_deterministic"] == [PIN["damping"]["det"]]
     assert s["d_max_sample_extreme"]["white"][0] == PIN["damping"]["white"]
@@ -51,7 +51,7 @@ def test_forcing_and_lyapunov_brake() -> None:
     f = forcing_study(ForcingConfig(eta="0.5:2.5:5", runs=4, seed=2)).to_json_dict()
     np.testing.assert_allclose([f["sigma_ratio_median"]["5e-05"], f["sigma_ratio_median"]["0.0005"]],
                                PIN["forcing"], rtol=RTOL)
-    ly = lyapunov_study(LyapunovConfig(normal_force_n=(4000.0,), eta=(1.2, 2.0), runs=3, seed=2, tau_end=100.0))
+    ly = lyapunov_study(LyapunovConfig(normal_forces=(4000.0,), eta=(1.2, 2.0), runs=3, seed=2, tau_end=100.0))
     s = ly.to_json_dict()
     # issue 10: the numbers of (4.43)/(4.44) as printed are unchanged; since then they are kept under
     # `separation_index_443` (with a status: "nonlinear" where the twin check finds w not ∝ δ, here

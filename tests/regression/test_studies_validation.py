@@ -20,7 +20,7 @@ FORCES = (1800.0, 3000.0, 4400.0, 5600.0, 8000.0)
 
 
 def _det(**kw: object) -> DampingConfig:
-    base: dict[str, object] = {"models": ("deterministic",), "normal_force_n": FORCES, "damping_ratio": "0.01:0.25:49",
+    base: dict[str, object] = {"models": ("deterministic",), "normal_forces": FORCES, "damping_ratios": "0.01:0.25:49",
                                "runs": 1, "seed": 0}
     base.update(kw)
     return DampingConfig(**base)  # type: ignore[arg-type]
@@ -43,9 +43,9 @@ def test_dmax_above_hopf_boundary_on_the_map() -> None:
 
 def test_dmax_independent_of_dt_with_accurate() -> None:
     forces = (3000.0, 5600.0)
-    a = damping_study(_det(normal_force_n=forces, integrator="accurate", dt=0.005)).to_dataset()
-    b = damping_study(_det(normal_force_n=forces, integrator="accurate", dt=0.0025)).to_dataset()
-    e = damping_study(_det(normal_force_n=forces, integrator="euler", dt=0.005)).to_dataset()
+    a = damping_study(_det(normal_forces=forces, integrator="accurate", dt=0.005)).to_dataset()
+    b = damping_study(_det(normal_forces=forces, integrator="accurate", dt=0.0025)).to_dataset()
+    e = damping_study(_det(normal_forces=forces, integrator="euler", dt=0.005)).to_dataset()
     da = a["d_max_sample_extreme"].sel(model="deterministic").values
     np.testing.assert_array_equal(da, b["d_max_sample_extreme"].sel(model="deterministic").values)
     step = 0.005
@@ -53,7 +53,7 @@ def test_dmax_independent_of_dt_with_accurate() -> None:
 
 
 def test_probability_is_one_below_and_zero_far_above() -> None:
-    cfg = DampingConfig(normal_force_n=(5600.0,), damping_ratio=(0.06, 0.09, 0.3 * 0.99), runs=6, seed=3)
+    cfg = DampingConfig(normal_forces=(5600.0,), damping_ratios=(0.06, 0.09, 0.3 * 0.99), runs=6, seed=3)
     ds = damping_study(cfg).to_dataset()
     p = ds["stick_probability"].sel(normal_force_n=5600.0)
     for m in cfg.models:

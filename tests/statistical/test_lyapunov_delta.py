@@ -27,7 +27,7 @@ def summaries() -> dict[float, dict]:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for d in DELTAS:
-            cfg = LyapunovConfig(normal_force_n=(4000.0,), forcing_q=(5e-5, 5e-4), eta=(0.7, 1.2, 2.0), runs=10,
+            cfg = LyapunovConfig(normal_forces=(4000.0,), forcing_q=(5e-5, 5e-4), eta=(0.7, 1.2, 2.0), runs=10,
                                  seed=1, perturbation=d)
             out[d] = lyapunov_study(cfg).to_json_dict()
     return out

@@ -1,5 +1,5 @@
 """Statistical tier: the normals R_k of the in-kernel Box–Muller white-noise stream
-(``white_stream="philox-boxmuller"``: Philox4x32-10 + Box–Muller, stochfric.oscillator.philox)
+(``white_stream="philox-boxmuller"``: Philox4x32-10 + Box–Muller, stochfric.random.philox)
 at fixed keys.  The default stream's ziggurat normals: test_ziggurat_normals.py.
 
 Every bound is a multiple of the estimator's own standard error (4 SE, or the KS critical
@@ -15,8 +15,8 @@ import numpy as np
 from scipy import stats
 
 from normal_checks import assert_standard_normal  # tests/normal_checks.py (test helper)
-from stochfric.oscillator import philox as P
-from stochfric.oscillator import ziggurat as Z
+from stochfric.random import philox as P
+from stochfric.random import ziggurat as Z
 
 N = 400_000
 KEY = np.uint64(0x5EED5EED12345678)

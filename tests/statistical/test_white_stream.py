@@ -19,8 +19,9 @@ from scipy import stats
 
 from stochfric.oscillator.friction_laws import pressure_law
 from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.options import ExecutionOptions, IntegrationOptions, NoiseOptions
 from stochfric.oscillator.parameters import PhysicalParameters
-from stochfric.process.presets import brake
+from stochfric.oscillator.presets import brake
 
 RUNS = 1500
 
@@ -29,11 +30,11 @@ def _second_xgh(stream: str, force: float, seed: int) -> np.ndarray:
     pre = brake()
     p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
                            normal_force=force, damping_ratio=5e-6,
-                           contact_area=pre.contact_area_m2).to_dimensionless()
-    assert p.pressure is not None
-    r = simulate(p, model="white", law=pressure_law(pre.process.mean(p.pressure)),
-                 process=pre.process, runs=RUNS, seed=seed, tau_end=14.0, white_stream=stream,
-                 workers=1)
+                           contact_area=pre.contact_area).to_dimensionless()
+    assert p.pressure_pa is not None
+    r = simulate(p, model="white", law=pressure_law(pre.process.mean(p.pressure_pa)), process=pre.process, runs=RUNS,
+                 seed=seed, noise=NoiseOptions(white_stream=stream), integration=IntegrationOptions(tau_end=14.0),
+                 execution=ExecutionOptions(workers=1))
     x = r.x_gh[0, :, 1]  # second X_gh of each run (the first follows the start-up transient)
     assert np.isfinite(x).all()
     return x

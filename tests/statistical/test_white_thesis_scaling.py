@@ -17,8 +17,9 @@ import math
 import numpy as np
 import pytest
 
+from stochfric.oscillator.case import case_setup, law_for
 from stochfric.oscillator.integrate import simulate
-from stochfric.studies.common import law_for, make_setup
+from stochfric.oscillator.options import ExecutionOptions, IntegrationOptions, NoiseOptions
 from stochfric.studies.stats import RatioEstimate, std_ratio
 
 RUNS = 1000
@@ -26,10 +27,11 @@ TAU_END = 12.0  # the first slip→stick transition lies near τ ≈ 6-9 for all
 
 
 def _first_x_gh(preset: str, forces: tuple[float, ...], mode: str, seed: int, dt: float) -> list[list[np.ndarray]]:
-    st = make_setup(preset, white_intensity=mode, dt=dt)
+    st = case_setup(preset, white_intensity=mode, dt=dt)
     ps = [st.parameters(f, 5e-6) for f in forces]
     res = simulate(ps, model="white", law=lambda p: law_for(st.process, p), process=st.process, runs=RUNS,
-                   seed=seed, white_increment=st.white_increment, tau_end=TAU_END, dt=dt, workers=2)
+                   seed=seed, noise=NoiseOptions(white_increment=st.white_increment),
+                   integration=IntegrationOptions(tau_end=TAU_END, dt=dt), execution=ExecutionOptions(workers=2))
     assert np.all(np.isfinite(res.x_gh[:, :, 0])), "every run must reach its first stick phase"
     return [[res.x_gh[i, r, :1] for r in range(RUNS)] for i in range(len(forces))]
 
@@ -43,7 +45,7 @@ def test_thesis_mode_scales_sigma_by_sqrt_omega0_dt(preset: str, forces: tuple[f
     dt = 0.005
     ito = _first_x_gh(preset, forces, "sigma_mu", seed=11, dt=dt)
     thesis = _first_x_gh(preset, forces, "thesis", seed=12, dt=dt)
-    k = math.sqrt(make_setup(preset).preset.omega0 * dt)
+    k = math.sqrt(case_setup(preset).preset.omega0 * dt)
     for i, f in enumerate(forces):
         r = _ratio(thesis[i], ito[i])
         assert abs(r.value - k) < 4 * r.se_delta, (preset, f, r, k)

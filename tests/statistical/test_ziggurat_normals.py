@@ -1,5 +1,5 @@
 """Statistical tier: the normals R_k of the default white-noise stream (Philox4x32-10 words
-through the 1024-layer ziggurat, stochfric.oscillator.ziggurat) at fixed keys.
+through the 1024-layer ziggurat, stochfric.random.ziggurat) at fixed keys.
 
 Every bound is a multiple of the estimator's own standard error (4 SE) or a critical value at
 α = 1e-4, so with the fixed keys the tests are deterministic.  The layer test is the one a
@@ -17,7 +17,7 @@ import numpy as np
 from scipy import stats
 
 from normal_checks import assert_standard_normal  # tests/normal_checks.py (test helper)
-from stochfric.oscillator import ziggurat as Z
+from stochfric.random import ziggurat as Z
 
 N = 2_000_000
 KEY = np.uint64(0x5EED5EED12345678)

@@ -1,9 +1,12 @@
-"""Data flows one way (issue 12): surface → contact → process → oscillator → studies → report → cli.
+"""Data flows one way: surface → contact → process → oscillator → studies → report → cli.
 
-Every ``import`` in the package (module level and inside functions, absolute and relative) is
-read from the source with :mod:`ast`; a module may import its own layer or a lower one, never a
-higher one.  The foundation modules (units, random, validation, io_utils, plotting) sit below
-every layer and import none of them.
+Every import of the package is read from the source with :mod:`ast` and a module may import its own
+layer or a lower one, never a higher one.  Read as imports: ``import`` and ``from … import`` statements
+(module level and inside functions, absolute and relative; ``from X import name`` is an import of
+``X.name`` where that is a module or package, and ``from stochfric import name`` / ``stochfric.name``
+of the home module of the API name), and ``importlib.import_module`` / ``__import__`` calls, whose
+names must be string literals.  The foundation modules (units, random, validation, io_utils,
+plotting, progress) sit below every layer and import none of them.
 """
 
 from __future__ import annotations
@@ -28,6 +31,17 @@ LAYERS: dict[str, int] = {
     "cli": 7, "__main__": 7,
 }  # fmt: skip
 
+#: The one dynamic import whose name is a variable: ``stochfric.__getattr__`` imports the home module
+#: of an API name on first use.  Those names are resolved where they are used instead.
+FACADE = "__init__.py"
+
+#: The calls read as imports.
+_IMPORT_CALLS = ("import_module", "__import__")
+
+
+class UncheckableImport(AssertionError):
+    """A dynamic import whose module name is no string literal (the checker cannot see its layer)."""
+
 
 def _layer_of(module: str) -> int:
     """Layer of a dotted module name inside stochfric (``stochfric.process.model`` → 3)."""
@@ -41,22 +55,133 @@ def _layer_of(module: str) -> int:
     return LAYERS[name]
 
 
+def _api(root: Path) -> dict[str, str]:
+    """The package's API: name → home module (the literal dict ``API`` of ``root/__init__.py``)."""
+    init = root / "__init__.py"
+    if not init.is_file():
+        return {}
+    target: ast.expr
+    for node in ast.parse(init.read_text(encoding="utf-8")).body:
+        if isinstance(node, ast.AnnAssign) and node.value is not None:
+            target, value = node.target, node.value
+        elif isinstance(node, ast.Assign) and len(node.targets) == 1:
+            target, value = node.targets[0], node.value
+        else:
+            continue
+        if isinstance(target, ast.Name) and target.id == "API":
+            return dict(ast.literal_eval(value))
+    return {}
+
+
+class _Reader:
+    """The stochfric imports of one file of the package under ``root``."""
+
+    def __init__(self, path: Path, root: Path) -> None:
+        self.path = path
+        self.root = root
+        self.package = list(path.relative_to(root.parent).with_suffix("").parts[:-1])
+        self.api = _api(root)
+        self.found: list[tuple[str, int]] = []
+
+    def _is_module(self, dotted: str) -> bool:
+        path = self.root.parent.joinpath(*dotted.split("."))
+        return (path / "__init__.py").is_file() or path.with_suffix(".py").is_file()
+
+    def _member(self, module: str, name: str) -> str:
+        """What ``from module import name`` imports: the sub-module, the API name's home, or ``module``."""
+        if self._is_module(f"{module}.{name}"):
+            return f"{module}.{name}"
+        if module == self.root.name and name in self.api:
+            return self.api[name]
+        return module
+
+    def _absolute(self, name: str, level: int, package: list[str], line: int) -> str:
+        if level == 0:
+            return name
+        if level > len(package):
+            raise UncheckableImport(f"{self._where(line)}: relative import beyond the top-level package")
+        return ".".join([*package[: len(package) - level + 1], *([name] if name else [])])
+
+    def _where(self, line: int) -> str:
+        return f"{self.path.relative_to(self.root.parent)}:{line}"
+
+    def _add(self, module: str, line: int) -> None:
+        if module.split(".")[0] == self.root.name:
+            self.found.append((module, line))
+
+    def read(self) -> list[tuple[str, int]]:
+        tree = ast.parse(self.path.read_text(encoding="utf-8"))
+        aliases = {"import_module", "__import__"}
+        packages: set[str] = set()  # names bound to the package itself (``import stochfric as sf``)
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Import):
+                for a in node.names:
+                    self._add(a.name, node.lineno)
+                    if a.name.split(".")[0] == self.root.name and (a.asname is None or a.name == self.root.name):
+                        packages.add(a.asname or self.root.name)
+            elif isinstance(node, ast.ImportFrom):
+                module = self._absolute(node.module or "", node.level, self.package, node.lineno)
+                if module == "importlib":
+                    aliases |= {a.asname for a in node.names if a.name == "import_module" and a.asname}
+                for a in node.names:
+                    self._add(self._member(module, a.name), node.lineno)
+        for node in ast.walk(tree):
+            if isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name) and node.value.id in packages:
+                self._add(self._member(self.root.name, node.attr), node.lineno)
+            elif isinstance(node, ast.Call):
+                func = node.func
+                called = func.attr if isinstance(func, ast.Attribute) else func.id if isinstance(func, ast.Name) else ""
+                if called in _IMPORT_CALLS or (isinstance(func, ast.Name) and called in aliases):
+                    self._dynamic(node, called)
+        return self.found
+
+    def _dynamic(self, call: ast.Call, called: str) -> None:
+        """``import_module(name, package)`` or ``__import__(name, globals, locals, fromlist, level)``."""
+        args: dict[int | str, ast.expr] = dict(enumerate(call.args))
+        args.update({k.arg: k.value for k in call.keywords if k.arg})
+        name = args.get(0, args.get("name"))
+        if not (isinstance(name, ast.Constant) and isinstance(name.value, str)):
+            if self.path == self.root / FACADE:
+                return
+            raise UncheckableImport(
+                f"{self._where(call.lineno)}: {called}() with a name that is no literal; the layering "
+                "test cannot see what it imports: import it by a literal name (or a plain import statement)"
+            )
+        if called == "__import__":
+            level_node = args.get(4, args.get("level"))
+            level = level_node.value if isinstance(level_node, ast.Constant) else 0 if level_node is None else -1
+            if not isinstance(level, int) or level < 0:
+                raise UncheckableImport(f"{self._where(call.lineno)}: __import__ with a level that is no literal")
+            module = self._absolute(name.value, level, self.package, call.lineno)
+            self._add(module, call.lineno)
+            fromlist = args.get(3, args.get("fromlist"))
+            if fromlist is not None:
+                for member in ast.literal_eval(fromlist):
+                    self._add(self._member(module, member), call.lineno)
+            return
+        relative = name.value[: len(name.value) - len(name.value.lstrip("."))]
+        self._add(self._absolute(name.value[len(relative):], len(relative), self._package_of(args, call), call.lineno),
+                  call.lineno)
+
+    def _package_of(self, args: dict[int | str, ast.expr], call: ast.Call) -> list[str]:
+        """The anchor of a relative ``import_module``: a literal or ``__package__`` (this file's package)."""
+        package = args.get(1, args.get("package"))
+        if package is None or (isinstance(package, ast.Name) and package.id == "__package__"):
+            return self.package
+        if isinstance(package, ast.Constant) and isinstance(package.value, str):
+            return package.value.split(".")
+        raise UncheckableImport(f"{self._where(call.lineno)}: import_module with a package that is no literal")
+
+
 def _imports(path: Path, root: Path = PACKAGE) -> list[tuple[str, int]]:
-    """(imported stochfric module, line) for every import statement of the file under ``root``."""
-    package = list(path.relative_to(root.parent).with_suffix("").parts[:-1])
-    out: list[tuple[str, int]] = []
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
-        if isinstance(node, ast.Import):
-            out += [(a.name, node.lineno) for a in node.names if a.name.split(".")[0] == "stochfric"]
-        elif isinstance(node, ast.ImportFrom):
-            if node.level:
-                base = package[: len(package) - node.level + 1]
-                mod = ".".join([*base, node.module] if node.module else base)
-            else:
-                mod = node.module or ""
-            if mod.split(".")[0] == "stochfric":
-                out.append((mod, node.lineno))
-    return out
+    """(imported stochfric module, line) for every import of the file under ``root``."""
+    return _Reader(path, root).read()
+
+
+def _upward(path: Path, root: Path = PACKAGE) -> list[str]:
+    """The imports of ``path`` from a higher layer than its own, as ``line N: module``."""
+    own = _layer_of(".".join(path.relative_to(root.parent).with_suffix("").parts))
+    return [f"line {line}: {mod}" for mod, line in _imports(path, root) if _layer_of(mod) > own]
 
 
 MODULES = sorted(p for p in PACKAGE.rglob("*.py"))
@@ -64,18 +189,80 @@ MODULES = sorted(p for p in PACKAGE.rglob("*.py"))
 
 @pytest.mark.parametrize("path", MODULES, ids=lambda p: str(p.relative_to(PACKAGE)))
 def test_no_module_imports_a_higher_layer(path: Path) -> None:
-    own = _layer_of(".".join(path.relative_to(PACKAGE.parent).with_suffix("").parts))
-    upward = [
-        f"line {line}: {mod}" for mod, line in _imports(path) if _layer_of(mod) > own
-    ]
-    assert not upward, f"{path.relative_to(PACKAGE)} (layer {own}) imports a higher layer: {upward}"
+    upward = _upward(path)
+    assert not upward, f"{path.relative_to(PACKAGE)} imports a higher layer: {upward}"
+
+
+def _tree(tmp_path: Path) -> Path:
+    """A package ``stochfric`` with the layers' sub-packages and an API facade, under ``tmp_path``."""
+    root = tmp_path / "stochfric"
+    for sub in ("surface", "contact", "process", "oscillator", "studies", "report", "cli"):
+        (root / sub).mkdir(parents=True)
+        (root / sub / "__init__.py").write_text("", encoding="utf-8")
+    (root / "units.py").write_text("", encoding="utf-8")
+    (root / "__init__.py").write_text(
+        'import importlib\n__version__ = "0"\nAPI = {"analyse": "stochfric.process.statistics"}\n\n'
+        "def __getattr__(name):\n    return getattr(importlib.import_module(API[name]), name)\n",
+        encoding="utf-8",
+    )
+    return root
+
+
+def _write(root: Path, where: str, source: str) -> Path:
+    path = root / where
+    path.write_text(source, encoding="utf-8")
+    return path
 
 
 def test_the_checker_sees_relative_and_local_imports(tmp_path: Path) -> None:
-    src = tmp_path / "stochfric" / "surface"
-    src.mkdir(parents=True)
-    f = src / "x.py"
-    f.write_text("def g():\n    from ..report import html\n    import stochfric.studies.base\n", encoding="utf-8")
-    mods = sorted(m for m, _ in _imports(f, tmp_path / "stochfric"))
-    assert mods == ["stochfric.report", "stochfric.studies.base"]
+    root = _tree(tmp_path)
+    f = _write(root, "surface/x.py", "def g():\n    from ..report import html\n    import stochfric.studies.base\n")
+    assert sorted(m for m, _ in _imports(f, root)) == ["stochfric.report", "stochfric.studies.base"]
     assert _layer_of("stochfric.report") > _layer_of("stochfric.surface.x")
+
+
+@pytest.mark.parametrize(
+    ("where", "source", "module"),
+    [
+        ("surface/x.py", "from .. import report\n", "stochfric.report"),
+        ("process/x.py", "from stochfric import cli\n", "stochfric.cli"),
+        ("studies/x.py", 'import importlib\nimportlib.import_module("stochfric.report")\n', "stochfric.report"),
+        ("studies/x.py", 'from importlib import import_module as im\nim("..report", __package__)\n',
+         "stochfric.report"),
+        ("studies/x.py", 'import importlib\nimportlib.import_module(".cli", "stochfric")\n', "stochfric.cli"),
+        ("contact/x.py", '__import__("stochfric", fromlist=["studies"])\n', "stochfric.studies"),
+        ("contact/x.py", '__import__("report", globals(), None, [], 2)\n', "stochfric.report"),
+        ("surface/x.py", "from stochfric import analyse\n", "stochfric.process.statistics"),
+        ("surface/x.py", "import stochfric as sf\n\ndef f():\n    return sf.analyse\n", "stochfric.process.statistics"),
+    ],
+)
+def test_the_checker_fails_on_an_upward_import(tmp_path: Path, where: str, source: str, module: str) -> None:
+    root = _tree(tmp_path)
+    path = _write(root, where, source)
+    assert module in [m for m, _ in _imports(path, root)]
+    assert _upward(path, root), f"{where}: {source!r} passed the checker"
+
+
+@pytest.mark.parametrize(
+    "source",
+    [
+        "import importlib\n\ndef f(name):\n    return importlib.import_module(name)\n",
+        'import importlib\n\ndef f(p):\n    return importlib.import_module(".x", p)\n',
+        "def f(name):\n    return __import__(name)\n",
+    ],
+)
+def test_the_checker_refuses_a_dynamic_import_it_cannot_read(tmp_path: Path, source: str) -> None:
+    path = _write(_tree(tmp_path), "surface/x.py", source)
+    with pytest.raises(UncheckableImport, match="no literal"):
+        _imports(path, tmp_path / "stochfric")
+
+
+def test_the_checker_passes_imports_of_the_same_or_a_lower_layer(tmp_path: Path) -> None:
+    root = _tree(tmp_path)
+    path = _write(root, "process/x.py", "from .. import units, surface\nfrom stochfric import __version__\n"
+                  'import importlib\nimportlib.import_module("..contact", __package__)\n')
+    assert sorted(m for m, _ in _imports(path, root)) == [
+        "stochfric", "stochfric.contact", "stochfric.surface", "stochfric.units"
+    ]
+    assert not _upward(path, root)
+    assert not _upward(root / "__init__.py", root)  # the facade's variable name is resolved where it is used

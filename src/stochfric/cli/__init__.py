@@ -11,14 +11,24 @@ prints one line instead of an import traceback.  ``app`` is imported on first us
 
 from __future__ import annotations
 
+import os
 import sys
 from typing import Any
+
+from ..vector_width import ENV, configure
 
 __all__ = ["app", "main"]
 
 
 def main() -> None:
-    """Console-script entry point (``stochfric``)."""
+    """Console-script entry point (``stochfric``).  With ``STOCHFRIC_VECTOR_WIDTH`` set it first applies
+    that SIMD width (:func:`stochfric.vector_width.configure`); a bad value ends in one line, status 2."""
+    if os.environ.get(ENV):
+        try:
+            configure()
+        except ValueError as exc:
+            sys.stderr.write(f"error: {exc}\n")
+            raise SystemExit(2) from None
     try:
         from .application import main as run
     except KeyboardInterrupt:

@@ -1,5 +1,5 @@
 """``python -m stochfric.cli``."""
 
-from .application import main
+from . import main
 
 main()

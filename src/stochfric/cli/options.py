@@ -1,13 +1,19 @@
-"""What the commands share: the choices offered on the command line and the one-line error exit.
+"""What the commands share: the choices offered on the command line, the flags of the library's
+field names, and the one-line error exit.
 
-Each choice is one :class:`~enum.StrEnum` (typer shows its values and refuses others); the values
-are the names the library uses (glossary: docs/glossary.md).
+Each choice is one :class:`~enum.StrEnum` (typer shows its values and refuses others).  The choices
+of a simulation and a study are the library's own (:mod:`stochfric.oscillator.options`,
+:class:`~stochfric.oscillator.presets.PresetName`, :class:`~stochfric.process.presets.ProcessLevel`,
+:class:`~stochfric.process.model_base.SigmaZetaRule`); the ones below belong to the command line's
+own steps.  Errors of the library name their inputs by field name in backquotes (```normal_force```);
+:func:`in_flags` shows the flag instead (one table, :data:`FLAGS`).
 """
 
 from __future__ import annotations
 
 import functools
 import inspect
+import re
 import typing
 from collections.abc import Callable
 from enum import StrEnum
@@ -15,29 +21,20 @@ from typing import Any, TypeVar
 
 import typer
 
+from ..oscillator.friction_laws import FRICTION_LAWS
+
 F = TypeVar("F", bound=Callable[..., Any])
 
 #: Default of a command parameter that :func:`option_group` fills (never seen by typer).
 GROUP: Any = None
 
 __all__ = [
-    "GROUP", "AmplitudeChoice", "IntegratorChoice", "LawChoice", "MethodChoice", "ModelChoice", "PathChoice",
-    "PresetChoice", "PressureRuleChoice", "ProcessLevelChoice", "SigmaZetaChoice", "SummitRuleChoice",
-    "SurrogateChoice", "VarianceRuleChoice", "WhiteIntensityChoice", "WhiteStreamChoice", "fail",
-    "option_group",
+    "FLAGS", "GROUP", "AmplitudeChoice", "LawChoice", "MethodChoice", "PressureRuleChoice", "SummitRuleChoice",
+    "SurrogateChoice", "VarianceRuleChoice", "fail", "flag_of", "in_flags", "option_group",
 ]  # fmt: skip
 
-# simulate (method §5)
-ModelChoice = StrEnum("ModelChoice", "deterministic white contact")
-LawChoice = StrEnum("LawChoice", [("I", "I"), ("II", "II"), ("III", "III"), ("pressure", "pressure")])
-IntegratorChoice = StrEnum("IntegratorChoice", "euler accurate milstein")
-PresetChoice = StrEnum("PresetChoice", "brake sheet")
-WhiteIntensityChoice = StrEnum("WhiteIntensityChoice", "sigma_mu spectral_level thesis")
-ProcessLevelChoice = StrEnum("ProcessLevelChoice", "sigma_mu psd_level")
-PathChoice = StrEnum("PathChoice", "mass relative position")
-WhiteStreamChoice = StrEnum(
-    "WhiteStreamChoice", [("philox-ziggurat", "philox-ziggurat"), ("philox-boxmuller", "philox-boxmuller"),
-                          ("pcg64", "pcg64")])  # oscillator.integrate.WHITE_STREAMS
+# simulate (method §5): the named friction laws of oscillator.friction_laws
+LawChoice = StrEnum("LawChoice", [(name, name) for name in FRICTION_LAWS])  # type: ignore[misc]
 # surface, contact (method §1–§2)
 SummitRuleChoice = StrEnum("SummitRuleChoice", [("thesis", "thesis"), ("eight", "8-neighbour")])
 MethodChoice = StrEnum("MethodChoice", "asperity halfspace")
@@ -46,7 +43,24 @@ SurrogateChoice = StrEnum("SurrogateChoice", "auto phase iaaft quilt")  # proces
 AmplitudeChoice = StrEnum("AmplitudeChoice", "tukey hann raw")  # surface.synthesis.amplitude_spectrum
 PressureRuleChoice = StrEnum("PressureRuleChoice", "nearest interpolate")  # spectrum between analysed p
 VarianceRuleChoice = StrEnum("VarianceRuleChoice", "sigma_mu tabulated")
-SigmaZetaChoice = StrEnum("SigmaZetaChoice", "sigma_mu spectral_level")
+
+#: The flag of each library field whose flag is not ``--`` + the field name with dashes (the case of
+#: ``simulate``: :mod:`stochfric.oscillator.case`; the study configs: :mod:`stochfric.studies.config`).
+FLAGS = {
+    "process_file": "--process", "normal_forces": "--normal-force",
+    "damping_ratios": "--damping-ratio", "phase_normal_force": "--phase-force",
+    "phase_damping_ratios": "--phase-damping", "forcing_q": "--q",
+}
+
+
+def flag_of(field: str) -> str:
+    """The command-line flag that fills the library field ``field``."""
+    return FLAGS.get(field, "--" + field.replace("_", "-"))
+
+
+def in_flags(message: str) -> str:
+    """``message`` with every field name in backquotes (```normal_force```) shown as its flag."""
+    return re.sub(r"`([A-Za-z_][A-Za-z0-9_]*)`", lambda m: flag_of(m.group(1)), message)
 
 
 def write_failed(exc: OSError) -> typer.Exit:

@@ -15,6 +15,7 @@ from pathlib import Path
 from typing import Annotated, Any
 
 import numpy as np
+import numpy.typing as npt
 import typer
 from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
@@ -23,7 +24,6 @@ from stochfric.cli.options import (
     GROUP,
     AmplitudeChoice,
     PressureRuleChoice,
-    SigmaZetaChoice,
     SurrogateChoice,
     VarianceRuleChoice,
     fail,
@@ -46,7 +46,8 @@ from stochfric.process.ensemble import default_window_shift_points
 from stochfric.process.figures import plot_surrogates, write_process_figures
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.memory import iaaft_cost_seconds
-from stochfric.process.statistics import AnalysisConfig, analyse
+from stochfric.process.model_base import SigmaZetaRule
+from stochfric.process.statistics import AnalysisConfig, StatisticalContactAnalysis, analyse
 from stochfric.surface.grid import crop_surface, resample_surface
 from stochfric.surface.io import Surface, SurfaceError
 from stochfric.surface.quilting import quilt_applicable, quilt_heights
@@ -146,8 +147,8 @@ def friction_process_command(
         VarianceRuleChoice, typer.Option("--variance-rule", help="sigma_mu (scale to the σ_μ fit) or tabulated.")
     ] = VarianceRuleChoice.sigma_mu,
     sigma_zeta_rule: Annotated[
-        SigmaZetaChoice, typer.Option("--sigma-zeta-rule", help="sigma_mu (thesis) or spectral_level (S0/2).")
-    ] = SigmaZetaChoice.sigma_mu,
+        SigmaZetaRule, typer.Option("--sigma-zeta-rule", help="sigma_mu (thesis) or spectral_level (S0/2).")
+    ] = SigmaZetaRule.SIGMA_MU,
     seed: Annotated[int | None, typer.Option("--seed", min=0, help="Root seed (recorded).")] = None,
     out: Annotated[
         Path | None,
@@ -161,60 +162,28 @@ def friction_process_command(
 ) -> None:
     """Statistical contact analysis of similar surfaces → friction-process model (method §3–§4)."""
     try:
-        if plot and out is None:
-            raise ContactError("--plot writes into the output directory: give --out DIR")
-        if out is not None:  # before any work: a file or an unwritable place ends the command now
-            check_output_path(out, option="--out")
+        _check_out(out, plot=plot)
         mat = load_material(material)
         approach = parse_approach_um(approach_um) if approach_um is not None else None
         scans, records, warnings = _load_scans(files, surf, resample=resample)
-        coarse = scans[0]
-        summit_sets = [summits_of(s, rule=surf.summit_rule) for s in scans]
-        cs = min(summit_sets, key=lambda x: x.count)
-        if cs.count < 2:
-            raise ContactError(f"the prepared surface has {cs.count} summit(s); at least 2 are needed")
-        u = (default_approach_m(cs, rule=approach_rule.value, max_area_fraction=max_area_fraction)
-             if approach is None else approach)
-        ny = coarse.nb_grid_pts[1]
-        dy = coarse.grid_spacing_m[1]
-        if window_shift_um is None:
-            shift = default_window_shift_points(ny)
-        else:
-            if not (math.isfinite(window_shift_um) and window_shift_um > 0):
-                raise ContactError(f"--window-shift-um must be > 0, got {window_shift_um!r}")
-            shift = max(1, round(window_shift_um * MICROMETRE / dy))
-        if shift >= ny * length_factor - ny:
-            raise ContactError(
-                f"the window shift ({shift} points) leaves fewer than two windows on a long surface of "
-                f"{length_factor} × {ny} points; use a smaller --window-shift-um or a larger --length-factor"
-            )
+        u = _approach(scans, surf.summit_rule, approach, approach_rule, max_area_fraction)
         cfg = AnalysisConfig(
             realizations=realizations, long_surfaces=long_surfaces, length_factor=length_factor,
-            window_shift_points=shift, surrogate=surrogate.value, amplitude=amplitude.value,
-            summit_rule=surf.summit_rule, max_area_fraction=max_area_fraction,
-            pressure_rule=pressure_rule.value, variance_rule=variance_rule.value,
+            window_shift_points=_window_shift_points(scans[0], window_shift_um, length_factor),
+            surrogate=surrogate.value, amplitude=amplitude.value, summit_rule=surf.summit_rule,
+            max_area_fraction=max_area_fraction, pressure_rule=pressure_rule.value, variance_rule=variance_rule.value,
             sigma_zeta_rule=sigma_zeta_rule.value, window_tiles=window_tiles, seed=seed,
         )  # fmt: skip
         if not as_json:
-            _announce_cost(coarse, cfg)
-        name = "+".join(Path(r["file"]).stem for r in records)
+            _announce_cost(scans[0], cfg)
         if workers is not None and workers < 1:
             raise ContactError(f"--workers must be >= 1, got {workers}")
+        name = "+".join(Path(r["file"]).stem for r in records)
         analysis = _run(scans, mat, u, cfg, name, show_progress=not as_json, workers=workers)
-        payload = analysis.to_json_dict()
-        payload["warnings"] = warnings + payload["warnings"] + [r.to_dict() for r in analysis.credibility.reasons]
-        payload["preparation"] = records[0] if len(records) == 1 else {"scans": records}
-        payload["approach_rule"] = approach_rule.value if approach is None else "explicit"
-        credible = analysis.credibility.credible
-        if out is not None:
-            if credible or accept_not_credible:
-                payload["model_file"] = str(analysis.model.save(_mkdir(out) / MODEL_FILE))
-            payload["statistics_file"] = str(analysis.to_netcdf(_mkdir(out) / STATISTICS_FILE))
-        if plot and out is not None:
-            payload["figures"] = [str(p) for p in _figures(analysis, coarse.heights_m, out / "figures", seed)]
-    except _INPUT_ERRORS as exc:
-        raise fail(str(exc)) from None
-    except ValueError as exc:  # e.g. a fit without enough points
+        payload = _payload(analysis, warnings, records, approach_rule.value if approach is None else "explicit")
+        payload.update(_write(analysis, out, plot=plot, model=analysis.credibility.credible or accept_not_credible,
+                              heights=scans[0].heights_m, seed=seed))
+    except (*_INPUT_ERRORS, ValueError) as exc:  # ValueError: e.g. a fit without enough points
         raise fail(str(exc)) from None
     except OSError as exc:  # disk full while writing: the previous files stay intact
         raise write_failed(exc) from None
@@ -224,15 +193,92 @@ def friction_process_command(
         typer.echo(json.dumps(_clean(payload), indent=1, allow_nan=False))
     else:
         _print(payload, analysis)
-    if not credible:
-        if accept_not_credible:
-            typer.echo("warning: [not-credible-accepted] the model was written with --accept-not-credible and is "
-                       "stamped so; simulate and the studies warn when they read it", err=True)
-        else:
-            typer.echo(
-                f"error: not credible ({', '.join(analysis.credibility.codes())}): no model file written; fix the "
-                "cause named above, or give --accept-not-credible to write a stamped model", err=True)
-            raise typer.Exit(code=NOT_CREDIBLE_EXIT)
+    _gate(analysis, accept_not_credible=accept_not_credible)
+
+
+def _payload(
+    analysis: StatisticalContactAnalysis, warnings: list[dict[str, Any]], records: list[dict[str, Any]],
+    approach_rule: str,
+) -> dict[str, Any]:
+    """The JSON summary: the analysis's, with the reading's and the gate's warnings, the preparation
+    record(s) and the approach rule."""
+    payload = analysis.to_json_dict()
+    payload["warnings"] = warnings + payload["warnings"] + [r.to_dict() for r in analysis.credibility.reasons]
+    payload["preparation"] = records[0] if len(records) == 1 else {"scans": records}
+    payload["approach_rule"] = approach_rule
+    return payload
+
+
+def _approach(
+    scans: list[Surface], rule: str, approach: npt.NDArray[np.float64] | None, approach_rule: ApproachRuleChoice,
+    max_area_fraction: float,
+) -> npt.NDArray[np.float64]:
+    """The approaches u [m]: ``approach`` or the default range by ``approach_rule`` on the scan with
+    the fewest summits (at least 2 needed)."""
+    summit_sets = [summits_of(s, rule=rule) for s in scans]
+    fewest = min(summit_sets, key=lambda x: x.count)
+    if fewest.count < 2:
+        raise ContactError(f"the prepared surface has {fewest.count} summit(s); at least 2 are needed")
+    if approach is not None:
+        return approach
+    return default_approach_m(fewest, rule=approach_rule.value, max_area_fraction=max_area_fraction)
+
+
+def _window_shift_points(surface: Surface, window_shift_um: float | None, length_factor: int) -> int:
+    """a_y in grid points of y (default: the thesis's 0.3 of 5.3 mm of the window length); at least
+    two windows must fit on a long surface."""
+    ny = surface.nb_grid_pts[1]
+    if window_shift_um is None:
+        shift = default_window_shift_points(ny)
+    else:
+        if not (math.isfinite(window_shift_um) and window_shift_um > 0):
+            raise ContactError(f"--window-shift-um must be > 0, got {window_shift_um!r}")
+        shift = max(1, round(window_shift_um * MICROMETRE / surface.grid_spacing_m[1]))
+    if shift >= ny * length_factor - ny:
+        raise ContactError(
+            f"the window shift ({shift} points) leaves fewer than two windows on a long surface of "
+            f"{length_factor} × {ny} points; use a smaller --window-shift-um or a larger --length-factor"
+        )
+    return shift
+
+
+def _check_out(out: Path | None, *, plot: bool) -> None:
+    """Before any work: ``--plot`` needs ``--out``; a file or an unwritable place ends the command now."""
+    if plot and out is None:
+        raise ContactError("--plot writes into the output directory: give --out DIR")
+    if out is not None:
+        check_output_path(out, option="--out")
+
+
+def _write(
+    analysis: StatisticalContactAnalysis, out: Path | None, *, plot: bool, model: bool,
+    heights: npt.NDArray[np.float64], seed: int | None,
+) -> dict[str, Any]:
+    """Write the model file (when ``model``), the statistics NetCDF and with ``plot`` the figures into
+    ``out`` (nothing without ``out``); their paths, keyed as in the JSON."""
+    written: dict[str, Any] = {}
+    if out is None:
+        return written
+    if model:
+        written["model_file"] = str(analysis.model.save(_mkdir(out) / MODEL_FILE))
+    written["statistics_file"] = str(analysis.to_netcdf(_mkdir(out) / STATISTICS_FILE))
+    if plot:
+        written["figures"] = [str(p) for p in _figures(analysis, heights, out / "figures", seed)]
+    return written
+
+
+def _gate(analysis: StatisticalContactAnalysis, *, accept_not_credible: bool) -> None:
+    """A not-credible analysis: a warning when it was accepted, else one line and exit status 3."""
+    if analysis.credibility.credible:
+        return
+    if accept_not_credible:
+        typer.echo("warning: [not-credible-accepted] the model was written with --accept-not-credible and is "
+                   "stamped so; simulate and the studies warn when they read it", err=True)
+        return
+    typer.echo(
+        f"error: not credible ({', '.join(analysis.credibility.codes())}): no model file written; fix the "
+        "cause named above, or give --accept-not-credible to write a stamped model", err=True)
+    raise typer.Exit(code=NOT_CREDIBLE_EXIT)
 
 
 def _echo_checks(payload: dict[str, Any]) -> None:
@@ -379,6 +425,23 @@ def _print(payload: dict[str, Any], analysis: Any) -> None:
             f"fit {label:<5} a = {f['a']:.5g} ± {_num(f['a_se'], '.2g')}, b = {f['b']:.4g} ± "
             f"{_num(f['b_se'], '.2g')}, c = {f['c']:.5g} ± {_num(f['c_se'], '.2g')} ({f['n_points']} points)"
         )
+    _print_checks(payload)
+    for key in ("model_file", "statistics_file"):
+        if key in payload:
+            typer.echo(f"wrote     {payload[key]}")
+    for f in payload.get("figures", []):
+        typer.echo(f"figure    {f}")
+    for n in payload.get("notes", []):
+        typer.echo(f"note      {n}")
+    cr = payload["credibility"]
+    typer.echo("verdict   " + ("credible" if cr["credible"] else
+                               "NOT credible: " + ", ".join(r["code"] for r in cr["reasons"])))
+
+
+def _print_checks(payload: dict[str, Any]) -> None:
+    """The checks of the summary as text: surrogates against the map, measured windows, copies, scans,
+    ergodicity, σ_ζ by both rules and the process check."""
+    um = MICROMETRE
     sc = payload["surrogate_check"]
     zs = sc["z"]
     me, em, es = sc["measured"], sc["ensemble_mean"], sc["ensemble_std"]
@@ -431,16 +494,6 @@ def _print(payload: dict[str, Any], analysis: Any) -> None:
     typer.echo("  spectral_level : " + " ".join(_num(v, ".3g") for v in sz["spectral_level"]))
     pc = payload["process_check"]
     typer.echo(f"process check: generated σ within {pc['max_std_z']:.2f} standard errors of the target")
-    for key in ("model_file", "statistics_file"):
-        if key in payload:
-            typer.echo(f"wrote     {payload[key]}")
-    for f in payload.get("figures", []):
-        typer.echo(f"figure    {f}")
-    for n in payload.get("notes", []):
-        typer.echo(f"note      {n}")
-    cr = payload["credibility"]
-    typer.echo("verdict   " + ("credible" if cr["credible"] else
-                               "NOT credible: " + ", ".join(r["code"] for r in cr["reasons"])))
 
 
 def register(app: typer.Typer) -> None:

@@ -20,21 +20,23 @@ from rich.table import Table
 
 from ..io_utils import check_output_path, require_memory, write_netcdf_atomic, write_text_atomic
 from ..oscillator import integrate
-from ..oscillator.case import build_case
-from ..oscillator.parameters import ParameterError
-from ..report.figures import plot_phase_portrait
-from .options import (
-    IntegratorChoice,
-    LawChoice,
-    ModelChoice,
-    PathChoice,
-    PresetChoice,
-    ProcessLevelChoice,
-    WhiteIntensityChoice,
-    WhiteStreamChoice,
-    fail,
-    write_failed,
+from ..oscillator.case import CaseError, DimensionlessInput, FrictionInput, PhysicalInput, build_case
+from ..oscillator.options import (
+    ExecutionOptions,
+    IntegrationOptions,
+    Integrator,
+    Model,
+    NoiseOptions,
+    OutputOptions,
+    PathCoordinate,
+    WhiteIntensity,
+    WhiteStream,
 )
+from ..oscillator.parameters import ParameterError
+from ..oscillator.presets import PresetName
+from ..process.presets import ProcessLevel
+from ..report.figures import plot_phase_portrait
+from .options import LawChoice, fail, in_flags, write_failed
 
 err_console = Console(stderr=True)
 
@@ -90,14 +92,14 @@ def _progress_bar(enabled: bool) -> tuple[Progress | None, Any]:
 
 def simulate(
     preset: Annotated[
-        PresetChoice | None,
+        PresetName | None,
         typer.Option(help="Thesis case: oscillator, contact area, friction-process model."),
     ] = None,
-    model: Annotated[ModelChoice, typer.Option(
+    model: Annotated[Model, typer.Option(
         help="Friction model (method §5): deterministic = the friction law alone; white = phenomenological "
              "white noise in time, σ_ζ a free intensity that no surface measurement fixes (not the small-ℓ "
              "limit of the contact process, method §5.1a); contact = the measured surface's friction process.")] = (
-        ModelChoice.deterministic
+        Model.DETERMINISTIC
     ),
     friction_law: Annotated[
         LawChoice | None,
@@ -119,13 +121,10 @@ def simulate(
     forcing_amplitude: Annotated[
         float | None, typer.Option(help="Forcing amplitude Q [newtons].")
     ] = None,
-    forcing_frequency: Annotated[
-        float | None, typer.Option(help="Forcing frequency ratio η = Ω/ω0 [-].")
-    ] = None,
     gamma0: Annotated[float | None, typer.Option(help="Dimensionless belt speed γ0.")] = None,
     n: Annotated[float | None, typer.Option("--n", help="Dimensionless normal force N/(cL).")] = None,
     q: Annotated[float | None, typer.Option("--q", help="Dimensionless forcing Q/(cL).")] = None,
-    eta: Annotated[float | None, typer.Option(help="Forcing frequency ratio η (alias).")] = None,
+    eta: Annotated[float | None, typer.Option(help="Forcing frequency ratio η = Ω/ω0 [-].")] = None,
     omega0: Annotated[
         float | None, typer.Option(help="ω0 [rad/s] for dimensionless input (default 1).")
     ] = None,
@@ -141,32 +140,29 @@ def simulate(
     ] = None,
     tau_end: Annotated[float | None, typer.Option(help="End time τ_end (default 50).")] = None,
     dt: Annotated[float | None, typer.Option(help="Time step Δτ (default 0.005).")] = None,
-    integrator: Annotated[IntegratorChoice, typer.Option(help="Integrator.")] = (
-        IntegratorChoice.euler
-    ),
+    integrator: Annotated[Integrator, typer.Option(help="Integrator.")] = Integrator.EULER,
     runs: Annotated[int, typer.Option(min=1, help="Monte Carlo runs.")] = 1,
     seed: Annotated[int | None, typer.Option(min=0, help="Root seed (recorded).")] = None,
     sigma_zeta: Annotated[
         float | None, typer.Option(help="White-noise intensity σ_ζ (default: from the rule below).")
     ] = None,
     white_intensity: Annotated[
-        WhiteIntensityChoice | None,
+        WhiteIntensity | None,
         typer.Option(help="Rule for σ_ζ from the process model: sigma_mu (thesis, σ_ζ = σ_μ(p)) or "
                      "spectral_level (matches the process's low-frequency PSD level) or thesis (reproduction "
                      "mode: printed eq. 4.31, σ_ζ,eff = σ_μ(p)·Lω0·Δτ, depends on Δτ)."),
     ] = None,
     path_coordinate: Annotated[
-        PathChoice, typer.Option(help="Where the contact process is read (method §7.7).")
-    ] = PathChoice.mass,
+        PathCoordinate, typer.Option(help="Where the contact process is read (method §7.7).")
+    ] = PathCoordinate.MASS,
     white_stream: Annotated[
-        WhiteStreamChoice,
-        typer.Option(help="Normals of the white-noise model: philox-ziggurat (default), philox-boxmuller "
-                     "(the default before the ziggurat) or pcg64 "
-                     "(numpy's stream, the numbers before the in-kernel streams); same statistics, "
-                     "different realisations."),
-    ] = WhiteStreamChoice["philox-ziggurat"],
+        WhiteStream,
+        typer.Option(help="Normals of the white-noise model: philox-ziggurat (default, in the kernel), "
+                     "philox-boxmuller (the same Philox stream by Box–Muller) or pcg64 (numpy's stream, "
+                     "drawn into a buffer); same statistics, different realisations."),
+    ] = WhiteStream.PHILOX_ZIGGURAT,
     process_level: Annotated[
-        ProcessLevelChoice | None,
+        ProcessLevel | None,
         typer.Option(help="Variance of the contact process: sigma_mu (σ_μ(p)², default) or psd_level "
                      "(reproduction mode: from the thesis's E[S](p) fit; presets only)."),
     ] = None,
@@ -194,18 +190,16 @@ def simulate(
             check_output_path(out, option="--out")
         if plot is not None:
             check_output_path(plot, option="--plot", kind="file", suffixes=PLOT_SUFFIXES)
-        if forcing_frequency is not None and eta is not None and forcing_frequency != eta:
-            raise ParameterError("--forcing-frequency and --eta are the same η; give one")
         case = build_case(
-            preset.value if preset else None, normal_force=normal_force, n=n, damping_ratio=damping,
-            damping_coefficient=damping_coefficient, forcing_amplitude=forcing_amplitude, q=q,
-            eta=forcing_frequency if forcing_frequency is not None else eta, mass=mass, stiffness=stiffness,
-            belt_speed=belt_speed, contact_area=contact_area, gamma0=gamma0, omega0=omega0,
-            process_file=process_file, process_length=process_length,
-            white_intensity=white_intensity.value if white_intensity else None,
-            process_level=process_level.value if process_level else None,
-            friction_law=friction_law.value if friction_law else None, mu0=mu0, model=model.value,
-            sigma_zeta=sigma_zeta, tau_end=tau_end, dt=dt,
+            preset, model=model, tau_end=tau_end, dt=dt,
+            physical=PhysicalInput(mass=mass, stiffness=stiffness, belt_speed=belt_speed, contact_area=contact_area,
+                                   normal_force=normal_force, damping_coefficient=damping_coefficient,
+                                   forcing_amplitude=forcing_amplitude),
+            dimensionless=DimensionlessInput(gamma0=gamma0, n=n, damping_ratio=damping, q=q, eta=eta, omega0=omega0),
+            friction=FrictionInput(friction_law=friction_law.value if friction_law else None, mu0=mu0,
+                                   process_file=process_file, process_length=process_length,
+                                   process_level=process_level, white_intensity=white_intensity,
+                                   sigma_zeta=sigma_zeta),
         )
         pre, process = case.preset, case.process
         te, step = case.tau_end, case.dt
@@ -213,7 +207,7 @@ def simulate(
         if te > 0 and step > 0:
             save_traj = plot is not None or out is not None
             need = _simulation_memory_bytes(
-                runs, te, step, save_every=save_every, trajectories=save_traj, model=model.value,
+                runs, te, step, save_every=save_every, trajectories=save_traj, model=model,
                 process_points=round(process.length / process.dx) if process is not None else 0, workers=workers)
             require_memory(need, what=f"simulate with --runs {runs} --tau-end {te:g} --dt {step:g}", advice=(
                 "use fewer --runs or a shorter --tau-end (run several smaller jobs with different --seed)"
@@ -231,21 +225,23 @@ def simulate(
 
         try:
             result = integrate.simulate(
-                case.params, **case.simulate_kwargs(model.value),
-                x0=(float(x0[0]), float(x0[1])) if x0 else None, integrator=integrator.value, runs=runs,
-                seed=seed, path_coordinate=path_coordinate.value, white_stream=white_stream.value,
-                save_trajectory=plot is not None or out is not None, save_every=save_every,
-                workers=workers, progress=cb,
+                case, model=model, x0=(float(x0[0]), float(x0[1])) if x0 else None, runs=runs, seed=seed,
+                noise=NoiseOptions(path_coordinate=path_coordinate, white_stream=white_stream),
+                integration=IntegrationOptions(integrator=integrator),
+                output=OutputOptions(save_trajectory=plot is not None or out is not None, save_every=save_every),
+                execution=ExecutionOptions(workers=workers, progress=cb),
             )
         finally:
             if prog is not None:
                 prog.stop()
+    except CaseError as exc:
+        raise fail(in_flags(str(exc))) from None
     except (ParameterError, ValueError) as exc:
         raise fail(str(exc)) from None
 
     summary = result.to_json_dict()
     summary["preset"] = pre.name if pre else None
-    modes = case.modes(model.value)
+    modes = case.modes(model)
     summary.update(modes)
     try:
         if out is not None:

@@ -26,11 +26,13 @@ from rich.table import Table
 
 from ..io_utils import OutputPathError, check_output_path
 from ..report import html as report_html
-from ..studies import config as c
 from ..studies import executors, run_config
-from ..studies.common import StudyError
+from ..studies.base import StudyResult
+from ..studies.damping import DampingSummary
+from ..studies.errors import StudyError
 from ..studies.executors import SweepInterrupted
-from .options import GROUP, fail, option_group
+from ..studies.kinds import study_kind
+from .options import GROUP, fail, flag_of, option_group
 from .white_limit import white_limit_command
 
 #: the module (``stochfric.studies`` re-exports its function ``reproduce`` under the same name);
@@ -220,23 +222,11 @@ def execution_options(
     return ExecutionOptions(executor, workers, scheduler, checkpoint, out, report, json_out)
 
 
-#: Config fields whose command-line flag is not ``--`` + the field name with dashes.
-_FLAGS = {"normal_force_n": "--normal-force", "phase_force_n": "--phase-force", "forcing_q": "--q",
-          "process_file": "--process"}
-
-
-def _flag(field: str) -> str:
-    """The command-line flag that fills the study-config field ``field``."""
-    return _FLAGS.get(field, "--" + field.replace("_", "-"))
-
-
 def _validate(kind: str, fields: dict[str, Any]) -> Any:
-    cls = {"damping": c.DampingConfig, "forcing": c.ForcingConfig, "lyapunov": c.LyapunovConfig,
-           "normal-force": c.NormalForceConfig}[kind]
     try:
-        return cls(**{k: v for k, v in fields.items() if v is not None})
+        return study_kind(kind).config(**{k: v for k, v in fields.items() if v is not None})
     except ValidationError as exc:
-        raise StudyError(run_config._format_errors(exc, _flag)) from None
+        raise StudyError(run_config._format_errors(exc, flag_of)) from None
 
 
 def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:
@@ -274,39 +264,39 @@ def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:
     if json_out:
         typer.echo(json.dumps(payload, allow_nan=False))
         return
-    _print_summary(res.kind, payload)
+    _print_summary(res, wall, files)
 
 
-def _print_summary(kind: str, s: dict[str, Any]) -> None:
+def _damping_table(s: DampingSummary) -> Table:
+    """The damping study's limits per force: D_H, D_max^d, D_max(α) per model and α, sample extremes."""
+    t = Table(title=escape("largest damping with P(stick-slip) ≥ α [interval]; sample extreme = largest D at "
+                           "which any run stuck (thesis D_max^s, grows with the runs)"))
+    risk, grid, det = s.d_max_risk, s.damping_ratio, s.d_max_deterministic
+    for col in ["N [N]", "D_H", "D_max^d", *[f"D_max({100 * a:g} %) {m}" for m in risk for a in s.risk_levels],
+                *[f"sample extreme {m}" for m in s.d_max_sample_extreme]]:
+        t.add_column(col, justify="right")
+    for i, nf in enumerate(s.normal_force_n):
+        row = [f"{nf:g}", f"{s.d_hopf[i]:.4g}", report_html.dmax_text(det[i], grid) if det else "—"]
+        row += [report_html.risk_text(risk[m][i][j], grid, s.runs, compact=True)
+                for m in risk for j in range(len(s.risk_levels))]
+        row += [report_html.dmax_text(e[i].value, grid) for e in s.d_max_sample_extreme.values()]
+        t.add_row(*(escape(c) for c in row))
+    return t
+
+
+def _print_summary(res: StudyResult[Any], wall: float, files: list[str]) -> None:
+    s = res.summary
     con = Console()
-    con.print(f"[bold]stochfric study {kind}[/] preset={s.get('preset')} runs={s.get('runs')} seed={s.get('seed')} "
-              f"({s['wall_time_s']:.1f} s; tasks computed {s['tasks']['computed']}, "
-              f"from checkpoint {s['tasks']['loaded_from_checkpoint']})")
-    if kind == "damping":
-        risk = s.get("d_max_risk", {})
-        alphas = s.get("risk_levels", [])
-        t = Table(title=escape("largest damping with P(stick-slip) ≥ α [interval]; sample extreme = largest D at "
-                               "which any run stuck (thesis D_max^s, grows with the runs)"))
-        for col in ["N [N]", "D_H", "D_max^d", *[f"D_max({100 * a:g} %) {m}" for m in risk for a in alphas],
-                    *[f"sample extreme {m}" for m in s.get("d_max_sample_extreme", {})]]:
-            t.add_column(col, justify="right")
-        for i, nf in enumerate(s["normal_force_n"]):
-            det = s.get("d_max_deterministic")
-            grid = s["damping_ratio"]
-            row = [f"{nf:g}", f"{s['d_hopf'][i]:.4g}", report_html.dmax_text(det[i], grid) if det else "—"]
-            row += [report_html.risk_text(risk[m][i][j], grid, s.get("runs"), compact=True)
-                    for m in risk for j in range(len(alphas))]
-            row += [report_html.dmax_text(e[i]["value"], grid) for e in s.get("d_max_sample_extreme", {}).values()]
-            t.add_row(*(escape(c) for c in row))
-        con.print(t)
-    _, reading = report_html.READERS[kind](s)
+    con.print(f"[bold]stochfric study {res.kind}[/] preset={s.preset} runs={s.runs} seed={s.seed} "
+              f"({wall:.1f} s; tasks computed {res.stats.computed}, from checkpoint {res.stats.loaded})")
+    if isinstance(s, DampingSummary):
+        con.print(_damping_table(s))
+    _, reading = report_html.SECTIONS[res.kind].reading(s)
     con.print(escape(reading))
-    choices = report_html.model_choices_text(s)
-    if choices:
-        con.print(choices)
-    for w in s.get("warnings", []):
-        con.print(f"[yellow]warning[/] {w['code']} ×{w['count']}")
-    for f in s.get("files", []):
+    con.print(report_html.model_choices_text(s))
+    for w in s.warnings:
+        con.print(f"[yellow]warning[/] {w.code} ×{w.count}")
+    for f in files:
         con.print(f"wrote {f}")
 
 
@@ -338,9 +328,9 @@ def damping_command(
     """Damping study: P(stick-slip | D), D_max(α) with interval, D_max^d, D_H, M_diff, M_quot, phase diagrams
     over D (method §6.2)."""
     _execute("damping", {**common, "stick_window": stick_window,
-                         "normal_force_n": normal_force, "damping_ratio": damping, "confidence": confidence,
-                         "p_detect": p_detect, "risk_levels": risk_levels, "x0": x0, "phase_force_n": phase_force,
-                         "phase_damping": phase_damping, "phase_runs": phase_runs}, run)
+                         "normal_forces": normal_force, "damping_ratios": damping, "confidence": confidence,
+                         "p_detect": p_detect, "risk_levels": risk_levels, "x0": x0, "phase_normal_force": phase_force,
+                         "phase_damping_ratios": phase_damping, "phase_runs": phase_runs}, run)
 
 
 @option_group("common", study_options)
@@ -354,7 +344,7 @@ def forcing_command(
     run: ExecutionOptions = GROUP,
 ) -> None:
     """Forcing study: bifurcation data, E[X_gh] ± σ over η, σ_contact/σ_white (method §6.3)."""
-    _execute("forcing", {**common, **forced, "stick_window": stick_window, "normal_force_n": normal_force}, run)
+    _execute("forcing", {**common, **forced, "stick_window": stick_window, "normal_force": normal_force}, run)
 
 
 @option_group("common", study_options)
@@ -369,7 +359,7 @@ def lyapunov_command(
     run: ExecutionOptions = GROUP,
 ) -> None:
     """Largest Lyapunov exponent λ (4.43) / E[Λ] (4.44) over η and N (method §6.4)."""
-    _execute("lyapunov", {**common, **forced, "normal_force_n": normal_force, "perturbation": perturbation}, run)
+    _execute("lyapunov", {**common, **forced, "normal_forces": normal_force, "perturbation": perturbation}, run)
 
 
 @option_group("common", study_options)
@@ -386,7 +376,7 @@ def normal_force_command(
 ) -> None:
     """Normal-force study: phase diagrams, PDFs, E[X_gh] ± σ, VarK with SEs (method §6.1)."""
     _execute("normal-force", {**common, "stick_window": stick_window,
-                              "normal_force_n": normal_force, "damping_ratio": damping,
+                              "normal_forces": normal_force, "damping_ratios": damping,
                               "phase_runs": phase_runs}, run)
 
 
@@ -427,7 +417,7 @@ def run_command(
         typer.echo(json.dumps(payload, allow_nan=False))
         return
     for r in results:
-        typer.echo(f"{r.kind} ({r.summary.get('preset')}): {report_html.READERS[r.kind](r.summary)[1]}")
+        typer.echo(f"{r.kind} ({r.summary.preset}): {report_html.SECTIONS[r.kind].reading(r.summary)[1]}")
     typer.echo(f"results in {out}" + (f", report {index}" if index else ""))
 
 
@@ -461,14 +451,14 @@ def reproduce_command(
     except KeyboardInterrupt as exc:
         raise _interrupted(exc, what, out / "checkpoints") from None
     payload = {"out": str(out), "report": str(out / "index.html"), "timings_s": timings,
-               "studies": [{"study": r.kind, "preset": r.summary.get("preset"),
+               "studies": [{"study": r.kind, "preset": r.summary.preset,
                             "tasks": {"computed": r.stats.computed, "loaded_from_checkpoint": r.stats.loaded}}
                            for r in results]}
     if json_out:
         typer.echo(json.dumps(payload))
         return
     for r in results:
-        typer.echo(f"{r.kind} ({r.summary.get('preset')}): {report_html.READERS[r.kind](r.summary)[1]}")
+        typer.echo(f"{r.kind} ({r.summary.preset}): {report_html.SECTIONS[r.kind].reading(r.summary)[1]}")
     split = ", ".join(f"{k} {v:.1f} s" for k, v in timings.items() if k not in ("studies_total", "total"))
     typer.echo(f"time per step: {split}")
     typer.echo(f"report {out / 'index.html'}; total {timings['total']:.1f} s")

@@ -466,18 +466,7 @@ def contact_command(
             results = [gw, main]
         payload = main.to_dict()
         if main is not gw:
-            payload["asperity"] = {
-                "comparison": "equal load: the half-space carries the GW normal force",
-                "approach_m": gw.to_dict()["approach_m"],
-                "contact_area_m2": gw.to_dict()["contact_area_m2"],
-                "area_fraction": gw.to_dict()["area_fraction"],
-                "pressure_pa": gw.to_dict()["pressure_pa"],
-                "n_contacts": [int(v) for v in gw.n_contacts],
-                "mu": gw.to_dict()["mu"],
-                "area_ratio_halfspace_to_asperity": _ratio(main.contact_area_m2, gw.contact_area_m2),
-                "mu_ratio_halfspace_to_asperity": _ratio(main.mu, gw.mu),
-                "approach_ratio_halfspace_to_asperity": _ratio(main.approach_m, gw.approach_m),
-            }
+            payload["asperity"] = _equal_load_record(gw, main)
         gamma = _summit_gamma(mat, cs)
         payload["plasticity_index"] = gamma
         payload["warnings"] = _surface_warnings(fine) + [
@@ -493,8 +482,31 @@ def contact_command(
         raise write_failed(exc) from None
     if _echo_result(payload, as_json):
         return
-    um = MICROMETRE
     typer.echo(f"surface   {record['file']}  ({coarse.nb_grid_pts[0]}x{coarse.nb_grid_pts[1]})")
+    _print_contact(payload, mat, gw, main)
+
+
+def _equal_load_record(gw: ContactResult, main: ContactResult) -> dict[str, Any]:
+    """The GW result beside the half-space at the GW normal forces, and the ratios half-space / GW."""
+    gw_dict = gw.to_dict()
+    return {
+        "comparison": "equal load: the half-space carries the GW normal force",
+        "approach_m": gw_dict["approach_m"],
+        "contact_area_m2": gw_dict["contact_area_m2"],
+        "area_fraction": gw_dict["area_fraction"],
+        "pressure_pa": gw_dict["pressure_pa"],
+        "n_contacts": [int(v) for v in gw.n_contacts],
+        "mu": gw_dict["mu"],
+        "area_ratio_halfspace_to_asperity": _ratio(main.contact_area_m2, gw.contact_area_m2),
+        "mu_ratio_halfspace_to_asperity": _ratio(main.mu, gw.mu),
+        "approach_ratio_halfspace_to_asperity": _ratio(main.approach_m, gw.approach_m),
+    }
+
+
+def _print_contact(payload: dict[str, Any], mat: Material, gw: ContactResult, main: ContactResult) -> None:
+    """The contact result as text (lengths in µm, pressures in MPa): material, one row per approach,
+    the equal-load ratios of a half-space result, the files written."""
+    um = MICROMETRE
     typer.echo(
         f"material  {mat.name}: E* = {mat.e_star_pa / 1e9:.4g} GPa, "
         f"τ_max = {mat.shear_strength_pa / 1e6:.4g} MPa; method {main.method}"

@@ -9,12 +9,16 @@ import json
 import math
 from enum import StrEnum
 from pathlib import Path
-from typing import Annotated, Any
+from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
 from ..io_utils import OutputPathError, check_output_path
-from .options import PresetChoice, fail
+from ..oscillator.presets import PresetName
+from .options import fail
+
+if TYPE_CHECKING:
+    from ..studies.white_limit import WhiteLimitSummary
 
 __all__ = ["white_limit_command"]
 
@@ -41,7 +45,7 @@ def _lengths(spec: str) -> tuple[float, ...]:
 
 
 def white_limit_command(
-    preset: Annotated[PresetChoice, typer.Option("--preset", help="Thesis case: brake | sheet.")] = PresetChoice.brake,
+    preset: Annotated[PresetName, typer.Option("--preset", help="Thesis case: brake | sheet.")] = PresetName.BRAKE,
     normal_force: Annotated[float | None, typer.Option(
         "--normal-force", help="N [N] (default: the preset's middle normal-force study force, brake 2720, sheet 880).")
     ] = None,
@@ -102,33 +106,33 @@ def white_limit_command(
         raise fail(str(exc)) from None
     s = result.summary
     if json_out:
-        typer.echo(json.dumps({**s, "files": files}, allow_nan=True))
+        typer.echo(json.dumps({**s.to_json(), "files": files}, allow_nan=True))
         return
     _print(s)
     for kind, path in files.items():
         typer.echo(f"wrote     {path} ({kind})")
 
 
-def _print(s: dict[str, Any]) -> None:
-    typer.echo(f"white-limit {s['preset']} N = {s['normal_force_n']:g} N, D = {s['damping_ratio']:g}, "
-               f"S0 = {s['low_frequency_psd_m']:.3g} m (one-sided), path {s['config']['path_coordinate']}, "
-               f"{s['config']['runs']} runs, seed {s['seed']}; preset ℓ0 = {s['preset_correlation_length_m']:.3g} m")
-    r = s["config"]["refine"]
+def _print(s: WhiteLimitSummary) -> None:
+    typer.echo(f"white-limit {s.preset} N = {s.normal_force_n:g} N, D = {s.damping_ratio:g}, "
+               f"S0 = {s.low_frequency_psd_m:.3g} m (one-sided), path {s.config.path_coordinate}, "
+               f"{s.config.runs} runs, seed {s.seed}; preset ℓ0 = {s.preset_correlation_length_m:.3g} m")
+    r = s.config.refine
     typer.echo(f"{'ℓ [m]':>8} {'σ_μ':>6} {'Δτ':>8} {'E[X_gh]':>18} {'σ(X_gh) at Δτ':>18} "
                f"{f'σ(X_gh) at Δτ/{r}':>18} {'Δσ/SE':>6} {'events':>6} {'no-stick':>8}")
-    for row in s["table"]:
-        c, f = row["coarse"], row["fine"]
+    for row in s.table:
+        c, f = row.coarse, row.fine
         typer.echo(
-            f"{row['correlation_length_m']:8.2g} {row['sigma_mu']:6.3g} {c['dt']:8.2g} "
-            f"{f['x_gh_mean']:9.3e} ± {f['x_gh_mean_se']:6.1e} {c['x_gh_std']:9.3e} ± {c['x_gh_std_se']:6.1e} "
-            f"{f['x_gh_std']:9.3e} ± {f['x_gh_std_se']:6.1e} {row['std_difference_over_se']:6.2f} {f['n_events']:6d} "
-            f"{f['passes_without_stick_per_run']:8.3g}"
+            f"{row.correlation_length_m:8.2g} {row.sigma_mu:6.3g} {c.dt:8.2g} "
+            f"{f.x_gh_mean:9.3e} ± {f.x_gh_mean_se:6.1e} {c.x_gh_std:9.3e} ± {c.x_gh_std_se:6.1e} "
+            f"{f.x_gh_std:9.3e} ± {f.x_gh_std_se:6.1e} {row.std_difference_over_se:6.2f} {f.n_events:6d} "
+            f"{f.passes_without_stick_per_run:8.3g}"
         )
-    fit = s["fit"]
-    if fit.get("beta") is not None:
-        typer.echo(f"fit σ(X_gh) ∝ ℓ^β over ℓ = {min(fit['lengths_m']):.2g} … {max(fit['lengths_m']):.2g} m: "
-                   f"β = {fit['beta']:.3f} ± {fit['beta_se_reported']:.3f} "
-                   f"(χ²/dof = {fit['chi2']:.1f}/{fit['dof']}); local slopes "
-                   + ", ".join(f"{v['slope']:.2f}±{v['slope_se']:.2f}" for v in fit["local_slopes"]))
-    typer.echo(f"verdict   {s['verdict']}")
-    typer.echo(f"time      {s['elapsed_s']:.1f} s")
+    fit = s.fit
+    if fit.beta is not None and fit.local_slopes is not None:
+        typer.echo(f"fit σ(X_gh) ∝ ℓ^β over ℓ = {min(fit.lengths_m):.2g} … {max(fit.lengths_m):.2g} m: "
+                   f"β = {fit.beta:.3f} ± {fit.beta_se_reported:.3f} "
+                   f"(χ²/dof = {fit.chi2:.1f}/{fit.dof}); local slopes "
+                   + ", ".join(f"{v.slope:.2f}±{v.slope_se:.2f}" for v in fit.local_slopes))
+    typer.echo(f"verdict   {s.verdict}")
+    typer.echo(f"time      {s.elapsed_s:.1f} s")

@@ -1,22 +1,9 @@
-"""Greenwood–Williamson / Hertz contact with Bowden–Tabor friction (method §2,
-thesis 3.1.3, eq. 3.8–3.16).
+"""Greenwood–Williamson / Hertz contact with Bowden–Tabor friction (method §2, thesis 3.1.3, eq. 3.8–3.16).
 
-An elastic rough surface (its summits, each a Hertzian sphere of radius β_i) is pressed by a
-smooth rigid flat.  The flat's position is the approach ``u`` measured from the highest
-summit, and the asperities do not interact:
-
-* ``d_i = z_s,i − (z_s,max − u)`` for the summits with ``d_i > 0`` (3.11)
-* ``A_c = Σ π β_i d_i`` (3.8, 3.12), ``N = Σ (4/3) E* √(β_i d_i³)`` (3.9, 3.13)
-* ``p = N / A_nom`` (3.14), number of contacts, ``A_c / A_nom``
-* Bowden–Tabor: ``R = A_c τ_max`` (3.15), ``μ = A_c τ_max / N`` (3.16)
-
-Vectorised over ``u``: the summits are sorted by height once; the area and the number of
-contacts follow from cumulative sums and :func:`numpy.searchsorted`, the force (a 3/2 power,
-not a cumulative sum) by broadcasting ``u`` against the summits that touch at the largest
-approach, in blocks that bound the memory.
-
-Approaches must be > 0: at ``u = 0`` nothing carries load and μ = 0/0 (and μ → ∞ as u → 0⁺,
-the single-Hertz limit ``μ = 3πτ_max√β / (4E*√u)``).
+The summits of an elastic rough surface, Hertzian spheres of radius β_i that do not interact, are
+pressed by a smooth rigid flat at the approach u > 0 measured from the highest summit: contact area
+(3.12), normal force (3.13), pressure (3.14) and μ = A_c τ_max / N (3.16) over u, vectorised over
+the approaches (docs/surface_contact.md, "Contact analysis").
 """
 
 from __future__ import annotations

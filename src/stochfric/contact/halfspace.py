@@ -1,42 +1,10 @@
-"""Elastic half-space boundary-element reference (method §2 "Validation", thesis Fig. 3.12–3.14).
+"""Elastic half-space boundary-element reference for the GW contact (method §2 "Validation", thesis Fig. 3.12–3.14).
 
-The thesis validated its GW/Hertz sums with an ABAQUS FEM model of the coarse surface; here
-the same prepared surface is solved as a full elastic half-space contact with the
-boundary-element (FFT Green's function) solver of ContactMechanics (Polonsky–Keer
-constrained conjugate gradients, non-periodic ``FreeFFTElasticHalfSpace``), the optional
-dependency ``stochfric[halfspace]``.
-
-Set-up, matched to :func:`stochfric.contact.asperity.asperity_contact`:
-
-* **equal load or equal approach.**  μ = A_c τ_max / N (3.16) compares the two models only at
-  the same normal force N, so :func:`compare_equal_load` (and ``contact --method halfspace``)
-  prescribes the GW force as the half-space's total force (``external_force`` of the
-  Polonsky–Keer solver) and reads the approach from the solution.  At equal *approach* the
-  half-space's settlement is mixed into the comparison (on the shipped surface the flat must
-  move 1.1–1.6 × further than the GW u for the same load over the default range, 3.7 × at
-  A_c/A_nom = 0.45).  ``halfspace_contact`` offers both;
-* the flat is at ``z_ref − u`` with the same reference ``z_ref`` (the highest summit), so both
-  methods share the approach axis;
-* **border frame.**  The summit rule cannot see asperities cut by the edge of the map (the
-  thesis rule needs two neighbours on each side), but the half-space can: on the default surface
-  16 border points lie above the highest summit and touch first.  ``frame_points`` (default:
-  the summit rule's margin, 2 for the thesis rule, 1 for 8-neighbour, 0 without summits)
-  lowers the outermost rows and columns to the map's minimum, so that both models see the same
-  asperities;
-* **refinement.**  ``refine = k`` interpolates the heights by cubic splines onto a k × finer
-  grid of the same size before solving (a grid-convergence check: a Hertz spot a few pixels
-  wide is over-counted on the measurement grid);
-* the elastic rough surface against a rigid flat is solved in the equivalent form of a rigid
-  rough surface against an elastic flat with modulus E* (3.10) (small slopes, linear
-  elasticity; the two are the same problem for the gap);
-* the heights are the grid values, each grid point a pixel of area ``Δx Δy``; the contact area
-  is (number of pixels with positive pressure) × ``Δx Δy`` and the number of contacts the
-  number of 4-connected contact patches;
-* every asperity interacts with every other through the half-space (the GW model ignores
-  this), and the contact is not restricted to summits.
-
-The function is slow compared with the GW sums (one iterative solve per approach) and meant
-as a check on modest grids (the thesis's 170 × 170 coarse grid takes seconds).
+The prepared surface solved as a full elastic half-space contact (rigid rough surface against an
+elastic flat of modulus E*, 3.10) by ContactMechanics' FFT Green's-function solver, the optional
+dependency ``stochfric[halfspace]``, on the GW model's approach axis; compared with the GW sums at
+equal load, with a border frame and optional spline refinement (docs/surface_contact.md, "Elastic
+half-space reference").
 """
 
 from __future__ import annotations
@@ -62,6 +30,8 @@ __all__ = [
     "halfspace_available",
     "halfspace_contact",
 ]
+
+FloatArray = npt.NDArray[np.float64]
 
 
 def halfspace_available() -> bool:
@@ -106,8 +76,9 @@ def halfspace_contact(
         ``z_ref`` [m]; default the highest summit of ``summits`` (as the GW model), or the
         highest grid point if no summits are given.
     frame_points:
-        Width of the border frame lowered out of reach (module doc); default the summit
-        rule's margin (0 without ``summits``).
+        Width of the border frame lowered to the map's minimum, out of reach, so that both
+        models see the same asperities (the summit rule cannot see those cut by the edge);
+        default the summit rule's margin (0 without ``summits``).
     refine:
         Solve on a ``refine`` × finer grid (cubic-spline interpolation, same physical size).
     pentol_m:
@@ -121,47 +92,79 @@ def halfspace_contact(
         ``method = "halfspace"``; ``n_contacts`` counts 4-connected contact patches; the
         contact area is (pixels with positive pressure) × pixel area.
     """
-    try:
-        from ContactMechanics import FreeFFTElasticHalfSpace
-        from ContactMechanics.Systems import NonSmoothContactSystem
-        from SurfaceTopography import Topography
-    except ImportError:
-        raise ContactError(
-            "the half-space reference needs ContactMechanics: pip install 'stochfric[halfspace]'"
-        ) from None
-    if (approach_m is None) == (normal_force_n is None):
-        raise ContactError("give either approach_m or normal_force_n")
-    load_control = normal_force_n is not None
-    if normal_force_n is not None:
-        target = _as_load(normal_force_n)
-    else:
-        assert approach_m is not None
-        target = _as_approach(approach_m)
+    if not halfspace_available():
+        raise ContactError("the half-space reference needs ContactMechanics: pip install 'stochfric[halfspace]'")
+    target, load_control = _targets(approach_m, normal_force_n)
     if int(refine) != refine or refine < 1:
         raise ContactError(f"refine must be an integer >= 1, got {refine!r}")
-    if reference_m is not None:
-        z_ref = float(reference_m)
-        ref_name = "given"
-    elif summits is not None and summits.count:
-        z_ref = float(summits.heights_m.max())
-        ref_name = "highest summit"
-    else:
-        z_ref = float(surface.heights_m.max())
-        ref_name = "highest point"
+    z_ref, ref_name = _reference(surface, summits, reference_m)
     frame = default_frame_points(summits) if frame_points is None else int(frame_points)
     if frame < 0 or 2 * frame >= min(surface.nb_grid_pts):
         raise ContactError(f"frame_points must be >= 0 and leave an interior, got {frame}")
     h0 = np.array(surface.heights_m, dtype=np.float64)
-    sq = float(h0.std())
-    tol = pentol_m if pentol_m is not None else max(sq, 1e-300) * 1e-6
+    tol = pentol_m if pentol_m is not None else max(float(h0.std()), 1e-300) * 1e-6
     h = _framed_and_refined(h0, frame, int(refine))
+    solver = _Solver(pentol_m=tol, maxiter=maxiter, reference_m=z_ref, load_control=load_control)
+    approach, area, force, patches = _solve(h, surface, material, target, solver)
+    prep = dict(preparation or {})
+    prep.setdefault("reference", ref_name)
+    prep["reference_m"] = z_ref
+    prep["halfspace"] = {
+        "solver": "ContactMechanics constrained CG (Polonsky-Keer)",
+        "substrate": "free (non-periodic)",
+        "pentol_m": tol,
+        "control": "load" if load_control else "approach",
+        "frame_points": frame,
+        "refine": int(refine),
+        "grid": [int(h.shape[0]), int(h.shape[1])],
+    }
+    return ContactResult.of("halfspace", surface, material, approach, area, force, patches, prep)
+
+
+def _targets(approach_m: npt.ArrayLike | None, normal_force_n: npt.ArrayLike | None) -> tuple[FloatArray, bool]:
+    """The prescribed approaches u [m] or normal forces N [N], and whether they are forces (load control)."""
+    if (approach_m is None) == (normal_force_n is None):
+        raise ContactError("give either approach_m or normal_force_n")
+    if normal_force_n is not None:
+        return _as_load(normal_force_n), True
+    assert approach_m is not None
+    return _as_approach(approach_m), False
+
+
+def _reference(surface: Surface, summits: Summits | None, reference_m: float | None) -> tuple[float, str]:
+    """``z_ref`` [m] and its name: given, the highest summit (as the GW model) or the highest point."""
+    if reference_m is not None:
+        return float(reference_m), "given"
+    if summits is not None and summits.count:
+        return float(summits.heights_m.max()), "highest summit"
+    return float(surface.heights_m.max()), "highest point"
+
+
+@dataclass(frozen=True, kw_only=True)
+class _Solver:
+    """Settings of the solves: penetration tolerance [m], iteration limit, ``z_ref`` [m] and whether
+    the targets are forces (load control) or approaches."""
+
+    pentol_m: float
+    maxiter: int
+    reference_m: float
+    load_control: bool
+
+
+def _solve(
+    h: FloatArray, surface: Surface, material: Material, target: FloatArray, solver: _Solver
+) -> tuple[FloatArray, FloatArray, FloatArray, npt.NDArray[np.int64]]:
+    """Solve the half-space contact of the heights ``h`` (on ``surface``'s physical size) at every
+    target, in ascending order, each warm-started from the last; approach u [m], contact area
+    [m²], normal force [N] and the number of 4-connected contact patches per target."""
+    from ContactMechanics import FreeFFTElasticHalfSpace
+    from ContactMechanics.Systems import NonSmoothContactSystem
+    from SurfaceTopography import Topography
+
     nb = (int(h.shape[0]), int(h.shape[1]))
     pixel_area = surface.nominal_area_m2 / (nb[0] * nb[1])
-
-    order = np.argsort(target, kind="stable")
-    approach = np.empty_like(target)
-    area = np.empty_like(target)
-    force = np.empty_like(target)
+    z_ref, load_control = solver.reference_m, solver.load_control
+    approach, area, force = np.empty_like(target), np.empty_like(target), np.empty_like(target)
     patches = np.empty(target.shape, dtype=np.int64)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -169,10 +172,10 @@ def halfspace_contact(
         substrate = FreeFFTElasticHalfSpace(nb, material.e_star_pa, surface.physical_size_m)
         system = NonSmoothContactSystem(substrate=substrate, surface=topo)
         previous: Any = None
-        for idx in order:
+        for idx in np.argsort(target, kind="stable"):
             # rigid rough surface at heights + offset, elastic flat at 0: contact where
             # h + offset > 0, i.e. h > z_ref − u  =>  offset = u − z_ref
-            kwargs: dict[str, Any] = {"pentol": tol, "maxiter": maxiter}
+            kwargs: dict[str, Any] = {"pentol": solver.pentol_m, "maxiter": solver.maxiter}
             if load_control:
                 kwargs["external_force"] = float(target[idx])
             else:
@@ -180,8 +183,8 @@ def halfspace_contact(
             if previous is not None:
                 kwargs["initial_displacements"] = previous
             result = system.minimize_proxy(**kwargs)
-            what = f"N = {target[idx]:.4g} N" if load_control else f"u = {target[idx]:.4g} m"
             if not result.success:
+                what = f"N = {target[idx]:.4g} N" if load_control else f"u = {target[idx]:.4g} m"
                 raise ContactError(
                     f"half-space solver did not converge at {what} ({result.message}); raise maxiter "
                     "or coarsen the surface"
@@ -194,19 +197,7 @@ def halfspace_contact(
             approach[idx] = float(target[idx]) if not load_control else offset + z_ref
             area[idx] = float(np.count_nonzero(in_contact)) * pixel_area
             patches[idx] = int(ndimage.label(in_contact)[1])
-    prep = dict(preparation or {})
-    prep.setdefault("reference", ref_name)
-    prep["reference_m"] = z_ref
-    prep["halfspace"] = {
-        "solver": "ContactMechanics constrained CG (Polonsky-Keer)",
-        "substrate": "free (non-periodic)",
-        "pentol_m": tol,
-        "control": "load" if load_control else "approach",
-        "frame_points": frame,
-        "refine": int(refine),
-        "grid": list(nb),
-    }
-    return ContactResult.of("halfspace", surface, material, approach, area, force, patches, prep)
+    return approach, area, force, patches
 
 
 def default_frame_points(summits: Summits | None) -> int:

@@ -1,23 +1,9 @@
 """Material pairings for the contact analysis (method §1 table, thesis Tables 3.1/3.2/3.4/3.5).
 
-``E*`` from (3.10): ``1/E* = (1−ν1²)/E1 + (1−ν2²)/E2``; a rigid counter-body has
-``E2 = ∞`` (its term vanishes).  Hardness ``H = 5.6 R_p`` (thesis 3.1.3) unless a tabulated
-value is given.  ``τ_max`` is the shear strength used by Bowden–Tabor (3.15/3.16).
-
-Presets (SI units):
-
-=============  =========  ====  ==========  ====  ===========  ========  =========  ==========
-name           E1         ν1    E2          ν2    E*           R_p       H          τ_max
-=============  =========  ====  ==========  ====  ===========  ========  =========  ==========
-``brake-pad``  1.0 GPa    0.3   ∞ (rigid)   0.3   1.099 GPa    305 MPa   1708 MPa   35 MPa
-``dc04``       210 GPa    0.3   210 GPa     0.3   115.4 GPa    860 MPa   4850 MPa   500 MPa
-=============  =========  ====  ==========  ====  ===========  ========  =========  ==========
-
-The thesis's Tables 3.4/3.5 print E* = 1.15 GPa for DC04, a misprint for 115 GPa
-(method erratum 2). For DC04 the tabulated H = 4850 MPa is kept (5.6 · 860 MPa would be
-4816 MPa).  The brake pad's τ_max = R_p/√3 of graphite (thesis 3.2.2: 35 MPa in the table;
-35/√3 = 20 MPa would be the formula applied to graphite's R_p = 35 MPa — the thesis's
-table value 35 MPa is used).
+``E*`` from (3.10): ``1/E* = (1−ν1²)/E1 + (1−ν2²)/E2``, ``E2 = ∞`` for a rigid counter-body;
+hardness ``H = 5.6 R_p`` (thesis 3.1.3) unless tabulated; ``τ_max`` the shear strength of
+Bowden–Tabor (3.15/3.16).  The presets ``brake-pad`` and ``dc04`` (SI units) and the thesis's
+misprint of E* for DC04 (method erratum 2) are tabulated in docs/surface_contact.md, "Materials".
 """
 
 from __future__ import annotations

@@ -1,20 +1,9 @@
-"""Closed-form and quadrature reference solutions (thesis 2.4.1–2.4.2), used by the tests.
+"""Closed-form and quadrature reference solutions of contact mechanics (thesis 2.4.1–2.4.2), used by the tests.
 
-* Hertz, sphere of radius β on a flat (rigid flat on an elastic sphere or the reverse), with
-  indentation δ: ``a² = βδ`` (2.74), ``A = πβδ`` (2.77 / 3.8),
-  ``N = (4/3) E* √β δ^{3/2}`` (2.75 with 2.72–2.73, 3.9), ``p0 = 2E*a/(πβ)`` (2.72),
-  and inversely ``a = (3Nβ/(4E*))^{1/3}`` (2.76).
-* Greenwood–Williamson for K summits of equal radius β̄ with Gaussian heights (std σ) and the
-  flat at distance d above the mean summit height, ``h = d/σ`` (2.83, 2.86–2.90):
-
-  - ``n = K F₀(h)``
-  - ``A = π K β̄ σ F₁(h)``                       (2.86, 2.89)
-  - ``N = (4/3) K E* √β̄ σ^{3/2} F_{3/2}(h)``    (2.87, 2.90)
-
-  with ``F_n(h) = ∫_h^∞ (s − h)^n φ*(s) ds`` and ``φ*`` the standard normal density (2.88).
-  ``F₀`` and ``F₁`` have closed forms; ``F_{3/2}`` (and any other n) is evaluated by
-  adaptive quadrature (:func:`scipy.integrate.quad`) as the thesis says (“numerisch
-  ausgewertet”).
+Hertz contact of a sphere on a flat (eq. 2.72–2.77, 3.8–3.9) and the Greenwood–Williamson
+expectation for summits of equal radius with Gaussian heights (eq. 2.83–2.90), its integrals
+``F_n(h)`` in closed form for n = 0, 1, 2 and by adaptive quadrature for any other order, as the
+thesis evaluates them ("numerisch ausgewertet").
 """
 
 from __future__ import annotations
@@ -131,7 +120,9 @@ def gw_contact(
 ) -> GWContact:
     """GW expectation for ``K`` summits of radius β̄, Gaussian heights of std σ (2.83–2.90).
 
-    ``separation_m`` is the distance ``d`` of the flat above the *mean* summit height [m].
+    ``separation_m`` is the distance ``d`` of the flat above the *mean* summit height [m], ``h = d/σ``:
+    ``n = K F₀(h)``, ``A = π K β̄ σ F₁(h)`` (2.86, 2.89), ``N = (4/3) K E* √β̄ σ^{3/2} F_{3/2}(h)``
+    (2.87, 2.90) with ``F_n`` of :func:`gw_integral` (standard normal density φ*, 2.88).
     """
     if not (n_summits > 0 and radius_m > 0 and sigma_m > 0 and e_star_pa > 0):
         raise ValueError("n_summits, radius_m, sigma_m and e_star_pa must be > 0")

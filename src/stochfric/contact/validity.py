@@ -1,36 +1,10 @@
-"""Is a contact result inside the validity of the GW/Hertz + Bowden–Tabor model? (issue 9 §6)
+"""Is a contact result inside the validity of the GW/Hertz + Bowden–Tabor model (method §2, eq. 3.7–3.16)?
 
-The model (method §2, thesis eq. 3.8–3.16) is elastic, lets the asperities carry load
-independently and turns one surface into one μ(u) curve.  It gives numbers far outside its
-assumptions without complaint — μ = 10–20 on a nm-smooth surface with a 1 GPa pad, μ from a
-single contact, A_c/A_nom = 80 — so every result is checked here and each violated
-assumption becomes a :class:`ValidityWarning` with a ``code`` (stable, for programs) and a
-``message`` that says what to change.  The checks, per approach u:
-
-``mu-above-one``
-    μ = A_c τ_max / N > 1 (3.16).  Equivalent to a mean contact pressure N/A_c below τ_max:
-    for a Hertz contact ``N/A_c = (4E*/3π)√(d/β)``, so μ > 1 means the asperities are too
-    blunt (or E* too small) for the pairing's shear strength — the load is carried by
-    contacts that would shear before they press.
-``area-fraction-above-one``
-    A_c/A_nom > 1: more contact than nominal area; the GW sum is meaningless there.
-``beyond-non-interaction``
-    A_c/A_nom above ``max_area_fraction`` (default :data:`NON_INTERACTION_AREA_FRACTION` = 0.1,
-    the limit measured against the boundary-element solution at equal load,
-    docs/surface_contact.md; the same default as the fits' exclusion rule,
-    :func:`stochfric.process.fit.fit_mask`): beyond it the contacts start to merge and the GW
-    area's ratio to the interacting elastic half-space leaves its low-load plateau by more
-    than 10 % (from 0.13–0.16 on grooved surfaces).
-``few-contacts``
-    fewer than ``min_contacts`` (default 10) contacts: μ is the property of one or a few
-    asperities (for one Hertz contact ``μ = 3πτ_max√β / (4E*√d)``), not a statistic.
-``plastic`` / ``elastic-plastic``
-    plasticity index γ = (E*/H)√(σ_S/β̄) (3.7) > 1 (mostly plastic) or in [0.6, 1]
-    (mixed): the elastic Hertz model is questionable.
-
-:func:`contact_validity` works on plain arrays (reusable for ensemble means in the
-friction-process analysis); :func:`result_validity` on a
-:class:`~stochfric.contact.asperity.ContactResult`.
+Each violated assumption of the model — μ > 1, A_c/A_nom > 1 or beyond the non-interaction range,
+too few contacts, a plastic or elastic-plastic plasticity index — becomes a :class:`ValidityWarning`
+with a stable ``code`` and a message that says what to change (the table of docs/surface_contact.md,
+"Validity warnings"): :func:`contact_validity` on plain arrays over the approach,
+:func:`result_validity` on a :class:`~stochfric.contact.asperity.ContactResult`.
 """
 
 from __future__ import annotations
@@ -103,7 +77,7 @@ def contact_validity(
     min_contacts: int = MIN_CONTACTS,
     name: str = "",
 ) -> list[ValidityWarning]:
-    """Validity checks of a contact result given as arrays over the approach (module doc).
+    """Validity checks of a contact result given as arrays over the approach (module docstring).
 
     Parameters
     ----------

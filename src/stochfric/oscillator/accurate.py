@@ -105,82 +105,122 @@ EV_ZERO_VELOCITY = 2
 EV_NODE = 3
 
 
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def _f(
-    tau: float,
-    y0: float,
-    y1: float,
-    y2: float,
-    s: float,
-    sz: float,
-    prm: npt.NDArray[np.float64],
-    shape: int,
-    lawp: npt.NDArray[np.float64],
-    r: int,
-    noise: int,
-    path_mode: int,
-    proc: npt.NDArray[np.float64],
-    n_proc: int,
-    out: npt.NDArray[np.float64],
-    j: int,
-) -> None:  # pragma: no cover
-    """Slip equations (4.7)/(4.36) with the path coordinate as third state, into ``out[j]``.
+class Segment(NamedTuple):
+    """What stays fixed between two events of a slip phase; given it, the right-hand side is smooth.
 
-    The signs are those of the segment, held fixed within a step: ``s = sign(γ0 − x2)`` (so
-    ``|γ0 − x2| = s(γ0 − x2)``) and, for the mass path, ``sz = sign(x2)`` (``|x2| = sz·x2``).  The
-    right-hand side is then smooth across ``x2 = γ0`` and ``x2 = 0``, which are events where the
-    integration restarts with the new sign, so the step that contains one is not rejected by the
-    error control (a kink would cost a cascade of rejected steps).  ``lawp``/``proc`` are the rows'
-    2-D arrays, ``r`` the row.
+    ``s = sign(γ0 − x2)`` (so ``|γ0 − x2| = s(γ0 − x2)``); the path's rate is
+    ``rate_x2·x2 + rate_vr·(γ0 − x2)``: ``(sign(x2), 0)`` on the mass path, ``(0, s)`` on the relative
+    one.  The process is the linear function of its current grid cell ``cell``
+    (``μ̂ = (1 − w) p0 + w p1``, ``w = path/Δx − cell``, ``inv_dx = 1/Δx``; all 0 without a process),
+    extended beyond the cell, so that a step that crosses the cell's end stays smooth (the crossing is
+    an event).  Floats only: the compiled step keeps them in registers.
     """
+
+    s: float
+    rate_x2: float
+    rate_vr: float
+    cell: float
+    p0: float
+    p1: float
+    inv_dx: float
+
+
+class Run(NamedTuple):
+    """What stays fixed over one trajectory: its row in the batch, its law's shape, whether it reads a
+    contact process and the mass path, the static limit ``n μ_s`` and ``n μ_k(0)``."""
+
+    row: int
+    shape: int
+    use_nodes: bool
+    mass_path: bool
+    lim: float
+    nn_k0: float
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _f(
+    y0: float, y1: float, y2: float, force: float, prm: npt.NDArray[np.float64], lawp: npt.NDArray[np.float64],
+    seg: Segment, shape: int, row: int, out: npt.NDArray[np.float64], j: int,
+) -> None:  # pragma: no cover
+    """Slip equations (4.7)/(4.36) with the path coordinate as third state, into ``out[j]``; ``force`` is
+    the forcing ``q cos(x30 + ητ)`` at the stage's time (branch-free: the compiled step stays fast)."""
+    s = seg.s
     vr = prm[P_GAMMA0] - y1
-    mu = mu_kinetic_row(shape, prm[P_VSCALE] * (s * vr), lawp, r)
-    if noise == NOISE_PROCESS:
-        mu += process_value_row(proc, r, n_proc, prm[P_PROC_DX], y2)
+    w = y2 * seg.inv_dx - seg.cell
+    mu = mu_kinetic_row(shape, prm[P_VSCALE] * (s * vr), lawp, row) + ((1.0 - w) * seg.p0 + w * seg.p1)
     out[j, 0] = y1
-    acc = slip_drift(y0, y1, 2.0 * prm[P_D], prm[P_N], mu, s)
-    if prm[P_Q] != 0.0:
-        acc += prm[P_Q] * math.cos(prm[P_X30] + prm[P_ETA] * tau)
-    out[j, 1] = acc
-    out[j, 2] = sz * y1 if path_mode == PATH_MASS else s * vr
+    out[j, 1] = slip_drift(y0, y1, 2.0 * prm[P_D], prm[P_N], mu, s) + force
+    out[j, 2] = seg.rate_x2 * y1 + seg.rate_vr * vr
 
 
-@numba.njit(cache=True, nogil=True, error_model="numpy")
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _forcing(prm: npt.NDArray[np.float64], tau: float) -> float:  # pragma: no cover
+    """``q cos(x30 + ητ)`` (0 unforced)."""
+    q = prm[P_Q]
+    return q * math.cos(prm[P_X30] + prm[P_ETA] * tau) if q != 0.0 else 0.0
+
+
+#: Offsets ``|η c h|`` up to which :func:`_shifted_cos` uses its series (error below 1e-18 there).
+SERIES_MAX = 0.5
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _shifted_cos(c0: float, s0: float, phase: float, d: float) -> float:  # pragma: no cover
+    """``cos(phase + d)`` from ``c0 = cos(phase)``, ``s0 = sin(phase)``: ``c0 cos d − s0 sin d`` with
+    cos d and sin d from their Taylor series (to d¹⁶/16! and d¹⁵/15!) for ``|d| ≤`` :data:`SERIES_MAX`,
+    else the library cosine.  The stages of one step share ``phase`` (two library calls per step
+    instead of five)."""
+    if abs(d) > SERIES_MAX:
+        return math.cos(phase + d)
+    d2 = d * d
+    cd = 1.0 + d2 * (-1.0 / 2 + d2 * (1.0 / 24 + d2 * (-1.0 / 720 + d2 * (1.0 / 40320 + d2 * (
+        -1.0 / 3628800 + d2 * (1.0 / 479001600 + d2 * (-1.0 / 87178291200 + d2 / 20922789888000)))))))
+    sd = d * (1.0 + d2 * (-1.0 / 6 + d2 * (1.0 / 120 + d2 * (-1.0 / 5040 + d2 * (1.0 / 362880 + d2 * (
+        -1.0 / 39916800 + d2 * (1.0 / 6227020800 + d2 * (-1.0 / 1307674368000))))))))
+    return c0 * cd - s0 * sd
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _step(
-    tau: float, y: npt.NDArray[np.float64], h: float, k: npt.NDArray[np.float64],
-    s: float, sz: float, prm: npt.NDArray[np.float64], shape: int, lawp: npt.NDArray[np.float64], r: int,
-    noise: int, path_mode: int, proc: npt.NDArray[np.float64], n_proc: int,
-    ynew: npt.NDArray[np.float64],
+    tau: float, y: npt.NDArray[np.float64], h: float, k: npt.NDArray[np.float64], prm: npt.NDArray[np.float64],
+    lawp: npt.NDArray[np.float64], seg: Segment, shape: int, row: int, ynew: npt.NDArray[np.float64],
 ) -> None:  # pragma: no cover
     """One Dormand–Prince step; ``k[0]`` must hold f(τ, y) on entry; fills k[1..6], ynew (FSAL)."""
+    q = prm[P_Q]
+    g2 = g3 = g4 = g5 = g6 = 0.0
+    if q != 0.0:
+        phase = prm[P_X30] + prm[P_ETA] * tau
+        eh = prm[P_ETA] * h
+        c0 = math.cos(phase)
+        s0 = math.sin(phase)
+        g2 = q * _shifted_cos(c0, s0, phase, C2 * eh)
+        g3 = q * _shifted_cos(c0, s0, phase, C3 * eh)
+        g4 = q * _shifted_cos(c0, s0, phase, C4 * eh)
+        g5 = q * _shifted_cos(c0, s0, phase, C5 * eh)
+        g6 = q * _shifted_cos(c0, s0, phase, eh)
     a0, a1, a2 = y[0], y[1], y[2]
-    _f(tau + C2 * h, a0 + h * A21 * k[0, 0], a1 + h * A21 * k[0, 1], a2 + h * A21 * k[0, 2],
-       s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 1)
-    _f(tau + C3 * h,
-       a0 + h * (A31 * k[0, 0] + A32 * k[1, 0]),
+    _f(a0 + h * A21 * k[0, 0], a1 + h * A21 * k[0, 1], a2 + h * A21 * k[0, 2], g2, prm, lawp, seg, shape, row, k, 1)
+    _f(a0 + h * (A31 * k[0, 0] + A32 * k[1, 0]),
        a1 + h * (A31 * k[0, 1] + A32 * k[1, 1]),
        a2 + h * (A31 * k[0, 2] + A32 * k[1, 2]),
-       s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 2)
-    _f(tau + C4 * h,
-       a0 + h * (A41 * k[0, 0] + A42 * k[1, 0] + A43 * k[2, 0]),
+       g3, prm, lawp, seg, shape, row, k, 2)
+    _f(a0 + h * (A41 * k[0, 0] + A42 * k[1, 0] + A43 * k[2, 0]),
        a1 + h * (A41 * k[0, 1] + A42 * k[1, 1] + A43 * k[2, 1]),
        a2 + h * (A41 * k[0, 2] + A42 * k[1, 2] + A43 * k[2, 2]),
-       s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 3)
-    _f(tau + C5 * h,
-       a0 + h * (A51 * k[0, 0] + A52 * k[1, 0] + A53 * k[2, 0] + A54 * k[3, 0]),
+       g4, prm, lawp, seg, shape, row, k, 3)
+    _f(a0 + h * (A51 * k[0, 0] + A52 * k[1, 0] + A53 * k[2, 0] + A54 * k[3, 0]),
        a1 + h * (A51 * k[0, 1] + A52 * k[1, 1] + A53 * k[2, 1] + A54 * k[3, 1]),
        a2 + h * (A51 * k[0, 2] + A52 * k[1, 2] + A53 * k[2, 2] + A54 * k[3, 2]),
-       s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 4)
-    _f(tau + h,
-       a0 + h * (A61 * k[0, 0] + A62 * k[1, 0] + A63 * k[2, 0] + A64 * k[3, 0] + A65 * k[4, 0]),
+       g5, prm, lawp, seg, shape, row, k, 4)
+    _f(a0 + h * (A61 * k[0, 0] + A62 * k[1, 0] + A63 * k[2, 0] + A64 * k[3, 0] + A65 * k[4, 0]),
        a1 + h * (A61 * k[0, 1] + A62 * k[1, 1] + A63 * k[2, 1] + A64 * k[3, 1] + A65 * k[4, 1]),
        a2 + h * (A61 * k[0, 2] + A62 * k[1, 2] + A63 * k[2, 2] + A64 * k[3, 2] + A65 * k[4, 2]),
-       s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 5)
+       g6, prm, lawp, seg, shape, row, k, 5)
     for i in range(3):
         ynew[i] = y[i] + h * (
             B1 * k[0, i] + B3 * k[2, i] + B4 * k[3, i] + B5 * k[4, i] + B6 * k[5, i]
         )
-    _f(tau + h, ynew[0], ynew[1], ynew[2], s, sz, prm, shape, lawp, r, noise, path_mode, proc, n_proc, k, 6)
+    _f(ynew[0], ynew[1], ynew[2], g6, prm, lawp, seg, shape, row, k, 6)
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -196,42 +236,6 @@ def _err_norm(
                  + E6 * k[5, i] + E7 * k[6, i]) / sc
         err += e * e
     return math.sqrt(err / 3.0)
-
-
-@numba.njit(cache=True, nogil=True)
-def _rhs(
-    tau: float,
-    y: npt.NDArray[np.float64],
-    s: float,
-    prm: npt.NDArray[np.float64],
-    shape: int,
-    lawp: npt.NDArray[np.float64],
-    noise: int,
-    path_mode: int,
-    proc: npt.NDArray[np.float64],
-    n_proc: int,
-    out: npt.NDArray[np.float64],
-) -> None:  # pragma: no cover
-    """:func:`_f` for one 1-D state, law and process (``sz = sign(x2)``); tests and benchmarks."""
-    sz = 1.0 if y[1] >= 0.0 else -1.0
-    k = np.empty((1, 3))
-    _f(tau, y[0], y[1], y[2], s, sz, prm, shape, lawp.reshape((1, lawp.shape[0])), 0, noise, path_mode,
-       proc.reshape((1, proc.shape[0])), n_proc, k, 0)
-    out[0], out[1], out[2] = k[0, 0], k[0, 1], k[0, 2]
-
-
-@numba.njit(cache=True, nogil=True)
-def _dopri_step(
-    tau: float, y: npt.NDArray[np.float64], h: float, k: npt.NDArray[np.float64],
-    s: float, prm: npt.NDArray[np.float64], shape: int, lawp: npt.NDArray[np.float64],
-    noise: int, path_mode: int, proc: npt.NDArray[np.float64], n_proc: int,
-    ynew: npt.NDArray[np.float64], tmp: npt.NDArray[np.float64],
-) -> None:  # pragma: no cover
-    """:func:`_step` for one 1-D law and process (``sz = sign(x2)`` at the start); tests.  ``tmp`` is
-    unused (kept for the signature)."""
-    sz = 1.0 if y[1] >= 0.0 else -1.0
-    _step(tau, y, h, k, s, sz, prm, shape, lawp.reshape((1, lawp.shape[0])), 0, noise, path_mode,
-          proc.reshape((1, proc.shape[0])), n_proc, ynew)
 
 
 @numba.njit(cache=True, nogil=True)
@@ -402,34 +406,267 @@ def _save_dense(
     return isave
 
 
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def _hermite_root(p0: float, p1: float, d0: float, d1: float, target: float) -> float:  # pragma: no cover
-    """θ in (0, 1) where the cubic Hermite interpolant of a rising path (values ``p0``, ``p1``, slopes
-    ``d0``, ``d1`` per unit θ) reaches ``target`` (``p0 < target < p1``); a few Newton steps from the
-    linear guess, kept inside the bracket."""
-    th = (target - p0) / (p1 - p0)
-    dp = p1 - p0
-    for _ in range(4):
-        t2 = th * th
-        t3 = t2 * th
-        v = p0 + d0 * (t3 - 2.0 * t2 + th) + dp * (3.0 * t2 - 2.0 * t3) + d1 * (t3 - t2) - target
-        dv = d0 * (3.0 * t2 - 4.0 * th + 1.0) + dp * (6.0 * th - 6.0 * t2) + d1 * (3.0 * t2 - 2.0 * th)
-        if dv <= 0.0:
-            break
-        th2 = th - v / dv
-        if not 0.0 < th2 < 1.0:
-            break
-        th = th2
-    return th
-
-
 #: Shortest step at the belt speed, and the time the mass is carried with the belt at least when no slip
 #: direction leaves it (a sliding mode: the contact model's kinetic friction μ_k(0) + μ̂(path) grows
 #: along the path faster than the force); the fixed-step scheme carries it for one Δτ.
 CARRY_STEP = 1e-6
 
-#: Newton iterations at most when a step is aimed at a grid point of the process (1–2 suffice).
-NODE_ITER = 8
+#: A slip segment ends at a grid point of the process once the path is within this fraction of a grid
+#: step of it (the state there is recomputed by one step of the located length).
+NODE_TOL = 1e-12
+
+#: Event codes of :func:`_slip_until_event` beyond ``EV_*``: the step that starts at the belt speed
+#: shrank below :data:`CARRY_STEP` without leaving it (a belt contact at once).
+EV_AT_BELT = 4
+
+#: Slots of the per-trajectory counters (int array) of :func:`run_accurate`.
+C_M, C_SHORT, C_NO_STICK, C_BREAK, C_PHASES = range(5)
+#: Slots of its float scratch: the smallest slip path so far and the path at the start of the slip.
+F_MIN_SLIP, F_SLIP_START = range(2)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _node_theta(
+    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
+    node: float, tol: float,
+) -> float:  # pragma: no cover
+    """θ in (0, 1] at which the dense output's path reaches ``node`` (``y[2] < node ≤ ynew[2]``), by
+    the Illinois variant of regula falsi (superlinear; the path is monotone within a segment), to
+    ``|path(θ) − node| ≤ tol``."""
+    a = 0.0
+    b = 1.0
+    fa = y[2] - node
+    fb = ynew[2] - node
+    if fb <= tol:
+        return 1.0
+    side = 0
+    c = b
+    for _ in range(100):
+        c = (a * fb - b * fa) / (fb - fa)
+        if not a < c < b:
+            c = 0.5 * (a + b)
+        fc = _dense(y, ynew, k, h, c, 2) - node
+        if abs(fc) <= tol or b - a <= 1e-15:
+            break
+        if fc > 0.0:
+            b = c
+            fb = fc
+            if side == -1:
+                fa *= 0.5
+            side = -1
+        else:
+            a = c
+            fa = fc
+            if side == 1:
+                fb *= 0.5
+            side = 1
+    return c
+
+
+@numba.njit(cache=True, nogil=True)
+def _cell_values(proc: npt.NDArray[np.float64], r: int, n_proc: int, cell: float) -> tuple[float, float]:
+    """Process values at the two ends of grid cell ``cell = floor(path/Δx)`` of row ``r`` (periodic beyond
+    ``n_proc`` points, as :func:`~stochfric.oscillator.kernels.process_value_row`)."""
+    j0 = int(cell)
+    if j0 < 0 or j0 >= n_proc:
+        j0 %= n_proc
+    j1 = j0 + 1
+    if j1 == n_proc:
+        j1 = 0
+    return proc[r, j0], proc[r, j1]
+
+
+@numba.njit(cache=True, nogil=True)
+def _new_segment(
+    tau: float, y: npt.NDArray[np.float64], k: npt.NDArray[np.float64], s: float, rows: KernelRows, run: Run,
+) -> tuple[Segment, float]:  # pragma: no cover
+    """The slip segment that starts at ``(τ, y)`` with friction direction ``s``: the sign of ``x2`` (of
+    the acceleration where ``x2 = 0``) and the process cell; fills ``k[0] = f(τ, y)`` and returns the
+    segment and the grid point ahead (``inf`` without a process)."""
+    i = run.row
+    prm = rows.prm[i]
+    pdx = prm[P_PROC_DX]
+    cell = 0.0
+    p0 = 0.0
+    p1 = 0.0
+    inv_dx = 0.0
+    node = np.inf
+    if run.use_nodes:
+        cell = math.floor(y[2] / pdx + 1e-9)
+        p0, p1 = _cell_values(rows.proc, i, rows.n_proc[i], cell)
+        inv_dx = 1.0 / pdx
+        node = (cell + 1.0) * pdx
+    rate_vr = 0.0 if run.mass_path else s
+    seg = Segment(s, 1.0 if run.mass_path else 0.0, rate_vr, cell, p0, p1, inv_dx)
+    _f(y[0], y[1], y[2], _forcing(prm, tau), prm, rows.lawp, seg, run.shape, i, k, 0)
+    if run.mass_path:
+        if y[1] != 0.0:
+            sz = 1.0 if y[1] > 0.0 else -1.0
+        else:
+            sz = 1.0 if k[0, 1] >= 0.0 else -1.0
+        seg = Segment(s, sz, rate_vr, cell, p0, p1, inv_dx)
+        k[0, 2] = sz * y[1]
+    return seg, node
+
+
+@numba.njit(cache=True, nogil=True)
+def _first_event(
+    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
+    seg: Segment, gamma0: float, node: float, node_tol: float,
+) -> tuple[int, float]:  # pragma: no cover
+    """The first event in the accepted step ``[τ, τ + h]`` and its θ: the belt speed reached, ``x2 = 0``
+    on the mass path, or the next grid point of the process (``EV_NONE``, 2.0 if none)."""
+    ev = EV_NONE
+    th = 2.0
+    if seg.s * (gamma0 - y[1]) > 0.0 and seg.s * (gamma0 - ynew[1]) <= 0.0:
+        th = _root_theta(y, ynew, k, h, 1, gamma0, seg.s)
+        ev = EV_BELT
+    sz = seg.rate_x2  # sign(x2) on the mass path, else 0 (no event)
+    if sz != 0.0 and sz * ynew[1] < 0.0 and sz * y[1] > 0.0:
+        t2 = _root_theta(y, ynew, k, h, 1, 0.0, -sz)  # g = sz·x2 > 0 before the crossing
+        if t2 < th:
+            th = t2
+            ev = EV_ZERO_VELOCITY
+    if ynew[2] >= node:
+        t3 = _node_theta(y, ynew, k, h, node, node_tol)
+        if t3 < th:
+            th = t3
+            ev = EV_NODE
+    return ev, th
+
+
+@numba.njit(cache=True, nogil=True)
+def _slip_until_event(
+    tau: float, h: float, y: npt.NDArray[np.float64], k: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64],
+    rows: KernelRows, run: Run, seg: Segment, node: float, settings: AccurateSettings,
+    traj: npt.NDArray[np.float64], isave: int,
+) -> tuple[int, float, float, int]:  # pragma: no cover
+    """Integrate the slip segment ``seg`` from ``(τ, y)`` (``k[0] = f(τ, y)``) with adaptive steps
+    until its first event or ``τ_end``; returns ``(event, τ, next step, next save row)``, ``y`` at the event.
+
+    The state at an event inside a step is recomputed by one step of exactly the located length;
+    the belt speed is then set exactly (``x2 = γ0``), as are ``x2 = 0`` and the grid point's path.
+    """
+    tau_end, _h0, max_step, rtol, atol, save_dt = settings
+    prm = rows.prm[run.row]
+    lawp = rows.lawp
+    shape = run.shape
+    row = run.row
+    gamma0 = prm[P_GAMMA0]
+    node_tol = NODE_TOL * prm[P_PROC_DX]
+    while True:
+        if tau + h > tau_end:
+            h = tau_end - tau
+        _step(tau, y, h, k, prm, lawp, seg, shape, row, ynew)
+        at_belt = False
+        if y[1] == gamma0 and seg.s * (gamma0 - ynew[1]) < 0.0:
+            # a segment that starts at the belt speed is back at (or on the wrong side of) it at the
+            # step's end: a short excursion (|F| just above n μ_s) that the step jumped over, or a slip
+            # against the unbalanced force (equal to it within rounding).  Shorten the step until the
+            # excursion is resolved; below CARRY_STEP it is a belt contact at once
+            if h > CARRY_STEP:
+                h *= 0.25
+                continue
+            at_belt = True
+        err = 0.0 if at_belt else _err_norm(y, ynew, k, h, rtol, atol)
+        fac = 0.9 * max(err, 1e-10) ** -0.2  # the step-size controller's factor
+        if err > 1.0:
+            h *= max(0.2, fac)
+            continue
+        h_next = min(h * min(5.0, max(0.2, fac)), max_step)
+        if at_belt:
+            return EV_AT_BELT, tau, max(h_next, 1e-6), isave
+        ev, th = _first_event(y, ynew, k, h, seg, gamma0, node, node_tol)
+        if ev == EV_NONE:
+            isave = _save_dense(traj, isave, save_dt, tau, tau + h, y, ynew, k, h)
+            tau += h
+            for c in range(3):
+                y[c] = ynew[c]
+                k[0, c] = k[6, c]
+            h = h_next
+            if tau >= tau_end:
+                return EV_NONE, tau, h, isave
+            continue
+        hev = th * h
+        isave = _save_dense(traj, isave, save_dt, tau, tau + hev, y, ynew, k, h)
+        _step(tau, y, hev, k, prm, lawp, seg, shape, row, ynew)
+        tau += hev
+        for c in range(3):
+            y[c] = ynew[c]
+        if ev == EV_NODE:
+            y[2] = node
+        elif ev == EV_BELT:
+            y[1] = gamma0
+        else:
+            y[1] = 0.0
+        return ev, tau, max(h_next, 1e-6), isave
+
+
+@numba.njit(cache=True, nogil=True)
+def _lim_eff(rows: KernelRows, run: Run, path: float) -> float:
+    """The largest force the contact at the belt speed holds without slipping: ``n μ_s``, and for the
+    contact model at least ``n (μ_k(0) + μ̂(path))`` (the kinetic friction as ``v_rel → 0``)."""
+    if run.use_nodes:
+        prm = rows.prm[run.row]
+        mu_hat = process_value_row(rows.proc, run.row, rows.n_proc[run.row], prm[P_PROC_DX], path)
+        return max(run.lim, run.nn_k0 + prm[P_N] * mu_hat)
+    return run.lim
+
+
+@numba.njit(cache=True, nogil=True)
+def _belt_contact(
+    tau: float, y: npt.NDArray[np.float64], s: float, rows: KernelRows, out: KernelOutput,
+    settings: AccurateSettings, run: Run, isave: int, cnt: npt.NDArray[np.int64], fl: npt.NDArray[np.float64],
+    at_belt: bool,
+) -> tuple[float, int, bool, float]:  # pragma: no cover
+    """The mass, slipping with friction direction ``s``, at the belt speed at ``τ``: it sticks (a
+    slip→stick transition, recorded in ``out``), is carried with the belt (:func:`carried_end`), or
+    slips on with the friction opposing the unbalanced force.  Returns ``(τ, next save row, stuck, s)``;
+    ``stuck`` is also true when the mass is still carried with the belt at ``τ_end``."""
+    i = run.row
+    prm = rows.prm[i]
+    gamma0 = prm[P_GAMMA0]
+    lim = run.lim
+    tau_end = settings.tau_end
+    traj = out.traj[i]
+    fs = stick_force(y[0], tau, prm)
+    sticks = abs(fs) <= lim
+    if not sticks:
+        cnt[C_NO_STICK] += 1
+        if abs(fs) <= _lim_eff(rows, run, y[2]):
+            # carried with the belt until the force enters the static band or leaves the kinetic one
+            rate = gamma0 if run.mass_path else 0.0
+            tc, sticks = carried_end(y[0], tau, tau_end, prm, lim, run.nn_k0, rows.proc, i, rows.n_proc[i], y[2],
+                                     rate)
+            te = min(tc, tau_end)
+            isave = _save_stick(traj, isave, settings.save_dt, y[0], tau, te, gamma0)
+            y[0] += gamma0 * (te - tau)
+            y[2] += rate * (te - tau)
+            tau = te
+            if tc >= tau_end:
+                return tau, isave, True, s  # still moving with the belt at τ_end
+            fs = stick_force(y[0], tau, prm)
+    if sticks:
+        m = cnt[C_M]
+        if m < out.x_gh.shape[1]:
+            out.x_gh[i, m] = y[0]
+            out.t_gh[i, m] = tau
+        cnt[C_M] += 1
+        sp = y[2] - fl[F_SLIP_START]
+        cnt[C_PHASES] += 1
+        fl[F_MIN_SLIP] = min(fl[F_MIN_SLIP], sp)
+        if sp < prm[P_PROC_DX]:
+            cnt[C_SHORT] += 1
+        return tau, isave, True, s
+    if at_belt and tau < tau_end:
+        # neither sticking nor carried, yet no slip direction leaves the belt speed: carried with the
+        # belt for one short step (progress guaranteed)
+        hc = min(CARRY_STEP, tau_end - tau)
+        isave = _save_stick(traj, isave, settings.save_dt, y[0], tau, tau + hc, gamma0)
+        y[0] += gamma0 * hc
+        tau += hc
+        fs = stick_force(y[0], tau, prm)
+    return tau, isave, False, 1.0 if fs > 0.0 else -1.0  # the friction opposes the unbalanced force
 
 
 @numba.njit(cache=True, nogil=True)
@@ -442,230 +679,58 @@ def run_accurate(
     rows (``τ, x1, x2``) are filled at ``τ = k·save_dt`` from the dense output.
     """
     prm = rows.prm[i]
-    shape = rows.shapes[i]
-    lawp = rows.lawp
-    x10 = rows.x0[i, 0]
-    x20 = rows.x0[i, 1]
-    proc = rows.proc
-    n_proc = rows.n_proc[i]
-    xgh = out.x_gh[i]
-    tgh = out.t_gh[i]
-    traj = out.traj[i]
-    diag = out.diag[i]
-    tau_end, h0, max_step, rtol, atol, save_dt = settings
+    tau_end = settings.tau_end
     gamma0 = prm[P_GAMMA0]
-    nn = prm[P_N]
-    lim = nn * prm[P_MUS]
-    pdx = prm[P_PROC_DX]
-    use_nodes = noise == NOISE_PROCESS
-    mass_path = path_mode == PATH_MASS
-    kinetic0 = mu_kinetic_row(shape, 0.0, lawp, i)
-
+    run = Run(i, rows.shapes[i], noise == NOISE_PROCESS, path_mode == PATH_MASS, prm[P_N] * prm[P_MUS],
+              prm[P_N] * mu_kinetic_row(rows.shapes[i], 0.0, rows.lawp, i))
+    traj = out.traj[i]
     y = np.empty(3)
     ynew = np.empty(3)
     k = np.empty((7, 3))
-    y[0] = x10
-    y[1] = x20
+    cnt = np.zeros(5, dtype=np.int64)
+    fl = np.array([np.inf, 0.0])
+    y[0] = rows.x0[i, 0]
+    y[1] = rows.x0[i, 1]
     y[2] = 0.0
     tau = 0.0
-    m = 0
-    max_ev = xgh.shape[0]
-    n_short = 0
-    n_no_stick = 0
-    n_break = 0
-    n_phases = 0
-    min_slip = np.inf
-    path_slip_start = 0.0
     isave = 0
-
-    def _lim_eff(path: float) -> float:
-        if use_nodes:
-            return max(lim, nn * (kinetic0 + process_value_row(proc, i, n_proc, pdx, path)))
-        return lim
-
-    stick = x20 == gamma0 and abs(stick_force(x10, 0.0, prm)) <= _lim_eff(0.0)
+    f0 = stick_force(y[0], 0.0, prm)
+    stick = y[1] == gamma0 and abs(f0) <= _lim_eff(rows, run, 0.0)
     # off the belt speed the relative velocity decides; on it (and outside the static band) the
     # unbalanced force does: slip backwards (s = +1) when it exceeds +limit, forwards below −limit
-    if x20 == gamma0:
-        s = 1.0 if stick_force(x10, 0.0, prm) >= 0.0 else -1.0
+    if y[1] == gamma0:
+        s = 1.0 if f0 >= 0.0 else -1.0
     else:
-        s = 1.0 if x20 < gamma0 else -1.0
-    sz = 1.0
-    h = min(h0, max_step)
-
+        s = 1.0 if y[1] < gamma0 else -1.0
+    h = min(settings.h0, settings.max_step)
     while tau < tau_end:
         if stick:
-            tb = breakaway_time(y[0], tau, tau_end, prm, _lim_eff(y[2]))
+            tb = breakaway_time(y[0], tau, tau_end, prm, _lim_eff(rows, run, y[2]))
             te = min(tb, tau_end)
-            isave = _save_stick(traj, isave, save_dt, y[0], tau, te, gamma0)
+            isave = _save_stick(traj, isave, settings.save_dt, y[0], tau, te, gamma0)
             y[0] += gamma0 * (te - tau)
+            tau = te
             if tb >= tau_end:
-                tau = tau_end
                 break
-            tau = tb
             stick = False
-            n_break += 1
+            cnt[C_BREAK] += 1
             s = 1.0 if stick_force(y[0], tau, prm) > 0.0 else -1.0
-            path_slip_start = y[2]
-            h = min(h0, max_step)
+            fl[F_SLIP_START] = y[2]
+            h = min(settings.h0, settings.max_step)
             continue
-        # a new slip segment (after a breakaway or an event): the signs s = sign(γ0 − x2) and
-        # sz = sign(x2) are fixed until the next event
+        # a new slip segment (after a breakaway or an event): the signs and the process cell are fixed
+        # until the next event
         if y[1] != gamma0:
             s = 1.0 if y[1] < gamma0 else -1.0
-        _f(tau, y[0], y[1], y[2], s, 1.0, prm, shape, lawp, i, noise, path_mode, proc, n_proc, k, 0)
-        if y[1] != 0.0:
-            sz = 1.0 if y[1] > 0.0 else -1.0
-        else:
-            sz = 1.0 if k[0, 1] >= 0.0 else -1.0
-        k[0, 2] = sz * y[1] if mass_path else s * (gamma0 - y[1])
-        # the next grid point of the process ahead (the path never decreases within a segment)
-        node = (math.floor(y[2] / pdx + 1e-9) + 1.0) * pdx if use_nodes else np.inf
-        # integrate the slip segment until an event
-        while True:
-            if tau + h > tau_end:
-                h = tau_end - tau
-            _step(tau, y, h, k, s, sz, prm, shape, lawp, i, noise, path_mode, proc, n_proc, ynew)
-            on_node = False
-            h_try = h
-            if ynew[2] > node and y[2] < node:
-                # the step crosses a kink of the interpolated process: aim it at the grid point
-                # instead (a step across the kink would fail the error test over and over).  First
-                # guess from the cubic Hermite interpolant of the path (its rate |x2| or |γ0 − x2|
-                # is continuous across the kink), then Newton on the step length with the path's
-                # rate k[6, 2] at the step's end
-                hn = _hermite_root(y[2], ynew[2], h * k[0, 2], h * k[6, 2], node) * h
-                for _ in range(NODE_ITER):
-                    _step(tau, y, hn, k, s, sz, prm, shape, lawp, i, noise, path_mode, proc, n_proc, ynew)
-                    res = ynew[2] - node
-                    if abs(res) <= 1e-13 * pdx or k[6, 2] <= 0.0:
-                        break
-                    hn2 = hn - res / k[6, 2]
-                    if not 0.0 < hn2 <= h or hn2 == hn:
-                        break
-                    hn = hn2
-                on_node = abs(ynew[2] - node) <= 1e-9 * pdx
-                if not on_node:  # no convergence (not seen): halve the step and try again
-                    h = 0.5 * h
-                    continue
-                h = hn
-            at_belt = False
-            if y[1] == gamma0 and s * (gamma0 - ynew[1]) < 0.0:
-                # a segment that starts at the belt speed is back at (or on the wrong side of) it at
-                # the step's end: a short excursion (|F| just above n μ_s) that the step jumped over,
-                # or a slip against the unbalanced force (equal to it within rounding: no verdict, the step
-                # stands).  Shorten the step until the excursion is
-                # resolved; below CARRY_STEP it is a belt contact at once (stick, carried with the belt,
-                # or, if neither, carried for that step as the fixed-step scheme does)
-                if h > CARRY_STEP:
-                    h *= 0.25
-                    continue
-                at_belt = True
-            err = 0.0 if at_belt else _err_norm(y, ynew, k, h, rtol, atol)
-            if err > 1.0:
-                h *= max(0.2, 0.9 * err ** -0.2)
-                continue
-            # accepted: look for events in (τ, τ + h]
-            ev = EV_NONE
-            th = 2.0
-            g_old = s * (gamma0 - y[1])
-            g_new = s * (gamma0 - ynew[1])
-            if g_old > 0.0 and g_new <= 0.0:
-                t1 = _root_theta(y, ynew, k, h, 1, gamma0, s)
-                if t1 < th:
-                    th = t1
-                    ev = EV_BELT
-            if mass_path and sz * ynew[1] < 0.0 and sz * y[1] > 0.0:
-                t2 = _root_theta(y, ynew, k, h, 1, 0.0, -sz)  # g = sz·x2 > 0 before the crossing
-                if t2 < th:
-                    th = t2
-                    ev = EV_ZERO_VELOCITY
-            if on_node and th > 1.0:
-                th = 1.0
-                ev = EV_NODE
-            if at_belt:
-                th = 0.0
-                ev = EV_BELT
-            h_next = min(h * min(5.0, max(0.2, 0.9 * max(err, 1e-10) ** -0.2)), max_step)
-            if on_node:  # the step was cut short by the grid point, not by the error: keep the step
-                h_next = min(max(h_next, h_try), max_step)
-            if ev == EV_NONE:
-                isave = _save_dense(traj, isave, save_dt, tau, tau + h, y, ynew, k, h)
-                tau += h
-                for c in range(3):
-                    y[c] = ynew[c]
-                    k[0, c] = k[6, c]
-                h = h_next
-                if tau >= tau_end:
-                    break
-                continue
-            if ev == EV_NODE:  # the accepted step ends on the grid point
-                isave = _save_dense(traj, isave, save_dt, tau, tau + h, y, ynew, k, h)
-                tau += h
-                for c in range(3):
-                    y[c] = ynew[c]
-                y[2] = node
-                h = h_next
-                break  # a new segment: the process's slope changes
-            # event inside the step: recompute the state exactly at it
-            if not at_belt:
-                hev = th * h
-                isave = _save_dense(traj, isave, save_dt, tau, tau + hev, y, ynew, k, h)
-                _step(tau, y, hev, k, s, sz, prm, shape, lawp, i, noise, path_mode, proc, n_proc, ynew)
-                tau += hev
-                for c in range(3):
-                    y[c] = ynew[c]
-            h = max(h_next, 1e-6)
-            if ev == EV_BELT:
-                y[1] = gamma0
-                fs = stick_force(y[0], tau, prm)
-                sticks = abs(fs) <= lim
-                if not sticks:
-                    n_no_stick += 1
-                    le = _lim_eff(y[2])
-                    if abs(fs) <= le:
-                        # carried with the belt until the force enters the static band or leaves
-                        # the kinetic one (carried_end)
-                        rate = gamma0 if mass_path else 0.0
-                        tc, sticks = carried_end(y[0], tau, tau_end, prm, lim, nn * kinetic0, proc, i, n_proc,
-                                                 y[2], rate)
-                        te = min(tc, tau_end)
-                        isave = _save_stick(traj, isave, save_dt, y[0], tau, te, gamma0)
-                        y[0] += gamma0 * (te - tau)
-                        y[2] += rate * (te - tau)
-                        tau = te
-                        if tc >= tau_end:
-                            stick = True  # still moving with the belt at τ_end
-                            break
-                        fs = stick_force(y[0], tau, prm)
-                if sticks:
-                    if m < max_ev:
-                        xgh[m] = y[0]
-                        tgh[m] = tau
-                    m += 1
-                    sp = y[2] - path_slip_start
-                    n_phases += 1
-                    if sp < min_slip:
-                        min_slip = sp
-                    if sp < pdx:
-                        n_short += 1
-                    stick = True
-                    break
-                if at_belt and tau < tau_end:
-                    # neither sticking nor carried, yet no slip direction leaves the belt speed:
-                    # carried with the belt for one short step (progress guaranteed)
-                    hc = min(CARRY_STEP, tau_end - tau)
-                    isave = _save_stick(traj, isave, save_dt, y[0], tau, tau + hc, gamma0)
-                    y[0] += gamma0 * hc
-                    tau += hc
-                    fs = stick_force(y[0], tau, prm)
-                # the friction opposes the unbalanced force (as at a breakaway)
-                s = 1.0 if fs > 0.0 else -1.0
-                break
-            y[1] = 0.0  # EV_ZERO_VELOCITY: a new segment with sz reversed
-            break
-    store_diagnostics(diag, y[2], min_slip, n_short, n_no_stick, y[0], y[1], stick, n_break, n_phases)
-    return m
+        seg, node = _new_segment(tau, y, k, s, rows, run)
+        ev, tau, h, isave = _slip_until_event(tau, h, y, k, ynew, rows, run, seg, node, settings, traj, isave)
+        if ev == EV_BELT or ev == EV_AT_BELT:
+            y[1] = gamma0
+            tau, isave, stick, s = _belt_contact(tau, y, s, rows, out, settings, run, isave, cnt, fl,
+                                                 ev == EV_AT_BELT)
+    store_diagnostics(out.diag[i], y[2], fl[F_MIN_SLIP], cnt[C_SHORT], cnt[C_NO_STICK], y[0], y[1], stick,
+                      cnt[C_BREAK], cnt[C_PHASES])
+    return cnt[C_M]
 
 
 @numba.njit(cache=True, nogil=True)

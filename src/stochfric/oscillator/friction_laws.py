@@ -2,13 +2,13 @@
 
 A law is a :class:`FrictionLaw`: a *shape* (an integer code understood by the compiled
 function :func:`mu_kinetic`), its parameter vector and the static coefficient ``μ(0)``.
-The integrators only ever call :func:`mu_kinetic` / :func:`dmu_kinetic` with these
-three numbers, so a new law is added here and never in the integrators:
-
-* a new *named* law with an existing shape is one factory function and one entry in
-  :data:`FRICTION_LAWS`;
-* a new *shape* is one more branch in :func:`mu_kinetic` and :func:`dmu_kinetic` plus a
-  code in :data:`SHAPES`.
+Every shape is a rational form :func:`mu_rational` (the constant law is ``p0`` with
+``p1 = p2 = p3 = 0``): the adaptive integrator calls :func:`mu_kinetic_row`, the fixed-step
+kernels hold the four coefficients per trajectory.  So a new *named* law with an existing shape
+is one factory function and one entry in :data:`FRICTION_LAWS`, and never a change to an
+integrator; a shape that is not a rational form would be one more branch in
+:func:`mu_kinetic_row` and :func:`dmu_kinetic`, a code in :data:`SHAPES`, and a law evaluation
+of its own in the fixed-step kernels.
 
 All laws take the magnitude of the *dimensional* relative velocity ``|v_rel|`` in m/s
 (``v_rel = v0 − ẏ``, eq. 4.1); the sign of the friction force is applied by the
@@ -25,28 +25,25 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-SHAPE_CONSTANT = 0
-SHAPE_RATIONAL = 1
-SHAPE_TABULATED = 2
+SHAPE_CONSTANT, SHAPE_RATIONAL = range(2)
 
 #: Codes of the compiled shapes understood by :func:`mu_kinetic`.
 SHAPES: dict[str, int] = {
     "constant": SHAPE_CONSTANT,
     "rational": SHAPE_RATIONAL,
-    "tabulated": SHAPE_TABULATED,
 }
 
-#: Number of parameters of each shape (``-1``: variable, tabulated).
-N_PARAMS = {SHAPE_CONSTANT: 1, SHAPE_RATIONAL: 4, SHAPE_TABULATED: -1}
+#: Number of parameters of each shape.
+N_PARAMS = {SHAPE_CONSTANT: 1, SHAPE_RATIONAL: 4}
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def mu_rational(p0: float, p1: float, p2: float, p3: float, v_abs: float) -> float:  # pragma: no cover
     """The ``rational`` shape ``μ = p0/(1 + p1|v|) + p2 + p3 v²`` (law III, eq. 4.13), |v| in m/s.
 
-    The one place this formula is written: :func:`mu_kinetic_row` and the kernels' vectorised
-    fast pass (which holds p0..p3 per lane; the constant law is p0 with p1 = p2 = p3 = 0, the
-    same bits) both call it."""
+    The one place this formula is written: :func:`mu_kinetic_row` and the fixed-step kernels (which
+    hold p0..p3 per trajectory; the constant law is p0 with p1 = p2 = p3 = 0, the same bits for
+    every finite |v|) both call it."""
     return p0 / (1.0 + p1 * v_abs) + p2 + p3 * v_abs * v_abs
 
 
@@ -59,32 +56,13 @@ def mu_kinetic_row(
     * ``constant``: ``μ = p0`` (laws I and II).
     * ``rational``: ``μ = p0/(1 + p1|v|) + p2 + p3 v²`` (law III with
       ``p = (μ0 − μ1, 1.42, μ1, 0.01)``; eq. 4.13 with ``p = (μ_fit, 1.42, μ0 − μ_fit, 0.01)``).
-    * ``tabulated``: ``p = (m, v_1..v_m, μ_1..μ_m)``, linear interpolation in ``|v|``,
-      constant beyond the ends.
 
     Row-indexed so that compiled batch kernels read a trajectory's law without creating
     an array view (and its reference-count traffic) in every step.
     """
-    if shape == 0:
+    if shape == SHAPE_CONSTANT:
         return p[r, 0]
-    elif shape == 1:
-        return mu_rational(p[r, 0], p[r, 1], p[r, 2], p[r, 3], v_abs)
-    else:
-        m = int(p[r, 0])
-        if v_abs <= p[r, 1]:
-            return p[r, 1 + m]
-        if v_abs >= p[r, m]:
-            return p[r, 2 * m]
-        lo = 1
-        hi = m
-        while hi - lo > 1:
-            mid = (lo + hi) // 2
-            if p[r, mid] <= v_abs:
-                lo = mid
-            else:
-                hi = mid
-        w = (v_abs - p[r, lo]) / (p[r, hi] - p[r, lo])
-        return (1.0 - w) * p[r, lo + m] + w * p[r, hi + m]
+    return mu_rational(p[r, 0], p[r, 1], p[r, 2], p[r, 3], v_abs)
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -106,20 +84,11 @@ def mu_kinetic_array(shape: int, v_abs: npt.NDArray[np.float64], p: npt.NDArray[
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def dmu_kinetic(shape: int, v_abs: float, p: npt.NDArray[np.float64]) -> float:  # pragma: no cover
-    """Derivative dμ/d|v| of :func:`mu_kinetic` [s/m] (one-sided at table nodes)."""
-    if shape == 0:
+    """Derivative dμ/d|v| of :func:`mu_kinetic` [s/m]."""
+    if shape == SHAPE_CONSTANT:
         return 0.0
-    elif shape == 1:
-        d = 1.0 + p[1] * v_abs
-        return -p[0] * p[1] / (d * d) + 2.0 * p[3] * v_abs
-    else:
-        m = int(p[0])
-        if v_abs < p[1] or v_abs >= p[m]:
-            return 0.0
-        for i in range(1, m):
-            if p[i] <= v_abs < p[i + 1]:
-                return (p[i + 1 + m] - p[i + m]) / (p[i + 1] - p[i])
-        return 0.0
+    d = 1.0 + p[1] * v_abs
+    return -p[0] * p[1] / (d * d) + 2.0 * p[3] * v_abs
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -136,7 +105,7 @@ class FrictionLaw:
         if self.shape not in N_PARAMS:
             raise ValueError(f"unknown friction-law shape code {self.shape}")
         need = N_PARAMS[self.shape]
-        if need >= 0 and len(self.params) != need:
+        if len(self.params) != need:
             raise ValueError(f"law {self.name!r}: shape needs {need} parameters, got {self.params}")
         if not np.all(np.isfinite(self.params)) or not np.isfinite(self.static):
             raise ValueError(f"law {self.name!r}: parameters must be finite")
@@ -223,22 +192,6 @@ def pressure_law(mu_fit: float, mu0: float = 0.4, decay: float = 1.42, quad: flo
         static=mu0,
         description=f"eq. (4.13): mu_fit/(1+{decay}|v|) + mu0 - mu_fit + {quad} v^2, "
         f"mu_fit={mu_fit:.6g}, mu0={mu0}",
-    )
-
-
-def tabulated_law(
-    name: str, v_abs: npt.ArrayLike, mu: npt.ArrayLike, static: float | None = None
-) -> FrictionLaw:
-    """A measured law μ(|v|) given as a table (linear interpolation, constant beyond the ends)."""
-    v = np.asarray(v_abs, dtype=float)
-    m = np.asarray(mu, dtype=float)
-    if v.ndim != 1 or v.shape != m.shape or v.size < 2:
-        raise ValueError("tabulated law needs two 1-D arrays of equal length >= 2")
-    if np.any(np.diff(v) <= 0) or v[0] < 0:
-        raise ValueError("tabulated law: velocities must be >= 0 and strictly increasing")
-    return FrictionLaw(
-        name=name, shape=SHAPE_TABULATED, params=(float(v.size), *v.tolist(), *m.tolist()),
-        static=float(m[0] if static is None else static), description="tabulated",
     )
 
 

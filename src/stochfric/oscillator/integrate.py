@@ -7,22 +7,21 @@ stream, the child with spawn key ``(*k_i, r)`` of the root seed
 (:class:`numpy.random.SeedSequence`), where ``k_i`` is the set's *stream key*: ``(i,)`` by
 default, or what the caller gives (the studies give a key made from the cell's own parameter
 values, so a cell's numbers do not depend on its position in a grid:
-:func:`stochfric.studies.tasks.cell_stream_key`); with ``common_random_numbers=True`` every
-set uses ``k_0``, so run ``r`` sees the same noise at every parameter set.  The
+:func:`stochfric.studies.tasks.cell_stream_key`); with ``common_random_numbers`` (:class:`~.options.NoiseOptions`)
+every set uses ``k_0``, so run ``r`` sees the same noise at every parameter set.  The
 numbers of a trajectory therefore do not depend on the number of threads, the batch
-size or the order of execution.  White noise: the child's first 64 bits key the Philox
-stream drawn inside the compiled kernel, turned into normals by the ziggurat
-(``white_stream="philox-ziggurat"``, default) or by Box–Muller (``"philox-boxmuller"``, the
-default before the ziggurat), or seed numpy's
-PCG64 (``"pcg64"``, the numbers of versions before the in-kernel stream).  Contact process: a run's realisation is
+size or the order of execution.  White noise (:class:`~.options.WhiteStream`): the child's first
+64 bits key the Philox stream drawn inside the compiled kernel, turned into normals by the ziggurat
+(``philox-ziggurat``, default) or by Box–Muller (``philox-boxmuller``), or seed numpy's PCG64
+(``pcg64``).  Contact process: a run's realisation is
 an unbounded sequence of independent segments of the model's length ℓ (segment ``s`` of
 trajectory ``(i, r)`` from the child ``(*k_i, r, s)``, which seeds numpy's PCG64 for the phases of
 the spectral representation, computed in compiled code for the package's process models, bit
 for bit); only the segments a run's path reaches are generated (:class:`_BatchRunner`), so the
 process never repeats.
 
-Models (method §5): ``deterministic`` (friction law only), ``white`` (law + Gaussian
-white noise of intensity σ_ζ in the relative path, §5.1; integrators ``euler`` =
+Models (method §5, :class:`~.options.Model`): ``deterministic`` (friction law only), ``white`` (law +
+Gaussian white noise of intensity σ_ζ in the relative path, §5.1; integrators ``euler`` =
 Euler–Maruyama, ``milstein``), ``contact`` (law + a band-limited process μ̂ generated
 once per run from a friction-process model, §5.2; integrators ``euler``, ``accurate``).
 """
@@ -34,7 +33,8 @@ import os
 from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
-from typing import Any, Protocol
+from enum import StrEnum
+from typing import Any, Protocol, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -43,28 +43,28 @@ from ..io_utils import package_versions
 from ..process.model import BandLimitedProcessModel, TabulatedProcessModel
 from ..process.spectral import generate_process_batch
 from ..random import SeedLike, as_seed_sequence, child_seed
+from ..random import philox as _ph
 from . import accurate as _acc
 from . import kernels as _k
-from . import philox as _ph
+from .case import Case
 from .friction_laws import FrictionLaw, law_III
+from .options import (
+    ExecutionOptions,
+    IntegrationOptions,
+    Integrator,
+    Model,
+    NoiseOptions,
+    OutputOptions,
+    PathCoordinate,
+    WhiteIncrement,
+    WhiteStream,
+)
 from .parameters import OscillatorParameters, ParameterError
 from .result import SimulationResult, SimulationWarning
 
-MODELS = ("deterministic", "white", "contact")
-#: White-noise increment rules (docs/oscillator.md, method §7 errata 4 and 10): ``ito`` is the
-#: consistent Itô model (ΔW = R_k √Δτ, intensity σ_ζ per unit dimensionless relative path);
-#: ``thesis`` reads the printed eq. (4.31), ΔW = Δτ R_k with the dimensional relative
-#: velocity L ω0 (γ0 − X2) under the root, i.e. σ_ζ,eff = σ_ζ · L ω0 · Δτ with a correct
-#: √Δτ increment — a reproduction mode whose intensity depends on the time step.
-WHITE_INCREMENTS = ("ito", "thesis")
-INTEGRATORS = ("euler", "milstein", "accurate")
-#: Random streams of the white-noise model (docs/performance.md): ``philox-ziggurat`` (default) draws
-#: R_k inside the compiled kernel from the counter-based Philox4x32-10 stream keyed by the trajectory's
-#: spawned seed and turns it into normals by a ziggurat; ``philox-boxmuller`` the same blocks by
-#: Box–Muller (:mod:`stochfric.oscillator.philox`); ``pcg64`` numpy's
-#: ``Generator(PCG64(seed)).standard_normal`` per trajectory, drawn into a buffer (about 4× slower).
-WHITE_STREAMS = ("philox-ziggurat", "philox-boxmuller", "pcg64")
-PATH_COORDINATES = {"mass": _k.PATH_MASS, "relative": _k.PATH_RELATIVE, "position": _k.PATH_POSITION}
+#: Kernel path mode of each path coordinate (:class:`~.options.PathCoordinate`).
+_PATH_MODES = {PathCoordinate.MASS: _k.PATH_MASS, PathCoordinate.RELATIVE: _k.PATH_RELATIVE,
+               PathCoordinate.POSITION: _k.PATH_POSITION}
 
 #: Above this Δτ the Euler methods are refused: fewer than ~25 steps per natural period
 #: 2π turn the solution's character (thesis Fig. 4.7/4.8 already shows it at 0.05/0.1).
@@ -117,7 +117,7 @@ class _SpectralBatch:
 
     Each trajectory's phases are ``Generator(PCG64(trajectory_seed)).uniform(0, 2π, K)``, as
     ``model.generate(p, rng)`` draws them, computed in compiled code
-    (:func:`stochfric.oscillator.philox.pcg64_uniform_for_children`); the realisations of all
+    (:func:`stochfric.random.philox.pcg64_uniform_for_children`); the realisations of all
     trajectories of one pressure are evaluated by one call of
     :func:`stochfric.process.spectral.generate_process_batch`.  Bit for bit the numbers of
     ``model.generate`` per trajectory (tested), at ~1 µs instead of ~160 µs per trajectory.
@@ -225,17 +225,76 @@ def _resolve_law(law: LawSpec, p: OscillatorParameters) -> FrictionLaw:
     return law if isinstance(law, FrictionLaw) else law(p)
 
 
+@dataclass(frozen=True)
+class _System:
+    """What :func:`simulate`'s first argument resolves to, with the law, process, σ_ζ, increment rule
+    and time grid of its cases or of the options."""
+
+    params: list[OscillatorParameters]
+    laws: list[FrictionLaw] | LawSpec
+    process: ProcessModel | None
+    sigma_zeta: float | Callable[[float], float] | None
+    white_increment: WhiteIncrement | str
+    tau_end: float
+    dt: float
+
+
+def _same(a: Any, b: Any) -> bool:
+    """``a is b`` or equal (models holding arrays compare unequal when ``==`` is ambiguous)."""
+    if a is b:
+        return True
+    try:
+        return bool(a == b)
+    except (TypeError, ValueError):
+        return False
+
+
+def _system(
+    system: Case | Sequence[Case] | OscillatorParameters | Sequence[OscillatorParameters],
+    model: Model, law: LawSpec | None, process: ProcessModel | None, noise: NoiseOptions,
+    integration: IntegrationOptions,
+) -> _System:
+    """The parameter sets and what they run with: from the :class:`Case` (or cases), else from ``law``,
+    ``process`` and the options (defaults: law III, Itô increments, τ_end = 50, Δτ = 0.005)."""
+    items = [system] if isinstance(system, Case | OscillatorParameters) else list(system)
+    if not items:
+        raise ParameterError("no parameter set given")
+    cases = [c for c in items if isinstance(c, Case)]
+    if not cases:
+        return _System(
+            params=list(items),  # type: ignore[arg-type]
+            laws=law_III() if law is None else law, process=process, sigma_zeta=noise.sigma_zeta,
+            white_increment=WhiteIncrement.ITO if noise.white_increment is None else noise.white_increment,
+            tau_end=50.0 if integration.tau_end is None else integration.tau_end,
+            dt=0.005 if integration.dt is None else integration.dt,
+        )
+    if len(cases) != len(items):
+        raise ParameterError("give cases or parameter sets, not both")
+    given = [name for name, value in (
+        ("law", law), ("process", process), ("noise.sigma_zeta", noise.sigma_zeta),
+        ("noise.white_increment", noise.white_increment), ("integration.tau_end", integration.tau_end),
+        ("integration.dt", integration.dt)) if value is not None]
+    if given:
+        raise ParameterError(f"a Case fixes {', '.join(given)}; change the case instead "
+                             "(dataclasses.replace(case, …))")
+    first = cases[0]
+    for c in cases[1:]:
+        if not (_same(c.process, first.process) and (c.tau_end, c.dt, c.white_intensity, c.sigma_zeta)
+                == (first.tau_end, first.dt, first.white_intensity, first.sigma_zeta)):
+            raise ParameterError("the cases of one simulation must share the process model, tau_end, dt, "
+                                 "white_intensity and sigma_zeta")
+    return _System(params=[c.params for c in cases], laws=[c.law for c in cases], process=first.process,
+                   sigma_zeta=first.sigma_zeta, white_increment=first.white_increment(model),
+                   tau_end=first.tau_end, dt=first.dt)
+
+
 def _plan(
-    params: Sequence[OscillatorParameters],
-    model: str,
-    law: LawSpec,
-    process: ProcessModel | None,
-    sigma_zeta: float | Callable[[float], float] | None,
+    sysm: _System,
+    model: Model,
     x0: tuple[float, float] | Sequence[tuple[float, float]] | None,
-    tau_end: float,
-    dt: float,
-    white_increment: str = "ito",
+    white_increment: WhiteIncrement,
 ) -> _Plan:
+    params, law, process, sigma_zeta, dt = sysm.params, sysm.laws, sysm.process, sysm.sigma_zeta, sysm.dt
     laws: list[FrictionLaw] = []
     sig: list[float] = []
     pressures: list[float | None] = []
@@ -244,9 +303,9 @@ def _plan(
     if per_set_x0 and len(x0) != len(params):  # type: ignore[arg-type]
         raise ParameterError("x0 per parameter set must have one entry per set")
     for i, p in enumerate(params):
-        laws.append(_resolve_law(law, p))
+        laws.append(law[i] if isinstance(law, list) else _resolve_law(law, p))
         pressures.append(p.pressure_pa)
-        if model == "white":
+        if model == Model.WHITE:
             if sigma_zeta is None and process is None:
                 raise ParameterError(
                     "the white-noise model needs the intensity sigma_zeta or a friction-process "
@@ -263,7 +322,7 @@ def _plan(
                 raise ParameterError(f"sigma_zeta must be finite and >= 0, got {sig[-1]}")
         else:
             sig.append(0.0)
-        if model == "contact":
+        if model == Model.CONTACT:
             if process is None:
                 raise ParameterError("the contact-analysis model needs a friction-process model")
             _need_pressure(p, "friction process")
@@ -277,8 +336,8 @@ def _plan(
             x0s.append((float(xx[0]), float(xx[1])))
         if not all(math.isfinite(v) for v in x0s[-1]):
             raise ParameterError(f"initial state x0 must be finite, got {x0s[-1]}")
-    nsteps = round(tau_end / dt)
-    eff = [thesis_sigma_zeta(s_, p, dt) if white_increment == "thesis" else s_
+    nsteps = round(sysm.tau_end / dt)
+    eff = [thesis_sigma_zeta(s_, p, dt) if white_increment == WhiteIncrement.THESIS else s_
            for s_, p in zip(sig, params, strict=True)]
     return _Plan(list(params), laws, sig, eff, pressures, x0s, nsteps)
 
@@ -343,150 +402,123 @@ def pack_rows(
 
 
 def simulate(
-    params: OscillatorParameters | Sequence[OscillatorParameters],
+    system: Case | Sequence[Case] | OscillatorParameters | Sequence[OscillatorParameters],
     *,
-    model: str = "deterministic",
+    model: Model | str = Model.DETERMINISTIC,
     law: LawSpec | None = None,
     process: ProcessModel | None = None,
-    sigma_zeta: float | Callable[[float], float] | None = None,
     x0: tuple[float, float] | Sequence[tuple[float, float]] | None = None,
-    tau_end: float = 50.0,
-    dt: float = 0.005,
-    integrator: str = "euler",
     runs: int = 1,
     seed: SeedLike = None,
-    path_coordinate: str = "mass",
-    save_trajectory: bool = False,
-    save_every: int = 10,
-    max_events: int | None = None,
-    workers: int | None = None,
-    batch_size: int = 256,
-    rtol: float = 1e-11,
-    atol: float = 1e-13,
-    max_step: float = 0.1,
-    common_random_numbers: bool = False,
-    progress: Callable[[int, int], None] | None = None,
-    white_increment: str = "ito",
-    white_stream: str = "philox-ziggurat",
-    stream_keys: Sequence[Sequence[int]] | None = None,
+    noise: NoiseOptions | None = None,
+    integration: IntegrationOptions | None = None,
+    output: OutputOptions | None = None,
+    execution: ExecutionOptions | None = None,
 ) -> SimulationResult:
     """Simulate the friction oscillator for every parameter set and run.
 
     Parameters
     ----------
-    params:
-        One or several :class:`OscillatorParameters` (dimensionless, eq. 4.6/4.7).
+    system:
+        A :class:`~stochfric.oscillator.case.Case` (its parameters, law, process model, σ_ζ rule
+        and time grid), several cases sharing process, time grid and σ_ζ rule, or one or several
+        :class:`OscillatorParameters` (dimensionless, eq. 4.6/4.7) with ``law`` and ``process``.
     model:
-        ``deterministic`` | ``white`` | ``contact`` (method §5, §5.1, §5.2).
+        ``deterministic`` | ``white`` | ``contact`` (:class:`~.options.Model`; method §5, §5.1, §5.2).
     law:
-        A :class:`FrictionLaw` or a function of the parameter set returning one (e.g. the
-        pressure law of eq. 4.13, whose ``μ_fit`` depends on ``p = N/A``).  Default: law III.
+        Without a case: a :class:`FrictionLaw` or a function of the parameter set returning one (e.g.
+        the pressure law of eq. 4.13, whose ``μ_fit`` depends on ``p = N/A``).  Default: law III.
     process:
-        Friction-process model for ``contact`` (and the σ_ζ rule for ``white``).
-    sigma_zeta:
-        White-noise intensity σ_ζ (a number, or a function of the pressure in Pa); by
-        default ``process.sigma_zeta(p)`` (thesis rule σ_ζ = σ_μ(p)).
+        Without a case: the friction-process model for ``contact`` (and the σ_ζ rule for ``white``).
     x0:
         Initial ``(x1, x2)``; default ``(0, γ0)`` (sticking at the origin).  One pair for
         all sets or one pair per set.
-    tau_end, dt:
-        Simulated dimensionless time and step (``accurate``: initial step and sampling).
-    integrator:
-        ``euler`` (thesis; Euler–Maruyama for white noise), ``milstein`` (white noise,
-        strong order 1), ``accurate`` (adaptive RK45 with events; deterministic/contact).
-    runs, seed, common_random_numbers, stream_keys:
-        Monte Carlo runs per set; the root seed; see the module docstring.  ``stream_keys``: one
-        tuple of ints in [0, 2³²) per parameter set (default ``(i,)``); run ``r`` of set ``i``
-        draws from spawn key ``(*stream_keys[i], r)`` of the root seed.
-    path_coordinate:
-        Where the contact process is read: ``mass`` (thesis text §4.1.3: the mass's own path
-        |Δx1| in slip), ``relative`` (relative sliding distance |γ0 − x2|Δτ) (method §7.7) or
-        ``position`` (reproduction mode: μ̂ at the mass position x1, μ̂_SD(X_1, ξ) as printed in
-        eq. 4.36/4.38; ``euler`` only; docs/friction_process.md).
-    save_trajectory, save_every:
-        Keep every ``save_every``-th grid state (τ, x1, x2).
-    max_events:
-        Capacity for X_gh per trajectory (default ``2 τ_end + 16``).
-    workers, batch_size:
-        Threads (default: all cores) and the most trajectories per compiled call (fewer
-        when needed to give every thread about four batches); they change the speed,
-        never the numbers.
-    rtol, atol, max_step:
-        Tolerances of the ``accurate`` integrator.
-    progress:
-        Called as ``progress(done, total)`` after every batch.
-    white_increment:
-        ``ito`` (default: ΔW = R_k √Δτ, method §7 erratum 4) or ``thesis`` (printed eq. 4.31
-        with the dimensional relative velocity: σ_ζ,eff = σ_ζ · L ω0 · Δτ, see
-        :func:`thesis_sigma_zeta`; a Δτ-dependent reproduction mode, white model only).
-    white_stream:
-        Where the normals R_k of the white-noise model come from.  ``philox-ziggurat``
-        (default): drawn in the kernel from the Philox4x32-10 stream keyed by the trajectory's
-        spawned seed, turned into normals by a 1024-layer ziggurat
-        (:mod:`stochfric.oscillator.ziggurat`).  ``philox-boxmuller``: the same Philox blocks
-        through Box–Muller (:mod:`stochfric.oscillator.philox`; the default before the
-        ziggurat).  ``pcg64``: numpy's PCG64
-        stream of the same seed drawn into a buffer (the numbers before the in-kernel
-        streams).  All three are exact N(0, 1) streams, one per trajectory; they give
-        different realisations of the same statistics (tests/statistical/test_white_stream.py).
+    runs, seed:
+        Monte Carlo runs per set; the root seed (streams: see the module docstring).
+    noise:
+        :class:`~.options.NoiseOptions`: σ_ζ (a number, or a function of the pressure in Pa; default
+        ``process.sigma_zeta(p)``, the thesis rule σ_ζ = σ_μ(p)); the increment rule ``ito`` (ΔW =
+        R_k √Δτ, method §7 erratum 4) or ``thesis`` (printed eq. 4.31: σ_ζ,eff = σ_ζ · L ω0 · Δτ,
+        :func:`thesis_sigma_zeta`, a Δτ-dependent reproduction mode, white model only); the white-noise
+        stream (:class:`~.options.WhiteStream`; the three give different realisations of the same
+        statistics, tests/statistical/test_white_stream.py); the path coordinate where the contact
+        process is read (``mass``, thesis text §4.1.3; ``relative``, method §7.7; ``position``,
+        reproduction mode, ``euler`` only, docs/friction_process.md); common random numbers and the
+        stream keys (run ``r`` of set ``i`` draws from spawn key ``(*stream_keys[i], r)``).
+    integration:
+        :class:`~.options.IntegrationOptions`: ``euler`` (thesis; Euler–Maruyama for white noise),
+        ``milstein`` (white noise, strong order 1), ``accurate`` (adaptive RK45 with events;
+        deterministic/contact); τ_end and Δτ (``accurate``: initial step and sampling); its tolerances.
+    output:
+        :class:`~.options.OutputOptions`: keep every ``save_every``-th grid state (τ, x1, x2); capacity
+        for X_gh per trajectory (default ``2 τ_end + 16``).
+    execution:
+        :class:`~.options.ExecutionOptions`: threads, batch size, progress callback; they change the
+        speed, never the numbers.
     """
-    plist = [params] if isinstance(params, OscillatorParameters) else list(params)
-    if not plist:
-        raise ParameterError("no parameter set given")
-    _check_options(model, integrator, white_increment, white_stream, path_coordinate, runs, save_every)
+    noise = noise or NoiseOptions()
+    integration = integration or IntegrationOptions()
+    output = output or OutputOptions()
+    execution = execution or ExecutionOptions()
+    model_ = _choice(Model, model, "model")
+    sysm = _system(system, model_, law, process, noise, integration)
+    plist, process, tau_end, dt = sysm.params, sysm.process, sysm.tau_end, sysm.dt
+    integrator, white_increment, white_stream, path_coordinate = _check_options(
+        model_, integration, noise, sysm.white_increment, runs, output)
     warn_list = check_time_step(dt, tau_end, integrator, plist)
-    law_spec: LawSpec = law_III() if law is None else law
-    plan = _plan(plist, model, law_spec, process, sigma_zeta, x0, tau_end, dt, white_increment)
+    plan = _plan(sysm, model_, x0, white_increment)
     root = as_seed_sequence(seed)
     npar = len(plist)
-    keys = check_stream_keys(stream_keys, npar)
-    nev = int(max_events) if max_events is not None else int(2 * tau_end) + 16
-    nsave = plan.nsteps // save_every + 1 if save_trajectory else 0
+    keys = check_stream_keys(noise.stream_keys, npar)
+    save_every = output.save_every
+    nev = int(output.max_events) if output.max_events is not None else int(2 * tau_end) + 16
+    nsave = plan.nsteps // save_every + 1 if output.save_trajectory else 0
     out = _allocate_output(npar * runs, nev, nsave)
+    ig = integration
     runner = _BatchRunner(
-        plan=plan, model=model, integrator=integrator, process=process, root=root, stream_keys=keys,
+        plan=plan, model=model_, integrator=integrator, process=process, root=root, stream_keys=keys,
         runs=runs,
-        common_random_numbers=common_random_numbers, path_mode=PATH_COORDINATES[path_coordinate],
+        common_random_numbers=noise.common_random_numbers, path_mode=_PATH_MODES[path_coordinate],
         white_stream=white_stream, dt=dt, save_every=save_every,
-        accurate=_acc.AccurateSettings(float(tau_end), min(dt, max_step), max_step, rtol, atol,
+        accurate=_acc.AccurateSettings(float(tau_end), min(dt, ig.max_step), ig.max_step, ig.rtol, ig.atol,
                                        save_every * dt),
         out=out,
     )
-    _run_batches(runner, npar * runs, workers, batch_size, progress)
+    _run_batches(runner, npar * runs, execution.workers, execution.batch_size, execution.progress)
 
     diagnostics = {k: out.diag[:, j].reshape(npar, runs).copy() for k, j in DIAGNOSTICS.items()}
     diagnostics["process_segments"] = runner.segments.reshape(npar, runs).astype(float)
     # returned in the result only (``result.warnings``, also in its JSON and NetCDF); callers show
     # them (the CLI prints each on stderr, the studies count them, the report explains them)
-    warn_list += _post_warnings(out.counts, nev, out.diag, model, process, plist, runner.path_mode)
+    warn_list += _post_warnings(out.counts, nev, out.diag, model_, process, plist, runner.path_mode)
     return SimulationResult(
         params=plist,
         x_gh=out.x_gh.reshape(npar, runs, nev),
         t_gh=out.t_gh.reshape(npar, runs, nev),
         stick_count=out.counts.reshape(npar, runs),
         diagnostics=diagnostics,
-        trajectory=out.traj.reshape(npar, runs, nsave, 3) if save_trajectory else None,
-        model=model,
-        integrator=integrator,
+        trajectory=out.traj.reshape(npar, runs, nsave, 3) if output.save_trajectory else None,
+        model=str(model_),
+        integrator=str(integrator),
         dt=dt,
         tau_end=tau_end,
         runs=runs,
         seed_entropy=int(root.entropy),  # type: ignore[arg-type]
         versions=package_versions(),
-        path_coordinate=path_coordinate,
+        path_coordinate=str(path_coordinate),
         x0=plan.x0,
         laws=[lw.to_dict() for lw in plan.laws],
         sigma_zeta=plan.sigma,
-        process=process.to_dict() if (process is not None and model != "deterministic") else None,
+        process=process.to_dict() if (process is not None and model_ != Model.DETERMINISTIC) else None,
         warnings=warn_list,
         settings={
             "save_every": save_every, "max_events": nev,
-            "common_random_numbers": common_random_numbers,
-            "rtol": rtol, "atol": atol, "max_step": max_step,
+            "common_random_numbers": noise.common_random_numbers,
+            "rtol": ig.rtol, "atol": ig.atol, "max_step": ig.max_step,
             "spawn_key_layout": "(*stream_key, run); contact process: (*stream_key, run, segment)",
             "stream_keys": keys.tolist(),
-            "white_increment": white_increment,
-            "white_stream": white_stream,
+            "white_increment": str(white_increment),
+            "white_stream": str(white_stream),
             "sigma_zeta_effective": plan.sigma_eff,
         },
     )
@@ -501,51 +533,51 @@ DIAGNOSTICS = {
 }
 
 
+_E = TypeVar("_E", bound=StrEnum)
+
+
+def _choice(kind: type[_E], value: Any, what: str) -> _E:
+    """``value`` as a member of the choice ``kind``; ParameterError naming the choices otherwise."""
+    try:
+        return kind(value)
+    except ValueError:
+        raise ParameterError(f"unknown {what} {value!r}; choose one of {[str(v) for v in kind]}") from None
+
+
 def _check_options(
-    model: str, integrator: str, white_increment: str, white_stream: str, path_coordinate: str,
-    runs: Any, save_every: int,
-) -> None:
-    """Refuse a combination of :func:`simulate` options that has no meaning, saying what to change."""
-    if model not in MODELS:
-        raise ParameterError(f"unknown model {model!r}; choose one of {MODELS}")
-    if integrator not in INTEGRATORS:
-        raise ParameterError(f"unknown integrator {integrator!r}; choose one of {INTEGRATORS}")
-    if model == "white" and integrator == "accurate":
+    model: Model, integration: IntegrationOptions, noise: NoiseOptions, white_increment: WhiteIncrement | str,
+    runs: Any, output: OutputOptions,
+) -> tuple[Integrator, WhiteIncrement, WhiteStream, PathCoordinate]:
+    """Refuse a combination of :func:`simulate` options that has no meaning, saying what to change;
+    the choices as their enums."""
+    integrator = _choice(Integrator, integration.integrator, "integrator")
+    if model == Model.WHITE and integrator == Integrator.ACCURATE:
         raise ParameterError(
             "the white-noise model is an SDE: use integrator 'euler' (Euler–Maruyama) or "
             "'milstein', not 'accurate'"
         )
-    if integrator == "milstein" and model != "white":
+    if integrator == Integrator.MILSTEIN and model != Model.WHITE:
         raise ParameterError(
             "'milstein' is the strong order-1 scheme for the white-noise SDE; for the "
             f"{model} model use 'euler' or 'accurate'"
         )
-    if white_increment not in WHITE_INCREMENTS:
+    increment = _choice(WhiteIncrement, white_increment, "white-noise increment")
+    if increment != WhiteIncrement.ITO and model != Model.WHITE:
         raise ParameterError(
-            f"unknown white-noise increment {white_increment!r}; choose one of {WHITE_INCREMENTS}"
+            f"white_increment '{increment}' applies to the white-noise model only, not '{model}'"
         )
-    if white_increment != "ito" and model != "white":
-        raise ParameterError(
-            f"white_increment={white_increment!r} applies to the white-noise model only, not {model!r}"
-        )
-    if white_stream not in WHITE_STREAMS:
-        raise ParameterError(
-            f"unknown white-noise stream {white_stream!r}; choose one of {WHITE_STREAMS}"
-        )
-    if path_coordinate not in PATH_COORDINATES:
-        raise ParameterError(
-            f"unknown path coordinate {path_coordinate!r}; choose 'mass' (thesis text), 'relative' "
-            "or 'position' (eq. 4.36/4.38 as printed)"
-        )
-    if path_coordinate == "position" and integrator == "accurate":
+    stream = _choice(WhiteStream, noise.white_stream, "white-noise stream")
+    path = _choice(PathCoordinate, noise.path_coordinate, "path coordinate")
+    if path == PathCoordinate.POSITION and integrator == Integrator.ACCURATE:
         raise ParameterError(
             "path coordinate 'position' (a reproduction mode) is implemented for the fixed-step "
             "'euler' scheme only"
         )
     if isinstance(runs, bool) or not isinstance(runs, int | np.integer) or runs < 1:
         raise ParameterError(f"runs must be a positive integer, got {runs!r}")
-    if save_every < 1:
-        raise ParameterError(f"save_every must be >= 1, got {save_every}")
+    if output.save_every < 1:
+        raise ParameterError(f"save_every must be >= 1, got {output.save_every}")
+    return integrator, increment, stream, path
 
 
 def _allocate_output(n_traj: int, capacity: int, nsave: int) -> _k.KernelOutput:
@@ -557,9 +589,11 @@ def _allocate_output(n_traj: int, capacity: int, nsave: int) -> _k.KernelOutput:
     )
 
 
-#: Process segments a contact run starts with (more are generated for runs that need them; the
-#: numbers do not depend on this value: tests/unit/oscillator/test_simulate.py).
-FIRST_SEGMENTS = 1
+#: Process segments a contact run starts with; ``None``: the belt path γ0·τ_end in segments, plus one.
+#: The paths of the presets' runs stay below 0.65 γ0·τ_end (both presets, the forces and η of
+#: ``reproduce``), so a run is rarely generated twice; one that needs more is run again with more
+#: segments.  The numbers do not depend on it (tests/unit/oscillator/test_simulate.py).
+FIRST_SEGMENTS: int | None = None
 
 
 @dataclass
@@ -683,10 +717,20 @@ class _BatchRunner:
         pdx = self.rows[0][idx // self.runs, _k.P_PROC_DX]
         return diag[:, _k.D_PATH] >= (n_seg * self.n_proc - 1 - 0.1 * self.n_proc) * pdx
 
+    def _first_segments(self, idx: npt.NDArray[np.int64]) -> int:
+        """Segments the runs ``idx`` start with (:data:`FIRST_SEGMENTS`)."""
+        if not self.extend:
+            return 1
+        if FIRST_SEGMENTS is not None:
+            return FIRST_SEGMENTS
+        prm = self.rows[0][idx // self.runs]
+        belt = float(np.max(prm[:, _k.P_GAMMA0] / prm[:, _k.P_PROC_DX])) * self.plan.nsteps * self.dt
+        return max(1, math.ceil(belt / self.n_proc) + 1)
+
     def __call__(self, lo: int, hi: int) -> None:
         o = self.out
         idx = np.arange(lo, hi)
-        n_seg = FIRST_SEGMENTS if self.extend else 1
+        n_seg = self._first_segments(idx)
         self._run_rows(idx, n_seg, _k.KernelOutput(o.x_gh[lo:hi], o.t_gh[lo:hi], o.counts[lo:hi],
                                                    o.traj[lo:hi], o.diag[lo:hi]))
         self.segments[lo:hi] = n_seg

@@ -5,8 +5,8 @@ random input comes from the trajectory's own stream, so a trajectory's numbers n
 depend on which thread or process ran it: one friction-process realisation, or the Wiener
 increments ``ΔW_k``, is passed in by the caller, or (white noise, ``WHITE_ZIGGURAT`` and
 ``WHITE_PHILOX``) the increments are drawn inside the kernel from the counter-based
-Philox4x32-10 stream keyed by the trajectory (:mod:`stochfric.oscillator.ziggurat`,
-:mod:`stochfric.oscillator.philox`; counter = step, so no buffer and no sequential state).
+Philox4x32-10 stream keyed by the trajectory (:mod:`stochfric.random.ziggurat`,
+:mod:`stochfric.random.philox`; counter = step, so no buffer and no sequential state).
 
 State and equations (dimensionless, eq. 4.6/4.7): ``x1 = y/L``, ``x2 = dx1/dτ``,
 ``x3 = x30 + ητ`` (carried analytically), and a path coordinate for the
@@ -36,6 +36,13 @@ and the rest of the step is integrated with the other equations, so the grid sta
 before in that trajectory).  When ``x2`` reaches ``γ0`` but the static-friction
 condition fails, the mass keeps slipping and the friction force changes sign
 (thesis Fig. 4.15); these passages are counted.
+
+One step skeleton: :func:`_stick_candidate` (the stick update and its static test) and
+:func:`_slip_candidate` (the slip update, the test whether ``v_rel`` reaches zero in the step and
+the path increment) are the only places these are written.  The branch-free fast pass over a
+lock-step group (:func:`_fast_lane`) and the full step with the switching logic
+(:func:`_full_step`) both call them; the friction law is held per trajectory in the rational form
+of :func:`~stochfric.oscillator.friction_laws.mu_rational`.
 """
 
 from __future__ import annotations
@@ -47,53 +54,85 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from .friction_laws import SHAPE_CONSTANT, SHAPE_RATIONAL, mu_kinetic_row, mu_rational
-from .philox import pair_normals
-from .ziggurat import fill_pair_ziggurat, finish_pair_ziggurat
+from ..random.philox import pair_normals
+from ..random.ziggurat import fill_pair_ziggurat, finish_pair_ziggurat
+from .friction_laws import SHAPE_CONSTANT, mu_kinetic_row, mu_rational
 
-# --- codes -------------------------------------------------------------------
-SCHEME_EULER = 0
-SCHEME_MILSTEIN = 1
+# --- codes (each layout below is one tuple of names; its position is its code) -------------------
+SCHEME_EULER, SCHEME_MILSTEIN = range(2)
+NOISE_NONE, NOISE_WHITE, NOISE_PROCESS = range(3)
+(
+    PATH_MASS,  # thesis: x_glob grows by |Δx1| in every slip step (4.1.3)
+    PATH_RELATIVE,  # relative sliding distance: grows by |γ0 − x2| Δτ
+    PATH_POSITION,  # reproduction mode: μ̂ read at x1 itself, μ̂_SD(X_1, ξ) as printed in eq. (4.36)/(4.38);
+    # the path diagnostics still accumulate |Δx1| (the mass path)
+) = range(3)
+#: Where the white-noise increments come from: given by the caller (``WHITE_GIVEN``, ``dw``) or drawn
+#: inside the kernel from the counter-based Philox4x32-10 stream of each trajectory's key (``keys``),
+#: ``ΔW_k = R_k √Δτ``, with the normals R_k by Box–Muller (``WHITE_PHILOX``, the stream of versions
+#: before the ziggurat, :mod:`stochfric.random.philox`) or by the ziggurat (``WHITE_ZIGGURAT``, the
+#: default stream, :mod:`stochfric.random.ziggurat`).
+WHITE_GIVEN, WHITE_PHILOX, WHITE_ZIGGURAT = range(3)
 
-NOISE_NONE = 0
-NOISE_WHITE = 1
-NOISE_PROCESS = 2
+# --- layout of the per-trajectory parameter row (the last name is the row length) --------------
+(
+    P_GAMMA0,  # γ0 = v0/(L ω0)
+    P_N,  # n = N/(cL)
+    P_D,  # damping ratio D
+    P_Q,  # forcing amplitude q = Q/(cL)
+    P_ETA,  # forcing frequency η = Ω/ω0
+    P_X30,  # forcing phase x3(0)
+    P_VSCALE,  # L ω0 [m/s]: |v_rel| = L ω0 |γ0 − x2|
+    P_MUS,  # static coefficient μ_s
+    P_SIGMA,  # white-noise intensity σ_ζ
+    P_PROC_DX,  # process grid spacing / L
+    N_PRM,
+) = range(11)
 
-PATH_MASS = 0  # thesis: x_glob grows by |Δx1| in every slip step (4.1.3)
-PATH_RELATIVE = 1  # relative sliding distance: grows by |γ0 − x2| Δτ
-#: reproduction mode: μ̂ read at the mass position x1 itself, μ̂_SD(X_1, ξ) as printed in eq.
-#: (4.36)/(4.38); the path diagnostics still accumulate |Δx1| (the mass path)
-PATH_POSITION = 2
+# --- layout of the per-trajectory diagnostics row (the last name is the row length) ------------
+(
+    D_PATH,  # total path coordinate travelled in slip (dimensionless, = metres for L = 1 m)
+    D_MIN_SLIP_PATH,  # shortest path of a completed slip phase (inf when none)
+    D_N_SHORT_SLIP,  # completed slip phases shorter than one process grid spacing
+    D_N_NO_STICK,  # belt speed reached while static friction could not hold (Fig. 4.15)
+    D_X1,  # final state
+    D_X2,
+    D_STICK,
+    D_N_BREAKAWAY,  # stick→slip transitions
+    D_N_SLIP_PHASES,  # completed slip phases (ended by sticking)
+    N_DIAG,
+) = range(10)
 
-#: Where the white-noise increments come from: given by the caller (``dw``) or drawn inside the
-#: kernel from the counter-based Philox4x32-10 stream of each trajectory's key (``keys``),
-#: ``ΔW_k = R_k √Δτ``, with the normals R_k by the ziggurat (``WHITE_ZIGGURAT``, the default
-#: stream, :mod:`stochfric.oscillator.ziggurat`) or by Box–Muller (``WHITE_PHILOX``, the stream of
-#: versions before the ziggurat, :mod:`stochfric.oscillator.philox`).
-WHITE_GIVEN = 0
-WHITE_PHILOX = 1
-WHITE_ZIGGURAT = 2
+#: Trajectories advanced in lock-step by :func:`run_fixed_step_batch`.  One trajectory's Euler
+#: step is a chain of dependent operations (x2 → v_rel → μ, with a division → x2) that leaves
+#: the CPU idle; a group of independent trajectories in field-major arrays fills it, and the
+#: branch-free fast pass over the group is compiled to SIMD instructions.
+LOCKSTEP = 32
+
+Floats = npt.NDArray[np.float64]
+Ints = npt.NDArray[np.int64]
+
 
 class KernelRows(NamedTuple):
     """Per-trajectory inputs of both integrators; row ``i`` belongs to trajectory ``i``
     (:func:`stochfric.oscillator.integrate.pack_rows` builds ``prm``, ``shapes``, ``lawp``)."""
 
-    prm: npt.NDArray[np.float64]  #: (n, N_PRM) parameter rows in the ``P_*`` layout
-    shapes: npt.NDArray[np.int64]  #: (n,) friction-law shape codes (``friction_laws.SHAPE_*``)
-    lawp: npt.NDArray[np.float64]  #: (n, k) friction-law parameters, zero-padded
-    x0: npt.NDArray[np.float64]  #: (n, 2) initial (x1, x2)
-    proc: npt.NDArray[np.float64]  #: (n, n_max) contact-process realisations (contact model)
-    n_proc: npt.NDArray[np.int64]  #: (n,) points of each realisation (one period)
+    prm: Floats  #: (n, N_PRM) parameter rows in the ``P_*`` layout
+    shapes: Ints  #: (n,) friction-law shape codes (``friction_laws.SHAPE_*``)
+    lawp: Floats  #: (n, k) friction-law parameters, zero-padded
+    x0: Floats  #: (n, 2) initial (x1, x2)
+    proc: Floats  #: (n, n_max) contact-process realisations (contact model)
+    n_proc: Ints  #: (n,) points of each realisation (one period)
 
 
 class KernelOutput(NamedTuple):
     """Per-trajectory outputs of both integrators (row ``i`` = trajectory ``i``)."""
 
-    x_gh: npt.NDArray[np.float64]  #: (n, capacity) slip→stick positions X_gh (NaN beyond M)
-    t_gh: npt.NDArray[np.float64]  #: (n, capacity) their times τ
-    counts: npt.NDArray[np.int64]  #: (n,) M, the number of slip→stick transitions
-    traj: npt.NDArray[np.float64]  #: (n, n_save, 3) saved states (τ, x1, x2); n_save may be 0
-    diag: npt.NDArray[np.float64]  #: (n, N_DIAG) diagnostics in the ``D_*`` layout
+    x_gh: Floats  #: (n, capacity) slip→stick positions X_gh (NaN beyond M)
+    t_gh: Floats  #: (n, capacity) their times τ
+    counts: Ints  #: (n,) M, the number of slip→stick transitions
+    traj: Floats  #: (n, n_save, 3) saved states (τ, x1, x2); n_save may be 0
+    diag: Floats  #: (n, N_DIAG) diagnostics in the ``D_*`` layout
 
 
 class FixedStepGrid(NamedTuple):
@@ -110,39 +149,132 @@ class WhiteInput(NamedTuple):
     from ``keys[i]``)."""
 
     source: int
-    dw: npt.NDArray[np.float64]
+    dw: Floats
     keys: npt.NDArray[np.uint64]
 
 
-# --- layout of the per-trajectory parameter row --------------------------------
-P_GAMMA0 = 0
-P_N = 1
-P_D = 2
-P_Q = 3
-P_ETA = 4
-P_X30 = 5
-P_VSCALE = 6
-P_MUS = 7
-P_SIGMA = 8
-P_PROC_DX = 9
-N_PRM = 10
+# --- the lock-step group ------------------------------------------------------------------------
+# Field-major arrays ``a[field, lane]``, so that every field of a group is one contiguous row that the
+# compiler processes with SIMD instructions; their rows are named by the layouts below.  (A NamedTuple
+# of per-field arrays would name them as well, but numba counts references to every member each time
+# the per-step code binds such a tuple, which costs more than the step itself.)
 
-# --- layout of the per-trajectory diagnostics row ------------------------------
-D_PATH = 0  # total path coordinate travelled in slip (dimensionless, = metres for L = 1 m)
-D_MIN_SLIP_PATH = 1  # shortest path of a completed slip phase (inf when none)
-D_N_SHORT_SLIP = 2  # completed slip phases shorter than one process grid spacing
-D_N_NO_STICK = 3  # belt speed reached while static friction could not hold (Fig. 4.15)
-D_X1 = 4  # final state
-D_X2 = 5
-D_STICK = 6
-D_N_BREAKAWAY = 7  # stick→slip transitions
-D_N_SLIP_PHASES = 8  # completed slip phases (ended by sticking)
-N_DIAG = 9
+# per-lane constants, hoisted with the same rounding as the expressions they replace
+(
+    _C_GAMMA0, _C_NN,
+    _C_DD2,  # 2D
+    _C_C2,  # 2Dγ0 of the stick force (4.2/4.9)
+    _C_QQ, _C_X30, _C_ETA, _C_VSCALE,
+    _C_LIM,  # n μ_s
+    _C_SIGMA, _C_PDX,
+    _C_ITO,  # ½ b b' / s = −n² σ_ζ / 4 (method §5.1)
+    _C_MUK0,  # μ_k(0), contact model only
+    _C_FORCED,  # 1.0 when q ≠ 0 (q = 0: q cos x3 is ±0 and the cosine is skipped)
+    _C_P0, _C_P1, _C_P2, _C_P3,  # law in rational form p0/(1 + p1 v) + p2 + p3 v² (constant: p1 = p2 = p3 = 0)
+    _NC,
+) = range(19)
+# per-lane state between grid steps
+(
+    _F_X1, _F_X2,
+    _F_STK,  # 1.0 while sticking
+    _F_S,  # sign(v_rel) of the current (or last) slip
+    _F_PATH,
+    _F_LIMB,  # static limit of the current stick phase (path, hence μ̂, is fixed while sticking)
+    _F_PSS,  # path at the start of the current slip phase
+    _F_MINSLIP,
+    _F_DONE,  # 1.0 when the fast pass completed the current step
+    _NF,
+) = range(10)
+# per-lane counters
+(
+    _I_M,  # slip→stick transitions M
+    _I_NSHORT, _I_NNOSTICK, _I_NBREAK, _I_NPHASES,
+    _I_ISAVE,  # next row of the saved trajectory
+    _NI,
+) = range(7)
+# per-lane inputs of grid step k besides the state
+(
+    _W_DW,  # ΔW_k (white noise)
+    _W_FQ_NOW,  # q cos x3 at τ_k (slip step, 4.7), forced lanes
+    _W_FQ_NEXT,  # q cos x3 at τ_k + Δτ (end of a stick step, 4.2), forced lanes
+    _NW,
+) = range(4)
+# per lane: the process grid segment floor(u) of its reading coordinate u (path/dx or x1/dx) and the
+# process values at its ends, so that the fast pass interpolates without gathers
+_S_INDEX, _S_V0, _S_V1, _NS = range(4)
+
+
+class _Modes(NamedTuple):
+    """The switches of a batch, the same for every lane."""
+
+    white: bool  #: white noise (Euler–Maruyama or Milstein)
+    milstein: bool
+    contact: bool  #: μ̂ of the contact-analysis process added while slipping
+    position: bool  #: μ̂ read at x1 (``PATH_POSITION``), else at the path coordinate
+    mass_path: bool  #: the path grows by |Δx1| (``PATH_MASS``, ``PATH_POSITION``), else |γ0 − x2| Δτ
+
+
+class _Lane(NamedTuple):
+    """The constants of one lane as scalars (the ``_C_*`` rows at one lane)."""
+
+    gamma0: float
+    nn: float
+    dd2: float
+    c2: float
+    qq: float
+    x30: float
+    eta: float
+    vscale: float
+    lim: float
+    sigma: float
+    pdx: float
+    ito: float
+    muk0: float
+    forced: bool
+    p0: float
+    p1: float
+    p2: float
+    p3: float
+
+
+class _Extern(NamedTuple):
+    """What the full step reads and writes besides the group: the process realisations and the
+    slip→stick events (only the arrays it needs: each array argument adds to the cost of a call)."""
+
+    proc: Floats
+    n_proc: Ints
+    x_gh: Floats
+    t_gh: Floats
+
+
+class _Slip(NamedTuple):
+    """A slip candidate over a step of length h (:func:`_slip_candidate`)."""
+
+    vr: float  #: γ0 − x2 at the start
+    s: float
+    avr: float
+    x1: float
+    x2: float
+    dpath: float
+    crosses: bool  #: v_rel reaches zero (or changes sign) within the step
+
+
+class _Sub(NamedTuple):
+    """A lane inside one grid step of the full step: the state at τ, h of the step left."""
+
+    x1: float
+    x2: float
+    tau: float
+    h: float
+    s: float
+    path: float
+    limb: float
+    stick: bool
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def store_diagnostics(
-    row: npt.NDArray[np.float64], path: float, min_slip_path: float, n_short: int, n_no_stick: int,
+    row: Floats, path: float, min_slip_path: float, n_short: int, n_no_stick: int,
     x1: float, x2: float, stick: bool, n_breakaway: int, n_slip_phases: int,
 ) -> None:  # pragma: no cover
     """Write one trajectory's diagnostics row in the ``D_*`` layout (both integrators)."""
@@ -159,7 +291,7 @@ def store_diagnostics(
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def process_value_row(
-    proc: npt.NDArray[np.float64], r: int | np.uint64, n_proc: int, dx: float, path: float
+    proc: Floats, r: int | np.uint64, n_proc: int, dx: float, path: float
 ) -> float:  # pragma: no cover
     """μ̂ of realisation ``proc[r]`` at path coordinate ``path``: linear interpolation between
     grid points ``j·dx`` and periodic continuation with period ``n_proc·dx`` (thesis 4.1.3)."""
@@ -189,7 +321,7 @@ def lerp(w: float, v0: float, v1: float) -> float:  # pragma: no cover
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def process_value(proc: npt.NDArray[np.float64], n_proc: int, dx: float, path: float) -> float:  # pragma: no cover
+def process_value(proc: Floats, n_proc: int, dx: float, path: float) -> float:  # pragma: no cover
     """:func:`process_value_row` for a single realisation ``proc`` (1-D)."""
     return process_value_row(proc.reshape((1, proc.shape[0])), 0, n_proc, dx, path)
 
@@ -212,7 +344,7 @@ def milstein_step(
 def slip_drift(x1: float, x2: float, dd2: float, nn: float, mu: float, s: float) -> float:  # pragma: no cover
     """The unforced slip acceleration of (4.7)/(4.36), ``−x1 − 2D x2 + n μ s`` (``dd2 = 2D``,
     ``s = sign(γ0 − x2)``, μ = μ_k + μ̂); the caller adds ``q cos x3`` where the case is forced.
-    Every integrator (fixed step, fast passes, DOPRI5) evaluates the slip equations through it."""
+    Every integrator (fixed step, DOPRI5) evaluates the slip equations through it."""
     return -x1 - dd2 * x2 + nn * mu * s
 
 
@@ -231,44 +363,267 @@ def white_velocity_step(
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def stick_force(x1: float, tau: float, prm: npt.NDArray[np.float64]) -> float:  # pragma: no cover
+def stick_force(x1: float, tau: float, prm: Floats) -> float:  # pragma: no cover
     """``x1 + 2Dγ0 − q cos(x30 + ητ)``: the force the static friction must hold (4.2/4.9)."""
     return x1 + 2.0 * prm[P_D] * prm[P_GAMMA0] - prm[P_Q] * math.cos(prm[P_X30] + prm[P_ETA] * tau)
 
 
-@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _stick_force_hoisted(
-    x1: float, tau: float, c2: float, qq: float, x30: float, eta: float, forced: bool
-) -> float:  # pragma: no cover
-    """:func:`stick_force` with the invariants hoisted: ``c2 = 2Dγ0``; the cosine is
-    skipped when ``q = 0`` (``forced`` false), where ``q cos x3`` is ±0 and changes nothing."""
-    f = x1 + c2
-    if forced:
-        f -= qq * math.cos(x30 + eta * tau)
-    return f
+# --- the step skeleton ------------------------------------------------------------------------
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _breakaway_limit(
-    lim: float, nn: float, mu_k0: float, noise: int, proc: npt.NDArray[np.float64], r: int,
-    n_proc: int, dx: float, path: float,
-) -> float:  # pragma: no cover
+def _lane(cs: Floats, jj: int) -> _Lane:  # pragma: no cover
+    """The constants of lane ``jj``."""
+    return _Lane(cs[_C_GAMMA0, jj], cs[_C_NN, jj], cs[_C_DD2, jj], cs[_C_C2, jj], cs[_C_QQ, jj], cs[_C_X30, jj],
+                 cs[_C_ETA, jj], cs[_C_VSCALE, jj], cs[_C_LIM, jj], cs[_C_SIGMA, jj], cs[_C_PDX, jj],
+                 cs[_C_ITO, jj], cs[_C_MUK0, jj], cs[_C_FORCED, jj] != 0.0, cs[_C_P0, jj], cs[_C_P1, jj],
+                 cs[_C_P2, jj], cs[_C_P3, jj])
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _forcing(ln: _Lane, tau: float) -> float:  # pragma: no cover
+    """``q cos(x30 + ητ)`` of a forced lane (0 for an unforced one, which never reads it)."""
+    return ln.qq * math.cos(ln.x30 + ln.eta * tau) if ln.forced else 0.0
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _held_force(x1: float, ln: _Lane, fq: float) -> float:  # pragma: no cover
+    """``x1 + 2Dγ0 − q cos x3`` (4.2/4.9) with ``fq = q cos x3``: :func:`stick_force` with the
+    invariants hoisted; unforced lanes skip the term (``q cos x3`` is ±0 and changes nothing)."""
+    f = x1 + ln.c2
+    return f - fq if ln.forced else f
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _stick_candidate(
+    x1: float, h: float, ln: _Lane, fq_end: float, limb: float
+) -> tuple[float, float, bool]:  # pragma: no cover
+    """Stick (4.6) over ``h``: ``x1 + γ0 h``, the force at the end of the step (``fq_end = q cos x3``
+    there) and whether the static friction holds it, ``|F| ≤ limb`` (4.2)."""
+    x1s = x1 + ln.gamma0 * h
+    f = _held_force(x1s, ln, fq_end)
+    return x1s, f, abs(f) <= limb
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _slip_candidate(
+    x1: float, x2: float, s_prev: float, h: float, ln: _Lane, muhat: float, fq: float, dw: float,
+    modes: _Modes,
+) -> _Slip:  # pragma: no cover
+    """Slip (4.7) over ``h`` from ``(x1, x2)``: the explicit Euler, Euler–Maruyama or Milstein step
+    (increment ``dw``; ``fq = q cos x3`` at the start; μ = μ_k + μ̂ with ``muhat`` for the contact
+    model), the path increment and whether ``v_rel`` reaches zero within the step.  At
+    ``v_rel = 0`` the sign ``s_prev`` is kept (the unbalanced force chose it at breakaway)."""
+    vr = ln.gamma0 - x2
+    s = 1.0 if vr > 0.0 else (-1.0 if vr < 0.0 else s_prev)
+    avr = abs(vr)
+    mu = mu_rational(ln.p0, ln.p1, ln.p2, ln.p3, ln.vscale * avr)
+    mu = mu + muhat if modes.contact else mu
+    drift = slip_drift(x1, x2, ln.dd2, ln.nn, mu, s)
+    drift = drift + fq if ln.forced else drift
+    x1n = x1 + x2 * h
+    if modes.white:
+        x2n = white_velocity_step(x2, drift, s, ln.ito, ln.nn, ln.sigma, avr, dw, h, modes.milstein)
+    else:
+        x2n = x2 + drift * h
+    dpath = abs(x1n - x1) if modes.mass_path else avr * h
+    return _Slip(vr, s, avr, x1n, x2n, dpath, (ln.gamma0 - x2n) * s <= 0.0)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _breakaway_limit(ln: _Lane, contact: bool, muhat: float) -> float:  # pragma: no cover
     """The force the static friction holds in a stick phase (constant during the phase).
 
-    ``n μ_s``; for the contact model (``noise == NOISE_PROCESS``) breakaway also needs the
-    unbalanced force to exceed the kinetic friction at ``v_rel → 0``,
-    ``n (μ_k(0) + μ̂(path))`` with μ̂ from realisation ``proc[r]``, else the first slip
-    would run against it (see docs).
+    ``n μ_s``; for the contact model breakaway also needs the unbalanced force to exceed the
+    kinetic friction at ``v_rel → 0``, ``n (μ_k(0) + μ̂)`` with μ̂ = ``muhat`` where the phase
+    started, else the first slip would run against it (see docs).
     """
-    if noise == NOISE_PROCESS:
-        return max(lim, nn * (mu_k0 + process_value_row(proc, r, n_proc, dx, path)))
-    return lim
+    return max(ln.lim, ln.nn * (ln.muk0 + muhat)) if contact else ln.lim
+
+
+# --- the fast pass: a step without an event, branch-free over the group --------------------------
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _fast_lane(
+    jj: int, dt: float, cs: Floats, fs: Floats, stp: Floats, modes: _Modes, muhat: float, hit: bool
+) -> int:  # pragma: no cover
+    """Lane ``jj``: both candidates, then a select (no branch) of the stick step without breakaway
+    or the slip step that crosses no switching condition; anything else — and a slip at ``v_rel = 0``
+    or one whose process segment is not cached (``hit`` false) — is left to the full step.  Returns
+    1 when the lane needs it."""
+    ln = _lane(cs, jj)
+    a1 = fs[_F_X1, jj]
+    a2 = fs[_F_X2, jj]
+    x1s, _, ok_stick = _stick_candidate(a1, dt, ln, stp[_W_FQ_NEXT, jj], fs[_F_LIMB, jj])
+    # s_prev = −1: a slip from v_rel = 0 is the full step's, so the fast pass never uses s there
+    sl = _slip_candidate(a1, a2, -1.0, dt, ln, muhat, stp[_W_FQ_NOW, jj], stp[_W_DW, jj], modes)
+    is_st = fs[_F_STK, jj] != 0.0
+    good = ok_stick if is_st else ((sl.vr != 0.0) & (not sl.crosses) & hit)
+    slip_ok = good & (not is_st)
+    fs[_F_X1, jj] = (x1s if is_st else sl.x1) if good else a1
+    fs[_F_X2, jj] = (ln.gamma0 if is_st else sl.x2) if good else a2
+    fs[_F_PATH, jj] = fs[_F_PATH, jj] + sl.dpath if slip_ok else fs[_F_PATH, jj]
+    fs[_F_S, jj] = sl.s if slip_ok else fs[_F_S, jj]
+    fs[_F_DONE, jj] = 1.0 if good else 0.0
+    return 0 if good else 1
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _cached_process(
+    jj: int, fs: Floats, seg: Floats, pdx: float, position: bool
+) -> tuple[float, bool]:  # pragma: no cover
+    """μ̂ of lane ``jj`` from its cached segment (the arithmetic of :func:`process_value_row`) and
+    whether its reading coordinate is still in that segment."""
+    x1 = fs[_F_X1, jj]  # both loaded unconditionally: a load inside the select
+    path = fs[_F_PATH, jj]  # kept the loop from vectorising
+    u = (x1 if position else path) / pdx
+    fl = math.floor(u)
+    return lerp(u - fl, seg[_S_V0, jj], seg[_S_V1, jj]), fl == seg[_S_INDEX, jj]
+
+
+# --- the full step: the thesis's switching logic inside the step ---------------------------------
+# The substeps are scalar functions: the full step reads and writes the group's arrays itself (numba
+# would count references to the arrays of an inlined function with branches in every substep).
+
+#: what happened in a slip substep
+_EV_NONE, _EV_STICK, _EV_NO_STICK = range(3)
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _stick_substep(sub: _Sub, ln: _Lane) -> tuple[_Sub, bool]:  # pragma: no cover
+    """Stick over the rest ``h`` of the step, or breakaway inside it (returned true): located by
+    linear interpolation of the force against ``±limb``; the rest of the step then slips."""
+    x1s, fn, holds = _stick_candidate(sub.x1, sub.h, ln, _forcing(ln, sub.tau + sub.h), sub.limb)
+    if holds:
+        return _Sub(x1s, sub.x2, sub.tau, 0.0, sub.s, sub.path, sub.limb, True), False
+    f0 = _held_force(sub.x1, ln, _forcing(ln, sub.tau))
+    bound = sub.limb if fn > 0.0 else -sub.limb
+    den = fn - f0
+    th = (bound - f0) / den if den != 0.0 else 1.0
+    if th < 0.0:
+        th = 0.0
+    elif th > 1.0:
+        th = 1.0
+    # the unbalanced force decides the direction of the first slip:
+    # F > n μ_s → the spring pulls back, x2 falls below γ0, v_rel > 0
+    s = 1.0 if fn > 0.0 else -1.0
+    return _Sub(sub.x1 + ln.gamma0 * th * sub.h, sub.x2, sub.tau + th * sub.h, sub.h - th * sub.h, s,
+                sub.path, sub.limb, False), True
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _slip_substep(
+    sub: _Sub, dt: float, dwk: float, ln: _Lane, muhat: float, modes: _Modes
+) -> tuple[_Sub, int]:  # pragma: no cover
+    """Slip over the rest ``h`` of the grid step (increment ``ΔW_k √(h/Δτ)``).  Where ``v_rel``
+    reaches zero inside it, the crossing by linear interpolation of ``x2``: there the mass sticks
+    (``_EV_STICK``, the state at the crossing; X_gh) if the static friction holds the force, else
+    it keeps slipping through the belt speed (``_EV_NO_STICK``, Fig. 4.15)."""
+    dwh = 0.0
+    if modes.white:
+        dwh = dwk if sub.h == dt else dwk * math.sqrt(sub.h / dt)
+    sl = _slip_candidate(sub.x1, sub.x2, sub.s, sub.h, ln, muhat, _forcing(ln, sub.tau), dwh, modes)
+    ends = _Sub(sl.x1, sl.x2, sub.tau + sub.h, 0.0, sl.s, sub.path + sl.dpath, sub.limb, False)
+    if not sl.crosses:
+        return ends, _EV_NONE
+    if sl.vr == 0.0:
+        # first slip step went against the unbalanced force (friction exceeded it): the mass is
+        # carried on with the belt for this step
+        return _Sub(sub.x1 + ln.gamma0 * sub.h, ln.gamma0, sub.tau + sub.h, 0.0, sl.s, sub.path, sub.limb,
+                    False), _EV_NONE
+    th = sl.vr / (sl.x2 - sub.x2)
+    x1c = sub.x1 + th * (sl.x1 - sub.x1)
+    tc = sub.tau + th * sub.h
+    if not abs(_held_force(x1c, ln, _forcing(ln, tc))) <= ln.lim:
+        return ends, _EV_NO_STICK
+    return _Sub(x1c, ln.gamma0, tc, sub.h - th * sub.h, sl.s, sub.path + th * sl.dpath, sub.limb, True), _EV_STICK
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _full_step(
+    jj: int, j: int, k: int, dt: float, dwk: float, cs: Floats, fs: Floats, ist: Ints, ext: _Extern, modes: _Modes,
+) -> None:  # pragma: no cover
+    """Advance trajectory ``j`` (group lane ``jj``) over grid step ``k`` with the switching logic
+    (module doc); ``dwk`` is its Wiener increment ``ΔW_k`` (white noise only).  Called where the
+    fast pass found an event."""
+    ln = _lane(cs, jj)
+    # τ = k·dt is the previous step's (k_prev + 1)·dt, bit for bit
+    sub = _Sub(fs[_F_X1, jj], fs[_F_X2, jj], k * dt, dt, fs[_F_S, jj], fs[_F_PATH, jj], fs[_F_LIMB, jj],
+               fs[_F_STK, jj] != 0.0)
+    tiny = 1e-12 * dt
+    it = 0
+    while sub.h > tiny and it < 8:
+        it += 1
+        if sub.stick:
+            sub, broke = _stick_substep(sub, ln)
+            if broke:
+                ist[_I_NBREAK, jj] += 1
+                fs[_F_PSS, jj] = sub.path
+            continue
+        muhat = 0.0
+        if modes.contact:
+            muhat = process_value_row(ext.proc, j, ext.n_proc[j], ln.pdx, sub.x1 if modes.position else sub.path)
+        sub, event = _slip_substep(sub, dt, dwk, ln, muhat, modes)
+        if event == _EV_NO_STICK:
+            ist[_I_NNOSTICK, jj] += 1
+        elif event == _EV_STICK:  # slip → stick: X_gh
+            m = ist[_I_M, jj]
+            if m < ext.x_gh.shape[1]:
+                ext.x_gh[j, m] = sub.x1
+                ext.t_gh[j, m] = sub.tau
+            ist[_I_M, jj] = m + 1
+            sp = sub.path - fs[_F_PSS, jj]
+            ist[_I_NPHASES, jj] += 1
+            if sp < fs[_F_MINSLIP, jj]:
+                fs[_F_MINSLIP, jj] = sp
+            if sp < ln.pdx:
+                ist[_I_NSHORT, jj] += 1
+            # the static limit of the stick phase that starts here (μ̂ read where it starts)
+            mu_start = 0.0
+            if modes.contact:
+                mu_start = process_value_row(ext.proc, j, ext.n_proc[j], ln.pdx, sub.x1 if modes.position else sub.path)
+            limb = _breakaway_limit(ln, modes.contact, mu_start)
+            sub = _Sub(sub.x1, sub.x2, sub.tau, sub.h, sub.s, sub.path, limb, True)
+    fs[_F_X1, jj] = sub.x1
+    fs[_F_X2, jj] = ln.gamma0 if sub.stick else sub.x2
+    fs[_F_S, jj] = sub.s
+    fs[_F_PATH, jj] = sub.path
+    fs[_F_LIMB, jj] = sub.limb
+    fs[_F_STK, jj] = 1.0 if sub.stick else 0.0
+
+
+# --- one lock-step group -----------------------------------------------------------------------
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _forcing_terms(k: int, dt: float, cs: Floats, stp: Floats) -> None:  # pragma: no cover
+    """The forcing ``q cos(x30 + η τ)`` of every forced lane of a group at ``τ = kΔτ`` (slip step,
+    4.7) and ``τ = kΔτ + Δτ`` (end of a stick step, 4.2), into ``stp[_W_FQ_NOW]`` and
+    ``stp[_W_FQ_NEXT]``: the same arguments and the same ``cos`` as the full step, so the numbers
+    are those of the full step.  The cosine is evaluated once per distinct ``(q, x30, η)`` of
+    neighbouring lanes (the runs of one parameter set), and the end-of-step value is carried to the
+    next step where ``(k+1)Δτ`` and ``kΔτ + Δτ`` are the same float."""
+    t0 = k * dt
+    t1 = t0 + dt
+    carry = k > 0 and t0 == (k - 1) * dt + dt
+    forced, qq, x30, eta = cs[_C_FORCED], cs[_C_QQ], cs[_C_X30], cs[_C_ETA]
+    fq_now, fq_next = stp[_W_FQ_NOW], stp[_W_FQ_NEXT]
+    for jj in range(forced.shape[0]):
+        if forced[jj] == 0.0:
+            continue
+        if jj > 0 and forced[jj - 1] != 0.0 and qq[jj] == qq[jj - 1] and x30[jj] == x30[jj - 1] \
+                and eta[jj] == eta[jj - 1]:
+            fq_now[jj] = fq_now[jj - 1]
+            fq_next[jj] = fq_next[jj - 1]
+            continue
+        fq_now[jj] = fq_next[jj] if carry else qq[jj] * math.cos(x30[jj] + eta[jj] * t0)
+        fq_next[jj] = qq[jj] * math.cos(x30[jj] + eta[jj] * t1)
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
 def _fill_pair(
-    keys: npt.NDArray[np.uint64], pair: np.uint64, sqdt: float, wk: npt.NDArray[np.float64],
-    zodd: npt.NDArray[np.float64],
+    keys: npt.NDArray[np.uint64], pair: np.uint64, sqdt: float, wk: Floats, zodd: Floats,
 ) -> None:  # pragma: no cover
     """``wk = R_{2p} √Δτ`` and ``zodd = R_{2p+1} √Δτ`` for every lane (``pair = p``): one
     Philox block and one Box–Muller pair per lane, branch-free.  A function of its own (not
@@ -280,318 +635,157 @@ def _fill_pair(
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _lane_candidates(
-    a1: float, a2: float, gam: float, c2: float, limb: float, vscale: float, p0: float,
-    p1: float, p2: float, p3: float, dt: float, forced: bool, fq_next: float,
-) -> tuple[float, bool, float, float, float, float]:  # pragma: no cover
-    """Fast pass, one lane: the stick candidate ``x1s`` and whether it holds (4.2), and for the
-    slip candidate ``v_rel``, ``s``, ``|v_rel|`` and μ_k in rational form (the arithmetic of
-    :func:`_advance`); ``fq_next = q cos x3(τ_k + Δτ)`` where the lane is ``forced``."""
-    x1s = a1 + gam * dt
-    f = x1s + c2
-    ok_stick = abs(f - fq_next if forced else f) <= limb
-    vr = gam - a2
-    s = 1.0 if vr > 0.0 else -1.0
-    avr = abs(vr)
-    mu = mu_rational(p0, p1, p2, p3, vscale * avr)
-    return x1s, ok_stick, vr, s, avr, mu
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _lane_commit(
-    jj: int, good: bool, is_st: bool, x1s: float, x1n: float, x2n: float, gam: float, a1: float,
-    a2: float, dp: float, s: float, vx1: npt.NDArray[np.float64], vx2: npt.NDArray[np.float64],
-    vpath: npt.NDArray[np.float64], vs: npt.NDArray[np.float64], vdone: npt.NDArray[np.float64],
-) -> int:  # pragma: no cover
-    """Fast pass, one lane: select the stick or slip candidate (or keep the state when the
-    lane needs the full step) without branches; returns 1 when it needs the full step."""
-    slip_ok = good & (not is_st)
-    vx1[jj] = (x1s if is_st else x1n) if good else a1
-    vx2[jj] = (gam if is_st else x2n) if good else a2
-    vpath[jj] = vpath[jj] + dp if slip_ok else vpath[jj]
-    vs[jj] = s if slip_ok else vs[jj]
-    vdone[jj] = 1.0 if good else 0.0
-    return 0 if good else 1
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy")
-def _forcing_terms(
-    k: int, dt: float, ng: int, cforced: npt.NDArray[np.float64], cqq: npt.NDArray[np.float64],
-    cx30: npt.NDArray[np.float64], ceta: npt.NDArray[np.float64], fq_now: npt.NDArray[np.float64],
-    fq_next: npt.NDArray[np.float64],
-) -> None:  # pragma: no cover
-    """The forcing ``q cos(x30 + η τ)`` of every forced lane of a group at ``τ = kΔτ`` (slip step,
-    4.7) and ``τ = kΔτ + Δτ`` (end of a stick step, 4.2): the same arguments and the same ``cos``
-    as :func:`_advance`, so the numbers are those of the full step.  The cosine is evaluated once
-    per distinct ``(q, x30, η)`` of neighbouring lanes (the runs of one parameter set), and the
-    end-of-step value is carried to the next step where ``(k+1)Δτ`` and ``kΔτ + Δτ`` are the same
-    float."""
-    t0 = k * dt
-    t1 = t0 + dt
-    carry = k > 0 and t0 == (k - 1) * dt + dt
-    for jj in range(ng):
-        if cforced[jj] == 0.0:
-            continue
-        if jj > 0 and cforced[jj - 1] != 0.0 and cqq[jj] == cqq[jj - 1] and cx30[jj] == cx30[jj - 1] \
-                and ceta[jj] == ceta[jj - 1]:
-            fq_now[jj] = fq_now[jj - 1]
-            fq_next[jj] = fq_next[jj - 1]
-            continue
-        fq_now[jj] = fq_next[jj] if carry else cqq[jj] * math.cos(cx30[jj] + ceta[jj] * t0)
-        fq_next[jj] = cqq[jj] * math.cos(cx30[jj] + ceta[jj] * t1)
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _fast_pass_contact(
-    ng: int, dt: float, vx1: npt.NDArray[np.float64], vx2: npt.NDArray[np.float64],
-    vstk: npt.NDArray[np.float64], vs: npt.NDArray[np.float64], vpath: npt.NDArray[np.float64],
-    vlimb: npt.NDArray[np.float64], vdone: npt.NDArray[np.float64], cg: npt.NDArray[np.float64],
-    cc2: npt.NDArray[np.float64], cvs: npt.NDArray[np.float64], cp0: npt.NDArray[np.float64],
-    cp1: npt.NDArray[np.float64], cp2: npt.NDArray[np.float64], cp3: npt.NDArray[np.float64],
-    cd2: npt.NDArray[np.float64], cn: npt.NDArray[np.float64], cpdx: npt.NDArray[np.float64],
-    pseg: npt.NDArray[np.float64], pv0: npt.NDArray[np.float64], pv1: npt.NDArray[np.float64],
-    position: bool, mass_path: bool, cforced: npt.NDArray[np.float64], fq_now: npt.NDArray[np.float64],
-    fq_next: npt.NDArray[np.float64],
-) -> int:  # pragma: no cover
-    """Branch-free fast pass of :func:`run_fixed_step_batch` for a group with the contact
-    process (no white noise): μ = μ_k + μ̂, μ̂ interpolated from the lane's cached segment
-    ``[pseg, pseg + 1]`` with the arithmetic of :func:`process_value_row`.  Lanes that cannot
-    complete the step (an event, or the reading coordinate left the segment) are marked in
-    ``vdone``; returns their number.  A loop of its own so that the plain fast pass keeps its
-    SIMD code."""
-    nmiss = 0
-    for jj in range(ng):
-        a1 = vx1[jj]
-        a2 = vx2[jj]
-        gam = cg[jj]
-        forced = cforced[jj] != 0.0
-        x1s, ok_stick, vr, s, avr, mu = _lane_candidates(a1, a2, gam, cc2[jj], vlimb[jj], cvs[jj],
-                                                         cp0[jj], cp1[jj], cp2[jj], cp3[jj], dt, forced,
-                                                         fq_next[jj])
-        path = vpath[jj]  # loaded unconditionally: a load inside the select below kept the
-        u = (a1 if position else path) / cpdx[jj]  # loop from vectorising (4.6 vs 1.1 ns/step)
-        fl = math.floor(u)
-        w = u - fl
-        hit = fl == pseg[jj]
-        mu += lerp(w, pv0[jj], pv1[jj])
-        drift = slip_drift(a1, a2, cd2[jj], cn[jj], mu, s)
-        drift = drift + fq_now[jj] if forced else drift
-        x1n = a1 + a2 * dt
-        x2n = a2 + drift * dt
-        ok_slip = (vr != 0.0) & ((gam - x2n) * s > 0.0)
-        dp = abs(x1n - a1) if mass_path else avr * dt
-        is_st = vstk[jj] != 0.0
-        good = ok_stick if is_st else (ok_slip & hit)
-        nmiss += _lane_commit(jj, good, is_st, x1s, x1n, x2n, gam, a1, a2, dp, s, vx1, vx2, vpath,
-                              vs, vdone)
-    return nmiss
-
-
-@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _load_segment(
-    jj: int, r: int, coord: float, dx: float, proc: npt.NDArray[np.float64],
-    n_proc: npt.NDArray[np.int64], pseg: npt.NDArray[np.float64], pv0: npt.NDArray[np.float64],
-    pv1: npt.NDArray[np.float64],
+    jj: int, r: int, coord: float, dx: float, proc: Floats, n_proc: Ints, seg: Floats
 ) -> None:  # pragma: no cover
     """Lane ``jj``: the process segment ``floor(coord/dx)`` of realisation ``proc[r]`` and its
     end values, as :func:`process_value_row` indexes them (periodic continuation)."""
     i = math.floor(coord / dx)
     i0, i1 = _segment_ends(i, n_proc[r])
-    pseg[jj] = i
-    pv0[jj] = proc[r, i0]
-    pv1[jj] = proc[r, i1]
+    seg[_S_INDEX, jj] = i
+    seg[_S_V0, jj] = proc[r, i0]
+    seg[_S_V1, jj] = proc[r, i1]
 
 
-# --- per-trajectory state of the lock-step batch kernel ------------------------------
-# Group arrays are stored field-major, ``fs[field, lane]``, so that every field of a group is
-# one contiguous row that the compiler can process with SIMD instructions.
-_F_X1 = 0
-_F_X2 = 1
-_F_STK = 2  # 1.0 while sticking
-_F_S = 3
-_F_PATH = 4
-_F_LIMB = 5  # static limit of the current stick phase (path, hence μ̂, is fixed while sticking)
-_F_PSS = 6  # path at the start of the current slip phase
-_F_MINSLIP = 7
-_F_DONE = 8  # 1.0 when the fast pass completed the current step
-_NF = 9
-_I_M = 0
-_I_NSHORT = 1
-_I_NNOSTICK = 2
-_I_NBREAK = 3
-_I_NPHASES = 4
-_I_ISAVE = 5
-_NI = 6
-# per-trajectory constants, hoisted with the same rounding as the expressions they replace
-_C_GAMMA0 = 0
-_C_NN = 1
-_C_DD2 = 2  # 2D
-_C_C2 = 3  # 2Dγ0 of the stick force (4.2/4.9)
-_C_QQ = 4
-_C_X30 = 5
-_C_ETA = 6
-_C_VSCALE = 7
-_C_LIM = 8  # n μ_s
-_C_SIGMA = 9
-_C_PDX = 10
-_C_ITO = 11  # ½ b b' / s = −n² σ_ζ / 4 (method §5.1)
-_C_MUK0 = 12  # μ_k(0), contact model only
-_C_FORCED = 13  # 1.0 when q ≠ 0 (q = 0: q cos x3 is ±0 and the cosine is skipped)
-_C_P0 = 14  # law in rational form p0/(1 + p1 v) + p2 + p3 v² (constant law: p1 = p2 = p3 = 0)
-_C_P1 = 15
-_C_P2 = 16
-_C_P3 = 17
-_NC = 18
-
-#: Trajectories advanced in lock-step by :func:`run_fixed_step_batch`.  One trajectory's Euler
-#: step is a chain of dependent operations (x2 → v_rel → μ, with a division → x2) that leaves
-#: the CPU idle; a group of independent trajectories in field-major arrays fills it, and the
-#: branch-free fast pass over the group is compiled to SIMD instructions.
-LOCKSTEP = 32
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _init_lane(
+    cs: Floats, fs: Floats, jj: int, rows: KernelRows, j: int, modes: _Modes
+) -> None:  # pragma: no cover
+    """Lane ``jj`` of a group: the constants of trajectory ``j`` and its state at ``τ = 0``."""
+    row = rows.prm[j]
+    gamma0 = row[P_GAMMA0]
+    nn = row[P_N]
+    cs[_C_GAMMA0, jj] = gamma0
+    cs[_C_NN, jj] = nn
+    cs[_C_DD2, jj] = 2.0 * row[P_D]
+    cs[_C_C2, jj] = cs[_C_DD2, jj] * gamma0
+    cs[_C_QQ, jj] = row[P_Q]
+    cs[_C_X30, jj] = row[P_X30]
+    cs[_C_ETA, jj] = row[P_ETA]
+    cs[_C_VSCALE, jj] = row[P_VSCALE]
+    cs[_C_LIM, jj] = nn * row[P_MUS]
+    cs[_C_SIGMA, jj] = row[P_SIGMA]
+    cs[_C_PDX, jj] = row[P_PROC_DX]
+    cs[_C_ITO, jj] = -0.25 * nn * nn * row[P_SIGMA]
+    cs[_C_MUK0, jj] = mu_kinetic_row(rows.shapes[j], 0.0, rows.lawp, j) if modes.contact else 0.0
+    cs[_C_FORCED, jj] = 1.0 if row[P_Q] != 0.0 else 0.0
+    cs[_C_P0, jj] = rows.lawp[j, 0]
+    if rows.shapes[j] != SHAPE_CONSTANT:  # p0/(1 + 0·v) + 0 + 0·v² = p0: the same bits
+        cs[_C_P1, jj] = rows.lawp[j, 1]
+        cs[_C_P2, jj] = rows.lawp[j, 2]
+        cs[_C_P3, jj] = rows.lawp[j, 3]
+    x1 = rows.x0[j, 0]
+    x2 = rows.x0[j, 1]
+    fs[_F_X1, jj] = x1
+    fs[_F_X2, jj] = x2
+    # on the belt speed the unbalanced force decides the direction of a first slip
+    # (forwards, s = −1, when it is below the static band); off it the relative velocity
+    if x2 == gamma0:
+        fs[_F_S, jj] = 1.0 if stick_force(x1, 0.0, row) >= 0.0 else -1.0
+    else:
+        fs[_F_S, jj] = -1.0 if x2 > gamma0 else 1.0
+    muhat = process_value_row(rows.proc, j, rows.n_proc[j], row[P_PROC_DX], x1 if modes.position else 0.0) \
+        if modes.contact else 0.0
+    fs[_F_LIMB, jj] = _breakaway_limit(_lane(cs, jj), modes.contact, muhat)
+    fs[_F_MINSLIP, jj] = np.inf
+    fs[_F_STK, jj] = 1.0 if (x2 == gamma0) and (abs(stick_force(x1, 0.0, row)) <= cs[_C_LIM, jj]) else 0.0
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
-def _advance(
-    jj: int, j: int, k: int, dt: float, fs: npt.NDArray[np.float64], ist: npt.NDArray[np.int64],
-    cs: npt.NDArray[np.float64], shapes: npt.NDArray[np.int64], lawp: npt.NDArray[np.float64],
-    white: bool, contact: bool, milstein: bool, mass_path: bool, position: bool, noise: int,
-    dwk: float, proc: npt.NDArray[np.float64], n_proc: npt.NDArray[np.int64],
-    xgh: npt.NDArray[np.float64], tgh: npt.NDArray[np.float64],
+def _run_group(
+    g0: int, ng: int, rows: KernelRows, out: KernelOutput, grid: FixedStepGrid, white: WhiteInput, modes: _Modes,
 ) -> None:  # pragma: no cover
-    """Advance trajectory ``j`` (group lane ``jj``) over grid step ``k`` (see module doc);
-    ``dwk`` is its Wiener increment ``ΔW_k`` (white noise only).
-
-    The full step with the thesis's switching logic; called when the fast pass of
-    :func:`run_fixed_step_batch` found an event (or cannot handle the lane).
-    """
-    gamma0 = cs[_C_GAMMA0, jj]
-    nn = cs[_C_NN, jj]
-    dd2 = cs[_C_DD2, jj]
-    c2 = cs[_C_C2, jj]
-    qq = cs[_C_QQ, jj]
-    x30 = cs[_C_X30, jj]
-    eta = cs[_C_ETA, jj]
-    vscale = cs[_C_VSCALE, jj]
-    lim = cs[_C_LIM, jj]
-    sigma = cs[_C_SIGMA, jj]
-    pdx = cs[_C_PDX, jj]
-    ito = cs[_C_ITO, jj]
-    forced = cs[_C_FORCED, jj] != 0.0
-    shape = shapes[j]
-    x1 = fs[_F_X1, jj]
-    x2 = fs[_F_X2, jj]
-    tau = k * dt  # = the previous step's (k_prev + 1) * dt, bit for bit
-    s = fs[_F_S, jj]
-    path = fs[_F_PATH, jj]
-    lim_b = fs[_F_LIMB, jj]
-    stick = fs[_F_STK, jj] != 0.0
-    h = dt
-    tiny = 1e-12 * dt
-    it = 0
-    while h > tiny and it < 8:
-        it += 1
-        if stick:
-            x1n = x1 + gamma0 * h
-            fn = _stick_force_hoisted(x1n, tau + h, c2, qq, x30, eta, forced)
-            if abs(fn) <= lim_b:
-                x1 = x1n
-                h = 0.0
-            else:
-                f0 = _stick_force_hoisted(x1, tau, c2, qq, x30, eta, forced)
-                bound = lim_b if fn > 0.0 else -lim_b
-                den = fn - f0
-                th = (bound - f0) / den if den != 0.0 else 1.0
-                if th < 0.0:
-                    th = 0.0
-                elif th > 1.0:
-                    th = 1.0
-                x1 += gamma0 * th * h
-                tau += th * h
-                h -= th * h
-                stick = False
-                ist[_I_NBREAK, jj] += 1
-                # the unbalanced force decides the direction of the first slip:
-                # F > n μ_s → the spring pulls back, x2 falls below γ0, v_rel > 0
-                s = 1.0 if fn > 0.0 else -1.0
-                fs[_F_PSS, jj] = path
+    """Integrate the group of trajectories ``g0 … g0 + ng − 1`` over every step of the grid: per step
+    the white-noise increments, the forcing terms, the fast pass, and the full step where an event
+    happened.  (The group's arrays are allocated here, where the compiler sees that they do not
+    overlap; as arguments they would need run-time overlap checks in the SIMD loops.)"""
+    nsteps, dt, decimate = grid
+    proc, n_proc, traj = rows.proc, rows.n_proc, out.traj
+    nsave = traj.shape[1]
+    cs = np.zeros((_NC, ng))
+    fs = np.zeros((_NF, ng))
+    ist = np.zeros((_NI, ng), dtype=np.int64)
+    for jj in range(ng):
+        _init_lane(cs, fs, jj, rows, g0 + jj, modes)
+        ist[_I_ISAVE, jj] = 1
+        if nsave > 0:
+            traj[g0 + jj, 0, 0] = 0.0
+            traj[g0 + jj, 0, 1] = fs[_F_X1, jj]
+            traj[g0 + jj, 0, 2] = fs[_F_X2, jj]
+    ext = _Extern(proc, n_proc, out.x_gh, out.t_gh)
+    stp = np.zeros((_NW, ng))
+    seg = np.zeros((_NS, ng))
+    seg[_S_INDEX] = np.nan
+    if modes.contact:
+        for jj in range(ng):
+            _load_segment(jj, g0 + jj, fs[_F_X1, jj] if modes.position else fs[_F_PATH, jj], cs[_C_PDX, jj],
+                          proc, n_proc, seg)
+    in_kernel = modes.white and white.source != WHITE_GIVEN
+    source, dw = white.source, white.dw
+    keys = white.keys[g0:g0 + ng] if in_kernel else white.keys[:0]
+    wk = stp[_W_DW]
+    odd = np.zeros(ng)  # ΔW_{k+1}, from the same Philox block as ΔW_k
+    miss = np.zeros((2, ng), dtype=np.uint64)  # ziggurat draws left to the slow path
+    sqdt = math.sqrt(dt)
+    forcing = False  # a lane with q ≠ 0 in the group
+    for jj in range(ng):
+        forcing = forcing or cs[_C_FORCED, jj] != 0.0
+    # the switches of the fast pass as constants, per noise model: a switch read inside a SIMD loop
+    # would make it compute both branches
+    as_contact = _Modes(False, False, True, modes.position, modes.mass_path)
+    as_white = _Modes(True, modes.milstein, False, modes.position, modes.mass_path)
+    as_plain = _Modes(False, False, False, modes.position, modes.mass_path)
+    # The draws and the loops over the lanes are written here rather than in inlined functions of
+    # their own: an inlined function that takes arrays and holds a loop or a branch left numba's
+    # reference counting of those arrays in every step (an atomic operation each, in all more than
+    # the step).  The per-lane functions called inside the loops do not.
+    for k in range(nsteps):
+        if modes.white:  # ΔW_k: given, or drawn for steps k and k + 1 at once at even k
+            if not in_kernel:
+                for jj in range(ng):
+                    wk[jj] = dw[g0 + jj, k]
+            elif k & 1:
+                for jj in range(ng):
+                    wk[jj] = odd[jj]
+            elif source == WHITE_PHILOX:
+                _fill_pair(keys, np.uint64(k >> 1), sqdt, wk, odd)
+            elif fill_pair_ziggurat(keys, np.uint64(k >> 1), sqdt, wk, odd, miss):
+                finish_pair_ziggurat(keys, np.uint64(k >> 1), sqdt, wk, odd, miss)
+        if forcing:
+            _forcing_terms(k, dt, cs, stp)
+        # the fast pass (:func:`_fast_lane`), one loop per noise model
+        nmiss = 0
+        if modes.contact:
+            for jj in range(ng):
+                muhat, hit = _cached_process(jj, fs, seg, cs[_C_PDX, jj], modes.position)
+                nmiss += _fast_lane(jj, dt, cs, fs, stp, as_contact, muhat, hit)
+        elif modes.white:
+            for jj in range(ng):
+                nmiss += _fast_lane(jj, dt, cs, fs, stp, as_white, 0.0, True)
         else:
-            vr = gamma0 - x2
-            if vr > 0.0:
-                s = 1.0
-            elif vr < 0.0:
-                s = -1.0
-            avr = abs(vr)
-            mu = mu_kinetic_row(shape, vscale * avr, lawp, j)
-            if contact:
-                mu += process_value_row(proc, j, n_proc[j], pdx, x1 if position else path)
-            drift = slip_drift(x1, x2, dd2, nn, mu, s)
-            if forced:
-                drift += qq * math.cos(x30 + eta * tau)
-            x1n = x1 + x2 * h
-            if white:
-                dwh = dwk if h == dt else dwk * math.sqrt(h / dt)
-                x2n = white_velocity_step(x2, drift, s, ito, nn, sigma, avr, dwh, h, milstein)
-            else:
-                x2n = x2 + drift * h
-            if mass_path:
-                dpath = abs(x1n - x1)
-            else:
-                dpath = avr * h
-            vrn = gamma0 - x2n
-            if vr == 0.0 and vrn * s <= 0.0:
-                # first slip step went against the unbalanced force (friction exceeded it):
-                # the mass is carried on with the belt for this step
-                x1 += gamma0 * h
-                x2 = gamma0
-                tau += h
-                h = 0.0
-            elif vr != 0.0 and vrn * s <= 0.0:
-                th = vr / (x2n - x2)
-                x1c = x1 + th * (x1n - x1)
-                tc = tau + th * h
-                if abs(_stick_force_hoisted(x1c, tc, c2, qq, x30, eta, forced)) <= lim:
-                    # slip → stick: X_gh
-                    m = ist[_I_M, jj]
-                    if m < xgh.shape[1]:
-                        xgh[j, m] = x1c
-                        tgh[j, m] = tc
-                    ist[_I_M, jj] = m + 1
-                    path += th * dpath
-                    sp = path - fs[_F_PSS, jj]
-                    ist[_I_NPHASES, jj] += 1
-                    if sp < fs[_F_MINSLIP, jj]:
-                        fs[_F_MINSLIP, jj] = sp
-                    if sp < pdx:
-                        ist[_I_NSHORT, jj] += 1
-                    x1 = x1c
-                    x2 = gamma0
-                    h -= th * h
-                    tau = tc
-                    stick = True
-                    lim_b = _breakaway_limit(lim, nn, cs[_C_MUK0, jj], noise, proc, j, n_proc[j],
-                                             pdx, x1c if position else path)
-                else:
-                    # belt speed reached, static friction cannot hold: keep slipping
-                    ist[_I_NNOSTICK, jj] += 1
-                    x1 = x1n
-                    x2 = x2n
-                    path += dpath
-                    tau += h
-                    h = 0.0
-            else:
-                x1 = x1n
-                x2 = x2n
-                path += dpath
-                tau += h
-                h = 0.0
-    if stick:
-        x2 = gamma0
-    fs[_F_X1, jj] = x1
-    fs[_F_X2, jj] = x2
-    fs[_F_S, jj] = s
-    fs[_F_PATH, jj] = path
-    fs[_F_LIMB, jj] = lim_b
-    fs[_F_STK, jj] = 1.0 if stick else 0.0
+            for jj in range(ng):
+                nmiss += _fast_lane(jj, dt, cs, fs, stp, as_plain, 0.0, True)
+        save = nsave > 0 and (k + 1) % decimate == 0
+        if nmiss == 0 and not save:
+            continue  # no lane needs the full step (most steps): skip the per-lane loop
+        for jj in range(ng):
+            j = g0 + jj
+            if fs[_F_DONE, jj] == 0.0:
+                _full_step(jj, j, k, dt, wk[jj], cs, fs, ist, ext, modes)
+                if modes.contact:
+                    _load_segment(jj, j, fs[_F_X1, jj] if modes.position else fs[_F_PATH, jj], cs[_C_PDX, jj],
+                                  proc, n_proc, seg)
+            isave = ist[_I_ISAVE, jj]
+            if save and isave < nsave:
+                traj[j, isave, 0] = (k + 1) * dt
+                traj[j, isave, 1] = fs[_F_X1, jj]
+                traj[j, isave, 2] = fs[_F_X2, jj]
+                ist[_I_ISAVE, jj] = isave + 1
+    for jj in range(ng):
+        j = g0 + jj
+        out.counts[j] = ist[_I_M, jj]
+        store_diagnostics(out.diag[j], fs[_F_PATH, jj], fs[_F_MINSLIP, jj], ist[_I_NSHORT, jj], ist[_I_NNOSTICK, jj],
+                          fs[_F_X1, jj], fs[_F_X2, jj], fs[_F_STK, jj] != 0.0, ist[_I_NBREAK, jj], ist[_I_NPHASES, jj])
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy")
@@ -616,254 +810,19 @@ def run_fixed_step_batch(
 
     Trajectories are advanced in groups of :data:`LOCKSTEP`, step by step.  Every step first
     runs a branch-free fast pass over the group — a stick step without breakaway, or a slip
-    step that crosses no switching condition, with exactly the arithmetic of the full step —
-    and then the full step :func:`_advance` for the lanes where an event happened.  With the
-    contact process, each lane keeps the process values at the ends of its current grid
-    segment, so the fast pass interpolates without gathers; a lane that enters another
-    segment takes the full step, after which the segment is reloaded.  With forcing, the terms
-    ``q cos x3`` at ``τ_k`` and ``τ_k + Δτ`` are computed before the pass, once per distinct
+    step that crosses no switching condition, with exactly the arithmetic of the full step (the
+    same step skeleton) — and then the full step :func:`_full_step` for the lanes where an event
+    happened.  With the contact process, each lane keeps the process values at the ends of its
+    current grid segment, so the fast pass interpolates without gathers; a lane that enters
+    another segment takes the full step, after which the segment is reloaded.  With forcing, the
+    terms ``q cos x3`` at ``τ_k`` and ``τ_k + Δτ`` are computed before the pass, once per distinct
     ``(q, x30, η)`` of neighbouring lanes (:func:`_forcing_terms`: the cosine does not vectorise).
-    Groups with a tabulated law take a scalar fast pass instead (its table look-ups do not
-    vectorise).  The numbers of a trajectory do not depend on the grouping or the batching.
-    Releases the GIL, so batches run in parallel threads.
+    The numbers of a trajectory do not depend on the grouping or the batching.  Releases the
+    GIL, so batches run in parallel threads.
     """
-    prm, shapes, lawp, x0, proc, n_proc = rows
-    xgh, tgh, counts, traj, diag = out
-    nsteps, dt, decimate = grid
-    white_source, dw, keys = white_input
-    white = noise == NOISE_WHITE
-    philox = white and white_source != WHITE_GIVEN
-    ziggurat = white_source == WHITE_ZIGGURAT
-    sqdt = math.sqrt(dt)
-    contact = noise == NOISE_PROCESS
-    milstein = scheme == SCHEME_MILSTEIN
     position = path_mode == PATH_POSITION
-    mass_path = path_mode == PATH_MASS or position
-    nsave = traj.shape[1]
-    ntraj = prm.shape[0]
+    modes = _Modes(noise == NOISE_WHITE, scheme == SCHEME_MILSTEIN, noise == NOISE_PROCESS, position,
+                   path_mode == PATH_MASS or position)
+    ntraj = rows.prm.shape[0]
     for g0 in range(0, ntraj, LOCKSTEP):
-        g1 = min(ntraj, g0 + LOCKSTEP)
-        ng = g1 - g0
-        fs = np.empty((_NF, ng))
-        ist = np.zeros((_NI, ng), dtype=np.int64)
-        cs = np.zeros((_NC, ng))
-        vector = True  # every law of the group in rational form: the vectorised fast pass
-        forcing = False  # a lane with q ≠ 0 in the group
-        for jj in range(ng):
-            j = g0 + jj
-            row = prm[j]
-            gamma0 = row[P_GAMMA0]
-            nn = row[P_N]
-            dd2 = 2.0 * row[P_D]
-            cs[_C_GAMMA0, jj] = gamma0
-            cs[_C_NN, jj] = nn
-            cs[_C_DD2, jj] = dd2
-            cs[_C_C2, jj] = dd2 * gamma0
-            cs[_C_QQ, jj] = row[P_Q]
-            cs[_C_X30, jj] = row[P_X30]
-            cs[_C_ETA, jj] = row[P_ETA]
-            cs[_C_VSCALE, jj] = row[P_VSCALE]
-            lim = nn * row[P_MUS]
-            cs[_C_LIM, jj] = lim
-            cs[_C_SIGMA, jj] = row[P_SIGMA]
-            cs[_C_PDX, jj] = row[P_PROC_DX]
-            cs[_C_ITO, jj] = -0.25 * nn * nn * row[P_SIGMA]
-            mu_k0 = mu_kinetic_row(shapes[j], 0.0, lawp, j) if contact else 0.0
-            cs[_C_MUK0, jj] = mu_k0
-            cs[_C_FORCED, jj] = 1.0 if row[P_Q] != 0.0 else 0.0
-            if row[P_Q] != 0.0:
-                forcing = True
-            if shapes[j] == SHAPE_RATIONAL:
-                cs[_C_P0, jj] = lawp[j, 0]
-                cs[_C_P1, jj] = lawp[j, 1]
-                cs[_C_P2, jj] = lawp[j, 2]
-                cs[_C_P3, jj] = lawp[j, 3]
-            elif shapes[j] == SHAPE_CONSTANT:
-                # p0/(1 + 0·v) + 0 + 0·v² = p0 exactly: the rational form gives the same bits
-                cs[_C_P0, jj] = lawp[j, 0]
-            else:
-                vector = False
-            x1 = x0[j, 0]
-            x2 = x0[j, 1]
-            fs[_F_X1, jj] = x1
-            fs[_F_X2, jj] = x2
-            # on the belt speed the unbalanced force decides the direction of a first slip
-            # (forwards, s = −1, when it is below the static band); off it the relative velocity
-            if x2 == gamma0:
-                fs[_F_S, jj] = 1.0 if stick_force(x1, 0.0, row) >= 0.0 else -1.0
-            else:
-                fs[_F_S, jj] = -1.0 if x2 > gamma0 else 1.0
-            fs[_F_PATH, jj] = 0.0
-            fs[_F_LIMB, jj] = _breakaway_limit(lim, nn, mu_k0, noise, proc, j, n_proc[j],
-                                               row[P_PROC_DX], x1 if position else 0.0)
-            fs[_F_PSS, jj] = 0.0
-            fs[_F_MINSLIP, jj] = np.inf
-            stick = (x2 == gamma0) and (abs(stick_force(x1, 0.0, row)) <= lim)
-            fs[_F_STK, jj] = 1.0 if stick else 0.0
-            ist[_I_ISAVE, jj] = 1
-            if nsave > 0:
-                traj[j, 0, 0] = 0.0
-                traj[j, 0, 1] = x1
-                traj[j, 0, 2] = x2
-        # contiguous rows of the group (views, created once per group)
-        vx1 = fs[_F_X1]
-        vx2 = fs[_F_X2]
-        vstk = fs[_F_STK]
-        vs = fs[_F_S]
-        vpath = fs[_F_PATH]
-        vlimb = fs[_F_LIMB]
-        vdone = fs[_F_DONE]
-        cg = cs[_C_GAMMA0]
-        cn = cs[_C_NN]
-        cd2 = cs[_C_DD2]
-        cc2 = cs[_C_C2]
-        cvs = cs[_C_VSCALE]
-        csig = cs[_C_SIGMA]
-        cito = cs[_C_ITO]
-        cp0 = cs[_C_P0]
-        cp1 = cs[_C_P1]
-        cp2 = cs[_C_P2]
-        cp3 = cs[_C_P3]
-        wk = np.zeros(ng)
-        # contact process read without per-step gathers: each lane keeps the grid segment
-        # floor(u) of its reading coordinate u = path/dx (or x1/dx) and the two process values
-        # at its ends; the fast pass interpolates from them (the same arithmetic as
-        # process_value_row) and leaves lanes that entered another segment to the full step,
-        # after which the segment is reloaded.
-        pseg = np.full(ng, np.nan)
-        pv0 = np.zeros(ng)
-        pv1 = np.zeros(ng)
-        cpdx = cs[_C_PDX]
-        if contact:
-            for jj in range(ng):
-                _load_segment(jj, g0 + jj, vx1[jj] if position else vpath[jj], cpdx[jj], proc,
-                              n_proc, pseg, pv0, pv1)
-        wodd = np.zeros(ng)  # ΔW_{k+1}, from the same Philox block as ΔW_k
-        zmiss = np.zeros((2, ng), dtype=np.uint64)  # ziggurat draws left to the slow path
-        # q cos x3 of the forced lanes at τ_k (slip) and τ_k + Δτ (stick), per step
-        fq_now = np.zeros(ng)
-        fq_next = np.zeros(ng)
-        cfz = cs[_C_FORCED]
-        cqq = cs[_C_QQ]
-        cx30 = cs[_C_X30]
-        ceta = cs[_C_ETA]
-        gkeys = keys[g0:g1] if philox else keys[:0]
-        for k in range(nsteps):
-            if white:
-                if not philox:
-                    for jj in range(ng):
-                        wk[jj] = dw[g0 + jj, k]
-                elif k & 1:
-                    for jj in range(ng):
-                        wk[jj] = wodd[jj]
-                else:
-                    # one Philox block per lane gives ΔW_k and ΔW_{k+1}: branch-free, vectorised
-                    if not ziggurat:
-                        _fill_pair(gkeys, np.uint64(k >> 1), sqdt, wk, wodd)
-                    elif fill_pair_ziggurat(gkeys, np.uint64(k >> 1), sqdt, wk, wodd, zmiss):
-                        finish_pair_ziggurat(gkeys, np.uint64(k >> 1), sqdt, wk, wodd, zmiss)
-            if forcing:
-                _forcing_terms(k, dt, ng, cfz, cqq, cx30, ceta, fq_now, fq_next)
-            nmiss = 0  # lanes the fast pass could not complete
-            if vector and not contact:
-                # fast pass, branch-free: both candidates, then a select per lane
-                for jj in range(ng):
-                    a1 = vx1[jj]
-                    a2 = vx2[jj]
-                    gam = cg[jj]
-                    forced = cfz[jj] != 0.0
-                    x1s, ok_stick, vr, s, avr, mu = _lane_candidates(
-                        a1, a2, gam, cc2[jj], vlimb[jj], cvs[jj], cp0[jj], cp1[jj], cp2[jj],
-                        cp3[jj], dt, forced, fq_next[jj])
-                    drift = slip_drift(a1, a2, cd2[jj], cn[jj], mu, s)
-                    drift = drift + fq_now[jj] if forced else drift
-                    x1n = a1 + a2 * dt
-                    if white:
-                        x2n = white_velocity_step(a2, drift, s, cito[jj], cn[jj], csig[jj], avr, wk[jj], dt,
-                                                  milstein)
-                    else:
-                        x2n = a2 + drift * dt
-                    ok_slip = (vr != 0.0) & ((gam - x2n) * s > 0.0)
-                    dp = abs(x1n - a1) if mass_path else avr * dt
-                    is_st = vstk[jj] != 0.0
-                    good = ok_stick if is_st else ok_slip
-                    nmiss += _lane_commit(jj, good, is_st, x1s, x1n, x2n, gam, a1, a2, dp, s, vx1,
-                                          vx2, vpath, vs, vdone)
-            elif vector:
-                # the same fast pass with the contact process, read from the lanes' segment
-                # caches (the same interpolation as process_value_row); a lane whose reading
-                # coordinate left its segment takes the full step
-                nmiss += _fast_pass_contact(ng, dt, vx1, vx2, vstk, vs, vpath, vlimb, vdone, cg,
-                                            cc2, cvs, cp0, cp1, cp2, cp3, cd2, cn, cpdx, pseg, pv0,
-                                            pv1, position, mass_path, cfz, fq_now, fq_next)
-            else:
-                # scalar fast pass (a tabulated law in the group)
-                for jj in range(ng):
-                    j = g0 + jj
-                    done = False
-                    forced = cfz[jj] != 0.0
-                    if vstk[jj] != 0.0:
-                        gam = cg[jj]
-                        x1n = vx1[jj] + gam * dt
-                        fn = x1n + cc2[jj]
-                        if forced:
-                            fn -= fq_next[jj]
-                        if abs(fn) <= vlimb[jj]:
-                            vx1[jj] = x1n
-                            vx2[jj] = gam
-                            done = True
-                    else:
-                        gam = cg[jj]
-                        a1 = vx1[jj]
-                        a2 = vx2[jj]
-                        vr = gam - a2
-                        if vr != 0.0:
-                            s = 1.0 if vr > 0.0 else -1.0
-                            avr = abs(vr)
-                            nn = cn[jj]
-                            path = vpath[jj]
-                            mu = mu_kinetic_row(shapes[j], cvs[jj] * avr, lawp, j)
-                            if contact:
-                                mu += process_value_row(proc, j, n_proc[j], cs[_C_PDX, jj],
-                                                        a1 if position else path)
-                            drift = slip_drift(a1, a2, cd2[jj], nn, mu, s)
-                            if forced:
-                                drift += fq_now[jj]
-                            x1n = a1 + a2 * dt
-                            if white:
-                                x2n = white_velocity_step(a2, drift, s, cito[jj], nn, csig[jj], avr, wk[jj], dt,
-                                                          milstein)
-                            else:
-                                x2n = a2 + drift * dt
-                            if (gam - x2n) * s > 0.0:
-                                vx1[jj] = x1n
-                                vx2[jj] = x2n
-                                vpath[jj] = path + (abs(x1n - a1) if mass_path else avr * dt)
-                                vs[jj] = s
-                                done = True
-                    vdone[jj] = 1.0 if done else 0.0
-                    nmiss += 0 if done else 1
-            save = nsave > 0 and (k + 1) % decimate == 0
-            if nmiss == 0 and not save:
-                continue  # no lane needs the full step (most steps): skip the per-lane loop
-            for jj in range(ng):
-                j = g0 + jj
-                if vdone[jj] == 0.0:
-                    _advance(jj, j, k, dt, fs, ist, cs, shapes, lawp, white, contact, milstein,
-                             mass_path, position, noise, wk[jj], proc, n_proc, xgh, tgh)
-                    if contact and vector:
-                        _load_segment(jj, j, vx1[jj] if position else vpath[jj], cpdx[jj], proc,
-                                      n_proc, pseg, pv0, pv1)
-                if save:
-                    isave = ist[_I_ISAVE, jj]
-                    if isave < nsave:
-                        traj[j, isave, 0] = (k + 1) * dt
-                        traj[j, isave, 1] = vx1[jj]
-                        traj[j, isave, 2] = vx2[jj]
-                        ist[_I_ISAVE, jj] = isave + 1
-        for jj in range(ng):
-            j = g0 + jj
-            counts[j] = ist[_I_M, jj]
-            store_diagnostics(diag[j], fs[_F_PATH, jj], fs[_F_MINSLIP, jj], ist[_I_NSHORT, jj],
-                              ist[_I_NNOSTICK, jj], fs[_F_X1, jj], fs[_F_X2, jj], fs[_F_STK, jj] != 0.0,
-                              ist[_I_NBREAK, jj], ist[_I_NPHASES, jj])
+        _run_group(g0, min(ntraj, g0 + LOCKSTEP) - g0, rows, out, grid, white_input, modes)

@@ -119,12 +119,6 @@ class OscillatorParameters:
             return None
         return nf / self.contact_area
 
-    @property
-    def pressure(self) -> float | None:
-        """Deprecated name of :attr:`pressure_pa` (docs/glossary.md); kept without a runtime warning,
-        since it is read inside friction-law callbacks that simulate runs with warnings as errors."""
-        return self.pressure_pa
-
     def replace(self, **changes: Any) -> OscillatorParameters:
         """A copy with ``changes`` applied (validated again)."""
         d = asdict(self)

@@ -1,14 +1,10 @@
 """μ as a stochastic process (method §3–§4, thesis 3.1.2–3.1.4, 3.2.3–3.2.5, 3.3.3–3.3.4).
 
-Contact of similar surfaces and sliding windows with their surrogate options (:mod:`.ensemble`),
-spectra along the path (:mod:`.spectra`), estimators with standard errors (:mod:`.estimators`), the
-fits of the model functions a p^b + c (:mod:`.fit`), the statistical analysis (:mod:`.statistics`,
-:func:`analyse`) with its settings (:mod:`.analysis_config`), its result and files
-(:mod:`.analysis_result`), its self-checks (:mod:`.checks`) and memory estimate (:mod:`.memory`);
-the friction-process models (:mod:`.model`: the import point of :mod:`.model_function`,
-:mod:`.model_base`, :mod:`.band_limited`, :mod:`.tabulated`), the spectral representation
-(:mod:`.spectral`) and the thesis's presets (:mod:`.presets`).  Figures in :mod:`.figures`
-(imported on demand: matplotlib).
+The statistical contact analysis (:func:`analyse`, :mod:`.statistics`: contact of similar surfaces
+in :mod:`.ensemble`, spectra in :mod:`.spectra`, fits in :mod:`.fit`, checks in :mod:`.checks` and
+:mod:`.credibility`), the friction-process models (:mod:`.model`), the spectral representation
+(:mod:`.spectral`) and the process models of the thesis's two cases (:mod:`.presets`).  Figures in
+:mod:`.figures` (imported on demand: matplotlib).
 """
 
 from __future__ import annotations
@@ -20,7 +16,7 @@ from stochfric.process.model import (
     TabulatedProcessModel,
     load_process_model,
 )
-from stochfric.process.presets import Preset, brake, get_preset, sheet
+from stochfric.process.presets import brake_process, sheet_process
 from stochfric.process.statistics import AnalysisConfig, StatisticalContactAnalysis, analyse
 
 __all__ = [
@@ -28,12 +24,10 @@ __all__ = [
     "BandLimitedProcessModel",
     "FrictionProcessModel",
     "ModelFunction",
-    "Preset",
     "StatisticalContactAnalysis",
     "TabulatedProcessModel",
     "analyse",
-    "brake",
-    "get_preset",
+    "brake_process",
     "load_process_model",
-    "sheet",
+    "sheet_process",
 ]

@@ -25,6 +25,7 @@ from stochfric.process.checks import ErgodicityCheck, ProcessCheck, SurrogateChe
 from stochfric.process.credibility import Credibility
 from stochfric.process.ensemble import ContactSamples, PathContact
 from stochfric.process.fit import ModelFit
+from stochfric.process.model_base import SigmaZetaRule
 from stochfric.process.tabulated import TabulatedProcessModel
 
 __all__ = ["StatisticalContactAnalysis"]
@@ -114,7 +115,7 @@ class StatisticalContactAnalysis:
     def sigma_zeta_table(self) -> dict[str, list[float]]:
         """σ_ζ at the analysed pressures by both rules (``sigma_mu`` and ``spectral_level``)."""
         out: dict[str, list[float]] = {"pressure_pa": [float(p) for p in self.pressure_pa]}
-        for rule in ("sigma_mu", "spectral_level"):
+        for rule in SigmaZetaRule:
             m = replace(self.model, sigma_zeta_rule=rule)
             vals: list[float] = []
             for p in self.pressure_pa:
@@ -122,7 +123,7 @@ class StatisticalContactAnalysis:
                     vals.append(m.sigma_zeta(float(p)))
                 except ValueError:
                     vals.append(math.nan)
-            out[rule] = vals
+            out[rule.value] = vals
         return out
 
     def to_json_dict(self) -> dict[str, Any]:

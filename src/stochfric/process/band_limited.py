@@ -67,7 +67,7 @@ class BandLimitedProcessModel(ProcessModelBase):
     length: float
     spectrum_shape: SpectrumShape = "flat"
     falling_ratio: float = 0.5
-    sigma_zeta_rule: SigmaZetaRule = "sigma_mu"
+    sigma_zeta_rule: SigmaZetaRule = SigmaZetaRule.SIGMA_MU
 
     def __post_init__(self) -> None:
         self._check_common()

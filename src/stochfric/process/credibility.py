@@ -1,25 +1,10 @@
 """Is a statistical contact analysis credible enough to write a friction-process model? (method §3–§4)
 
-The gate of ``stochfric friction-process``: an analysis is *not credible* when any of these holds,
-each a coded reason (:class:`~stochfric.contact.validity.ValidityWarning`):
-
-* ``surrogate-check-failed`` — the measured map lies outside its own surrogate ensemble
-  (summit count, β̄, σ_S or μ(u), |z| ≥ 3; :func:`~stochfric.process.checks.surrogate_check`);
-* ``window-check-failed`` — μ scatters across disjoint windows of the measurement differently from
-  the same windows of the surrogates (:func:`~stochfric.process.checks.window_scatter_check`);
-* ``surrogate-copies-map`` — a surrogate reproduces the map or another surrogate
-  (:func:`~stochfric.process.checks.copy_check`);
-* ``mu-out-of-range`` — E[μ] (path or ensemble) outside :data:`MU_PHYSICAL_RANGE` at an
-  approach used by the fits: 0.03 … 1.5 spans dry metal, polymer and brake-pad pairings
-  (boundary-lubricated 0.03 to clean-metal adhesion 1.5); outside it Bowden–Tabor with this
-  pairing is not a description of this surface;
-* ``area-above-nominal`` — a mean contact area above the nominal area (A_c/A_nom > 1);
-* ``fit-too-few-points`` — fewer than :data:`MIN_FIT_POINTS` points inside the non-interaction
-  range for the fits a p^b + c (three parameters need at least four points).
-
-The command then exits with status 3, prints the reasons as coded warnings and writes no model
-file unless the user accepts it (``--accept-not-credible``); a model written that way carries
-the reasons (``not_credible``) and every command that reads it warns.
+The gate of ``stochfric friction-process``: each reason why an analysis is *not credible* (surrogate
+or window check failed, surrogates that copy the map, E[μ] outside the physical range, a contact
+area above the nominal one, too few points for the fits) is a coded
+:class:`~stochfric.contact.validity.ValidityWarning`; the command then exits with status 3 and
+writes no model file unless the user accepts it (docs/statistical_contact.md §0).
 """
 
 from __future__ import annotations
@@ -34,7 +19,9 @@ from stochfric.contact.validity import ValidityWarning
 
 __all__ = ["MIN_FIT_POINTS", "MU_PHYSICAL_RANGE", "NOT_CREDIBLE_EXIT", "Credibility", "assess_credibility"]
 
-#: Range of a physical mean friction coefficient of a dry contact (module doc).
+#: Range of a physical mean friction coefficient of a dry contact: boundary-lubricated (0.03) to clean-metal
+#: adhesion (1.5), spanning dry metal, polymer and brake-pad pairings; outside it Bowden–Tabor with this
+#: pairing does not describe the surface.
 MU_PHYSICAL_RANGE = (0.03, 1.5)
 #: Fewest points inside the non-interaction range for a fit of a p^b + c.
 MIN_FIT_POINTS = 4
@@ -81,7 +68,7 @@ def assess_credibility(
     fit_mask: npt.ArrayLike,
     valid_fit_points: int,
 ) -> Credibility:
-    """Collect the reasons of the module doc.  ``window_ok = None``: the window check could not be
+    """Collect the reasons of the module docstring.  ``window_ok = None``: the window check could not be
     made (too few summits for 2 × 2 windows); that is reported by the analysis, not a reason here.
     ``mu_means`` and ``area_fractions``: E[μ](u) and mean A_c/A_nom(u) of the path and the ensemble;
     μ is checked at the approaches of ``fit_mask``, the area at every approach."""

@@ -1,35 +1,10 @@
-"""Contact analysis of many similar surfaces and of sliding windows (method §4a–c).
+"""Contact analysis of many similar surfaces and of sliding windows (method §4a–c, thesis 3.1.4, 3.2.4, 3.2.5).
 
-Thesis 3.1.4, 3.2.4, 3.2.5.  Three kinds of samples, each an array over (sample, approach):
-
-* :func:`ensemble_contact` — R realisations of original size (random-phase or IAAFT
-  surrogates, :mod:`stochfric.surface.synthesis`), each analysed over the approach range
-  (GW/Hertz + Bowden–Tabor, :func:`stochfric.contact.asperity.asperity_sums`), §4a.
-* :func:`window_contact` — windows of original size shifted by ``shift`` grid points over one
-  long surface, §4b (shift = window length) and §4c (shift = a_y).  **Each window's contact is
-  referenced to its own highest summit** (method §4c): the flat starts at the window's highest
-  summit and the approach u is measured from there, exactly as if the window were analysed on
-  its own.
-* :func:`path_contact` — §4c over K long surfaces: μ(y) per approach, shape (K, W, U), and
-  the same long surfaces cut into non-overlapping windows, shape (K, J, U), for the ergodicity
-  check (§4b, windows of one long surface against windows of independent long surfaces from the
-  same generator).
-
-Fast windows.  The summits of a long surface are found **once**; a window analysed on its own
-finds exactly the long surface's summits whose column lies at least the rule's margin (2 points
-for the thesis rule, 1 for the 8-neighbour rule) inside the window, with the same radii (the
-summit test and the curvature only look 1–2 points around a summit).  So the summits are sorted
-by column once, every window is a contiguous slice found by :func:`numpy.searchsorted`, the
-GW sums of every window are formed by one compiled loop (:func:`_window_sums`) that first finds the
-window's highest summit and then adds only the summits above ``ref − max(u)`` (the others cannot
-touch at any approach).  Memory beyond the summit list is O(windows × approaches), whatever the
-size of the surface (a 1700 × 17000-point long surface included).
-:func:`naive_window_contact` does the same window by window (crop, find summits, GW sums) and is
-kept as the reference for the tests and the benchmark (``benchmarks/bench_process.py``).
-
-Randomness: every function takes ``seed``; realisation / long surface k uses the k-th spawned
-child stream (:func:`stochfric.random.spawn_generators`), so results do not depend on how the
-work is split.
+GW/Hertz + Bowden–Tabor contact as arrays over (sample, approach): :func:`ensemble_contact` of R
+surrogates of original size (§4a), :func:`window_contact` of windows along a long surface, each
+referenced to its own highest summit (§4b–c), :func:`path_contact` of K long surfaces (§4c and the
+ergodicity check).  Realisation / long surface k uses the k-th child seed stream, so the numbers do
+not depend on how the work is split (docs/statistical_contact.md §2).
 """
 
 from __future__ import annotations
@@ -385,6 +360,9 @@ def window_contact(
 
     Windows cover columns ``[s, s + window_points)`` for ``s`` in :func:`window_starts`; each is
     referenced to its own highest summit.  Returns ``(A_c, N, n_contacts)`` of shape (W, U).
+    The summits of the long surface are found once: a window analysed on its own finds exactly
+    those whose column lies at least the rule's margin (:data:`SUMMIT_MARGIN`) inside it, with the
+    same radii, so every window is a contiguous slice of the column-sorted summits.
     ``crop=True`` is the reference (:func:`naive_window_contact`): crop each window and analyse it
     on its own; the fast path equals it to round-off.
     """

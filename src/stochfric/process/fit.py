@@ -1,33 +1,9 @@
 """Model functions f(p) = a p^b + c fitted by nonlinear least squares (eq. 3.21, method §4d).
 
-* **Fit.** :func:`fit_model_function` uses :func:`scipy.optimize.curve_fit` (trust-region
-  reflective) on the scaled form f = A (p/p_ref)^b + c, p_ref the geometric mean of the used
-  pressures (p spans decades; unscaled, a and b are badly conditioned), started from the best
-  of a grid over b with (A, c) solved linearly.  Back-transform a = A p_ref^(−b); the
-  covariance follows with the Jacobian of (A, b, c) → (a, b, c).
-* **Uncertainties.** With per-point standard errors ``sigma`` the covariance is that of
-  weighted least squares with absolute weights, multiplied by max(1, χ²/dof): it grows when the
-  model does not describe the points within their errors and is never shrunk below what the
-  data's own errors allow.  Without ``sigma``: unit weights and the usual χ²/dof scaling.
-  Parameter standard errors are √diag(cov).
-* **Outliers at high pressure** (:func:`fit_mask`): the thesis leaves out the high-pressure
-  points where the non-interaction assumption of GW breaks (outliers inflate σ_μ and S,
-  §3.2.5).  Our rule: use a point only if its mean contact-area fraction A_c/A_nom is
-  ≤ ``max_area_fraction``, default :data:`DEFAULT_MAX_AREA_FRACTION` = 0.1
-  (:data:`stochfric.contact.validity.NON_INTERACTION_AREA_FRACTION`).  Evidence
-  (``benchmarks/bem_equal_load.py``, docs/surface_contact.md): at *equal load* the elastic
-  half-space (boundary elements, border frame removed) has a roughly constant multiple of the
-  GW contact area at low and middle loads — 1.3–1.6 on al3d-1 (measurement grid, 2× spline
-  refinement, 2×/3× coarsening), 1.5–1.7 on x3p-2, 1.9–2.0 on plu-1 (GW under-predicts μ by
-  25–50 % but keeps its pressure dependence) — and that plateau ends where the contacts start
-  to merge: the ratio falls more than 10 % below it beyond A_c/A_nom ≈ 0.13–0.16 on the
-  grooved surfaces (x3p-2, plu-1) and beyond ≈ 0.45–0.53 on the isotropic al3d-1.  Up to 0.1
-  it stays within about 10 % on every surface and grid tested, hence the default.  The former 1.5 %
-  (the point where GW's pressure at equal *approach* fell below the half-space's) had no
-  support: at equal approach the half-space's own settlement and border points the summit
-  rule cannot see dominated the comparison.
-  If fewer than ``min_points`` (default 4, one more than the parameters) pass, the
-  ``min_points`` lowest pressures are used and the fit says so in ``note``.
+:func:`fit_model_function` fits E[μ], σ_μ or the PSD level over the mean pressure, with parameter
+standard errors; :func:`fit_mask` leaves out the high-pressure points beyond the non-interaction
+range of GW, as the thesis does (§3.2.5).  The fit, its uncertainties and the exclusion rule with
+its evidence: docs/statistical_contact.md §3.
 """
 
 from __future__ import annotations
@@ -54,7 +30,7 @@ __all__ = [
 FloatArray = npt.NDArray[np.float64]
 
 #: Largest mean contact-area fraction A_c/A_nom of a point used in the fits: the end of the
-#: non-interaction range measured against the half-space at equal load (see module doc).
+#: non-interaction range measured against the half-space at equal load (docs/surface_contact.md).
 DEFAULT_MAX_AREA_FRACTION = NON_INTERACTION_AREA_FRACTION
 
 _B_GRID = np.concatenate((np.linspace(-3.0, -0.02, 150), np.linspace(0.02, 3.0, 150)))
@@ -121,7 +97,7 @@ def fit_mask(
     max_area_fraction: float = DEFAULT_MAX_AREA_FRACTION,
     min_points: int = 4,
 ) -> tuple[npt.NDArray[np.bool_], str]:
-    """Points to use in the fits: mean A_c/A_nom ≤ ``max_area_fraction`` (module doc).
+    """Points to use in the fits: mean A_c/A_nom ≤ ``max_area_fraction`` (the non-interaction range).
 
     Parameters
     ----------
@@ -172,7 +148,13 @@ def fit_model_function(
     note: str = "",
     rule: dict[str, Any] | None = None,
 ) -> ModelFit:
-    """Fit f(p) = a p^b + c (eq. 3.21) by nonlinear least squares; see the module doc.
+    """Fit f(p) = a p^b + c (eq. 3.21) by nonlinear least squares.
+
+    Trust-region reflective fit of the scaled form A (p/p_ref)^b + c (p_ref the geometric mean of
+    the used pressures), started from the best of a grid over b with (A, c) solved linearly, and
+    transformed back to a = A p_ref^(−b) with the covariance through the Jacobian.  With ``sigma``
+    the covariance is that of absolute weights times max(1, χ²/dof) (never shrunk below the data's
+    own errors); without it, unit weights and the usual χ²/dof scaling.
 
     Parameters
     ----------

@@ -13,8 +13,9 @@ from __future__ import annotations
 import json
 import math
 import os
+from enum import StrEnum
 from pathlib import Path
-from typing import Any, Literal, Protocol, Self, get_args
+from typing import Any, Protocol, Self
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -38,9 +39,15 @@ __all__ = [
     "low_frequency_level",
 ]
 
-SigmaZetaRule = Literal["sigma_mu", "spectral_level"]
 
-_SIGMA_ZETA_RULES: tuple[str, ...] = get_args(SigmaZetaRule)
+class SigmaZetaRule(StrEnum):
+    """How a process model gives the white-noise intensity σ_ζ(p) (method §5.1, eq. 4.17)."""
+
+    #: σ_ζ = σ_μ(p), the thesis's rule (§4.1.2)
+    SIGMA_MU = "sigma_mu"
+    #: σ_ζ = S0/2, the process's low-frequency one-sided PSD level
+    SPECTRAL_LEVEL = "spectral_level"
+
 
 #: Version of the model files' schema (``"schema_version"``); :meth:`ProcessModelBase.from_dict` refuses others.
 SCHEMA_VERSION = 2
@@ -148,10 +155,11 @@ class ProcessModelBase:
                 f"length {length!r} m must exceed 2·dx = {2 * dx!r} m so that the band "
                 "k/length < 1/(2·dx) holds at least one frequency"
             )
-        if self.sigma_zeta_rule not in _SIGMA_ZETA_RULES:
+        if self.sigma_zeta_rule not in tuple(SigmaZetaRule):
             raise ValueError(
-                f"sigma_zeta_rule must be one of {_SIGMA_ZETA_RULES}, got {self.sigma_zeta_rule!r}"
+                f"sigma_zeta_rule must be one of {[str(r) for r in SigmaZetaRule]}, got {self.sigma_zeta_rule!r}"
             )
+        object.__setattr__(self, "sigma_zeta_rule", SigmaZetaRule(self.sigma_zeta_rule))
 
     @staticmethod
     def _check_kind(data: dict[str, Any], kind: str) -> None:

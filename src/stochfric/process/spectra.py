@@ -1,22 +1,10 @@
-"""Autocorrelation, correlation length and PSD of μ along the path (method §0, §4c).
+"""Autocorrelation, correlation length and PSD of μ along the path (method §0, §4c, thesis eq. 3.17–3.20).
 
-Thesis eq. (3.17)–(3.20).  Input: μ(y) on windows shifted by a_y, shape (..., W) with the
-window index last (K long surfaces × W windows per approach).
-
-* (3.17) μ̄ = (μ − E[μ]) / σ_μ with E[μ], σ_μ over **all** records passed (all surfaces), so
-  that the records share one normalisation;
-* (3.18) R(k) = (1/(W − k)) Σ_{i<W−k} μ̄_i μ̄_{i+k} (the thesis's 1/n with n the number of pairs
-  at lag k), lags k = 0..⌊W/2⌋, averaged over the records;
-* integral correlation length ℓ_int = S(0)/(4σ²) per record (:func:`integral_correlation_length`),
-  the analysis's ℓ_corr; the thesis's first zero crossing of the averaged R, by linear interpolation
-  between the last positive and the first non-positive lag (thesis §3.2.4, Fig. 3.19), in m;
-  NaN if R stays positive;
-* (3.19)/(3.20) μ̂ = μ − mean → one-sided PSD in the convention of method §0
-  (:func:`stochfric.process.spectral.one_sided_psd`: S_k = 2 a_y |X_k|²/W, Σ_k S_k Δf = sample
-  variance), averaged over the records; frequencies f_k = k/(W a_y) [1/m], S in m.
-  Each record's own mean is removed (this only affects the DC bin, which is not returned).
-* the spectrum level E[S] is the low-frequency level S(f → 0) (:func:`psd_level`): above 1/ℓ
-  the spectrum of μ(y) is the window's moving average, not the surface's.
+Input: μ(y) on windows shifted by a_y, shape (..., W) with the window index last (K long surfaces
+× W windows per approach).  The normalisation (3.17), the autocorrelation averaged over the records
+(3.18), the integral correlation length S(0)/(4σ²) per record and the thesis's first zero crossing,
+the one-sided PSD (3.19–3.20) in the convention of method §0 and its level S(f → 0)
+(docs/statistical_contact.md §2).
 """
 
 from __future__ import annotations

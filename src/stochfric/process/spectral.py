@@ -1,25 +1,10 @@
-"""One-sided PSD estimate and the spectral representation of a path-dependent process.
+"""One-sided PSD estimate and the spectral representation of a path-dependent process (method §0, eq. 2.48).
 
-Conventions (method §0, docs/method.md, the package-wide power spectral density convention)
--------------------------------------------------------------------------------
-A real, zero-mean process μ̂(x) along the path x [m] has a *one-sided* PSD S(f) in
-units of m (variance per unit of path frequency f [1/m]) with σ² = ∫₀^∞ S(f) df.
-For N samples at spacing Δx,
-
-    X_k = Σ_j μ̂_j exp(−2πi jk/N),   S_k = 2 Δx |X_k|² / N   (0 < k < N/2),
-    f_k = k / (N Δx),                Δf = 1 / (N Δx),
-
-so that Σ_k S_k Δf equals the sample variance (see :func:`one_sided_psd` for the
-Nyquist bin of even N).  The spectral representation (thesis eq. 2.48 / 4.32)
-
-    μ̂(x) = √2 Σ_i √(S(f_i) Δf) cos(2π f_i x + ψ_i),   ψ_i ~ U[0, 2π),
-
-then has variance Σ_i S(f_i) Δf; for harmonics f_i = i/ℓ of the length ℓ it is
-periodic with period ℓ (the thesis continues it periodically by "extending x").
-
-Thesis errata handled here: (4.32) prints √(S) Δf and cos(2π(f x + ξ)); the
-correct form (2.48) has √(S Δf) inside the root and the phase outside the 2π.
-All functions are pure: arrays in, arrays out, randomness only through ``rng``.
+A real, zero-mean process μ̂(x) along the path x [m] has a one-sided PSD S(f) [m] with
+σ² = ∫₀^∞ S(f) df; :func:`one_sided_psd` estimates it so that Σ_k S_k Δf is the sample variance, and
+the spectral representation μ̂(x) = √2 Σ_i √(S(f_i) Δf) cos(2π f_i x + ψ_i) (thesis 2.48; (4.32) as
+printed misplaces Δf and the phase) generates realisations with variance Σ_i S(f_i) Δf
+(docs/friction_process.md §1–§2).  Pure functions: randomness only through ``rng``.
 """
 
 from __future__ import annotations

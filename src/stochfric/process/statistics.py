@@ -1,45 +1,17 @@
-"""The statistical contact analysis: from one measured surface to a friction-process model.
+"""The statistical contact analysis: from measured surfaces to a friction-process model.
 
-method §3–§4 (thesis 3.1.4, 3.2.4, 3.2.5, 3.3.3, 3.3.4).  :func:`analyse` runs
-
-a) the **ensemble** (:func:`~stochfric.process.ensemble.ensemble_contact`): R surrogates of
-   original size → E[μ], σ_μ, PDFs of μ per approach, mean A_c/A_nom over the mean pressure
-   E[N]/A_nom with a linear fit (Fig. 3.16–3.18a);
-b) the **ergodicity check** (:func:`~stochfric.process.checks.ergodicity_check`): non-overlapping windows of original
-   size along each of K long surfaces against the same windows across the independent
-   surfaces, all from one generator (Fig. 3.18b; the thesis compared with a), whose
-   realisations come from another generator — see the class docstring);
-c) **μ along the path** (:func:`~stochfric.process.ensemble.path_contact`): K long surfaces,
-   windows shifted by a_y → μ(y), autocorrelation, correlation length, PSD (method §0),
-   averaged over the surfaces (Fig. 3.19–3.21).  The correlation length is the integral scale
-   ℓ_corr = ∫₀^∞ ρ(y) dy = S(0)/(4σ_μ²) per long surface (S(0) the low-frequency level, stable
-   between realisations), with its standard error and 95 % Student-t interval over the K surfaces
-   (:func:`~stochfric.process.spectra.correlation_length_interval`); the thesis's first zero
-   crossing of the averaged ACF is kept as ``zero_crossing_m`` (it jumps between realisations
-   and is undefined when the ACF stays positive);
-d) the **model functions** f(p) = a p^b + c for E[μ], σ_μ and the PSD level over the mean
-   pressure of c), high-pressure points excluded (:mod:`stochfric.process.fit`; Fig. 3.22);
-e) the **friction-process model** (:class:`~stochfric.process.tabulated.TabulatedProcessModel`)
-   and the check of generated realisations against it
-   (:func:`~stochfric.process.checks.check_generated_process`, Fig. 3.23);
-f) the check that the surrogates resemble the measured map
-   (:func:`~stochfric.process.checks.surrogate_check`) and the validity warnings of the model on
-   this surface (:mod:`stochfric.contact.validity`).  Memory is estimated before any work
-   (:mod:`stochfric.process.memory`).
-
-Standard errors.  Windows on one long surface overlap and are correlated, so the standard
-errors of the path statistics (E[μ], σ_μ, PSD level) are taken from the scatter between the K
-independent long surfaces: SE = sd(per-surface values)/√K.  Ensemble statistics use the R
-independent realisations: SE(E[μ]) = s/√R, SE(σ_μ) = √((m4 − s⁴)/R)/(2s) (delta method with the
-sample fourth central moment m4; no Gaussian assumption).
+method §3–§4 (thesis 3.1.4, 3.2.4, 3.2.5, 3.3.3, 3.3.4; Fig. 3.16–3.23).  :func:`analyse` runs the
+ensemble of surrogates (§4a), the ergodicity check (§4b), μ along the path with its ACF,
+correlation length and PSD (§4c, eq. 3.17–3.20), the fits f(p) = a p^b + c (§4d, eq. 3.21), the
+friction-process model and its checks (§4e); docs/statistical_contact.md §0–§4 states the rules.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import replace
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -51,6 +23,10 @@ from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
 from stochfric.process.checks import (
     WINDOW_MIN_SUMMITS,
+    ErgodicityCheck,
+    ProcessCheck,
+    SurrogateCheck,
+    WindowScatterCheck,
     check_generated_process,
     copy_check,
     ergodicity_check,
@@ -58,10 +34,17 @@ from stochfric.process.checks import (
     window_scatter_check,
     window_tiles,
 )
-from stochfric.process.credibility import assess_credibility
-from stochfric.process.ensemble import ensemble_contact, path_contact, tile_contact, tile_grid
+from stochfric.process.credibility import Credibility, assess_credibility
+from stochfric.process.ensemble import (
+    ContactSamples,
+    PathContact,
+    ensemble_contact,
+    path_contact,
+    tile_contact,
+    tile_grid,
+)
 from stochfric.process.estimators import linear_fit, mean_and_std_errors, mu_pdfs
-from stochfric.process.fit import fit_mask, fit_model_function
+from stochfric.process.fit import ModelFit, fit_mask, fit_model_function
 from stochfric.process.memory import check_memory, sample_arrays_bytes, workers_that_fit
 from stochfric.process.parallel import default_workers
 from stochfric.process.spectra import (
@@ -74,7 +57,7 @@ from stochfric.process.spectra import (
 )
 from stochfric.process.spectral import one_sided_psd
 from stochfric.process.tabulated import TabulatedProcessModel
-from stochfric.progress import StagedProgress
+from stochfric.progress import Progress, StagedProgress
 from stochfric.random import as_seed_sequence, seed_entropy, spawn_seed_sequences
 from stochfric.surface.io import Surface
 from stochfric.surface.statistics import plasticity_index
@@ -132,6 +115,66 @@ def _scan_scatter(scan_mu: FloatArray, tile_mu: FloatArray, scans: int, ensemble
     }
 
 
+class _EnsembleStatistics(NamedTuple):
+    """Statistics of the surrogate ensemble (§4a); the fields are named as in the result."""
+
+    ensemble_mu_mean: FloatArray
+    ensemble_mu_std: FloatArray
+    ensemble_mu_mean_se: FloatArray
+    ensemble_mu_std_se: FloatArray
+    ensemble_pressure_pa: FloatArray
+    ensemble_area_fraction: FloatArray
+    pdf_edges: FloatArray
+    pdf_density: FloatArray
+    contact_fraction_fit: dict[str, float]
+
+
+class _Checks(NamedTuple):
+    """The checks of the surrogates against the measurement and themselves (§4b); named as in the result."""
+
+    ergodicity: ErgodicityCheck
+    surrogate_check: SurrogateCheck
+    window_check: WindowScatterCheck | None
+    scan_scatter: dict[str, Any]
+    copy_check: dict[str, Any]
+
+
+class _PathMoments(NamedTuple):
+    """Moments and autocorrelation of μ along the path (§4c, eq. 3.17–3.18); named as in the result."""
+
+    pressure_pa: FloatArray
+    area_fraction: FloatArray
+    mu_mean: FloatArray
+    mu_std: FloatArray
+    mu_mean_se: FloatArray
+    mu_std_se: FloatArray
+    lags_m: FloatArray
+    acf: FloatArray
+    zero_crossing_m: FloatArray
+
+
+class _PathSpectra(NamedTuple):
+    """PSD, its level and the correlation length of μ along the path (§4c, eq. 3.19–3.20); named as in the result."""
+
+    frequencies: FloatArray
+    psd: FloatArray
+    psd_se: FloatArray
+    psd_level: FloatArray
+    psd_level_se: FloatArray
+    correlation_length_m: FloatArray
+    correlation_length_se_m: FloatArray
+    correlation_length_ci95_m: FloatArray
+
+
+class _Fits(NamedTuple):
+    """The fits f(p) = a p^b + c (§4d) and the points they use."""
+
+    fits: dict[str, ModelFit]
+    mask: npt.NDArray[np.bool_]
+    valid_points: int
+    note: str
+
+
 def analyse(
     surface: Surface | Sequence[Surface],
     material: Material,
@@ -142,94 +185,151 @@ def analyse(
     progress: StagedProgress | None = None,
     workers: int | None = 1,
 ) -> StatisticalContactAnalysis:
-    """Run the statistical contact analysis a)–e) of the module docstring on ``surface``.
+    """Run the statistical contact analysis of the module docstring on ``surface``.
 
     ``surface`` is the prepared (detrended, filtered, coarsened) surface, or several prepared scans
     of one surface on the same grid (pooled: realisation / long surface k is made from scan
     k mod S; the checks compare every scan); windows run along y (axis 1).  Independent child
-    streams of ``config.seed`` drive the ensemble, the long
-    surfaces and the process check; inside each, realisation / surface k has its own child
-    stream.  ``progress(stage, done, total)`` is called after every realisation / surface.
-    ``workers`` processes share the realisations and long surfaces (``None``: all cores); the
-    numbers do not depend on it.
+    streams of ``config.seed`` drive the ensemble, the long surfaces and the process check; inside
+    each, realisation / surface k has its own child stream.  ``progress(stage, done, total)`` is
+    called after every realisation / surface.  ``workers`` processes share the realisations and
+    long surfaces (``None``: all cores); the numbers do not depend on it.
     """
     cfg = config if config is not None else AnalysisConfig()
     scans = [surface] if isinstance(surface, Surface) else list(surface)
     if not scans:
         raise ContactError("no surface to analyse")
-    surface = scans[0]
-    windows = (cfg.length_factor - 1) * surface.nb_grid_pts[1] // cfg.window_shift_points + 1
-    check_memory(surface.nb_grid_pts, cfg.length_factor, samples_bytes=sample_arrays_bytes(
-        cfg.realizations, cfg.long_surfaces, windows, np.asarray(approach_m).size, cfg.window_tiles))
-    long_workers = workers_that_fit(surface.nb_grid_pts, cfg.length_factor,
-                                    default_workers() if workers is None else workers)
+    u = np.asarray(approach_m, dtype=np.float64)
+    long_workers = _long_surface_workers(scans[0], cfg, u.size, workers)
     root = as_seed_sequence(cfg.seed)
     s_ens, _s_unused, s_path, s_check = spawn_seed_sequences(root, 4)  # stream 1: retired one-surface check
-    u = np.asarray(approach_m, dtype=np.float64)
-
-    def stage(label: str) -> Callable[[int, int], None] | None:
-        if progress is None:
-            return None
-        return lambda done, total: progress(label, done, total)
-
     options, surrogate_choice = cfg.surrogate_for([s.heights_m for s in scans])
     found = [find_summits(s.heights_m, s.grid_spacing_m, rule=cfg.summit_rule) for s in scans]
-    measured_counts = [f.count for f in found]
-    tiles = window_tiles(min(measured_counts), cfg.window_tiles)
+    tiles = window_tiles(min(f.count for f in found), cfg.window_tiles)
     ens = ensemble_contact(
-        scans, material, u, realizations=cfg.realizations, seed=s_ens, progress=stage("ensemble"), options=options,
-        tiles=tiles, workers=workers,
+        scans, material, u, realizations=cfg.realizations, seed=s_ens, progress=_stage(progress, "ensemble"),
+        options=options, tiles=tiles, workers=workers,
     )  # fmt: skip
     path = path_contact(
         scans, material, u, long_surfaces=cfg.long_surfaces, length_factor=cfg.length_factor,
-        shift_points=cfg.window_shift_points, seed=s_path, progress=stage("long surfaces"), options=options,
-        workers=long_workers,
+        shift_points=cfg.window_shift_points, seed=s_path, progress=_stage(progress, "long surfaces"),
+        options=options, workers=long_workers,
     )  # fmt: skip
-    notes: list[str] = []
-    mu_e = ens.mu
-    if not np.all(np.isfinite(mu_e)):
+    ens_stats = _ensemble_statistics(ens, cfg.pdf_bins)
+    ergodicity = ergodicity_check(path.blocks.mu)
+    surrogates = surrogate_check(scans, material, ens, rule=cfg.summit_rule)
+    window_check, scan_scatter, notes = _window_checks(scans, found, material, u, tiles, ens, cfg.summit_rule)
+    copies = copy_check(scans, options, spawn_seed_sequences(s_ens, cfg.realizations))
+    checks = _Checks(ergodicity, surrogates, window_check, scan_scatter, copies)
+    moments, spectra = _path_moments(path), _path_spectra(path)
+    fits = _fit_all(moments, spectra, path.samples.mu.shape[0], cfg)
+    notes += [fits.note] if fits.note else []
+    model = _process_model(name or "measured surface", fits.fits, moments.pressure_pa, spectra, path, cfg)
+    validity = contact_validity(
+        mu=moments.mu_mean, area_fraction=moments.area_fraction,
+        n_contacts=path.samples.n_contacts.mean(axis=(0, 1)), approach_m=u,
+        plasticity_index=_plasticity_index(found, material), max_area_fraction=cfg.max_area_fraction, name=name or "",
+    )  # fmt: skip
+    credibility = _credibility(name or "measured surface", u, checks, moments, ens_stats, fits)
+    if not credibility.credible:
+        model = replace(model, not_credible=tuple(f"[{r.code}] {r.message}" for r in credibility.reasons))
+    return StatisticalContactAnalysis(
+        config=cfg, seed_entropy=seed_entropy(root), material=material.to_dict(), surface_info=_surface_info(scans),
+        ensemble=ens, path=path, **ens_stats._asdict(), **checks._asdict(), credibility=credibility,
+        surrogate_choice=surrogate_choice, **moments._asdict(), **spectra._asdict(), fits=fits.fits, model=model,
+        process_check=_process_check(model, moments.pressure_pa[fits.mask], cfg, s_check), notes=notes,
+        warnings=validity,
+    )  # fmt: skip
+
+
+def _stage(progress: StagedProgress | None, label: str) -> Progress | None:
+    """``progress`` bound to one stage (``None`` without a callback)."""
+    if progress is None:
+        return None
+    return lambda done, total: progress(label, done, total)
+
+
+def _long_surface_workers(surface: Surface, cfg: AnalysisConfig, approaches: int, workers: int | None) -> int:
+    """Refuse a request that does not fit in memory (:mod:`stochfric.process.memory`); the workers
+    whose long surfaces fit at once."""
+    windows = (cfg.length_factor - 1) * surface.nb_grid_pts[1] // cfg.window_shift_points + 1
+    check_memory(surface.nb_grid_pts, cfg.length_factor, samples_bytes=sample_arrays_bytes(
+        cfg.realizations, cfg.long_surfaces, windows, approaches, cfg.window_tiles))
+    return workers_that_fit(surface.nb_grid_pts, cfg.length_factor, default_workers() if workers is None else workers)
+
+
+def _ensemble_statistics(ens: ContactSamples, pdf_bins: int) -> _EnsembleStatistics:
+    """E[μ], σ_μ and their standard errors (delta method, :func:`mean_and_std_errors`), the mean
+    pressure E[N]/A_nom and A_c/A_nom with its line fit, the PDFs of μ, per approach (§4a, Fig. 3.16–3.18a)."""
+    mu = ens.mu
+    if not np.all(np.isfinite(mu)):
         raise ContactError("a realisation carries no load at some approach (μ undefined); use larger approaches")
-    e_mean, e_std, e_mean_se, e_std_se = mean_and_std_errors(mu_e)
-    e_p = ens.normal_force_n.mean(axis=0) / ens.nominal_area_m2
-    e_frac = ens.contact_area_m2.mean(axis=0) / ens.nominal_area_m2
-    edges, dens = mu_pdfs(mu_e, cfg.pdf_bins)
-    erg_check = ergodicity_check(path.blocks.mu)
-    s_check_result = surrogate_check(scans, material, ens, rule=cfg.summit_rule)
+    mean, std, mean_se, std_se = mean_and_std_errors(mu)
+    pressure = ens.normal_force_n.mean(axis=0) / ens.nominal_area_m2
+    fraction = ens.contact_area_m2.mean(axis=0) / ens.nominal_area_m2
+    edges, density = mu_pdfs(mu, pdf_bins)
+    return _EnsembleStatistics(mean, std, mean_se, std_se, pressure, fraction, edges, density,
+                               linear_fit(pressure, fraction))
+
+
+def _window_checks(
+    scans: list[Surface], found: list[Summits], material: Material, u: FloatArray, tiles: int | None,
+    ens: ContactSamples, rule: str,
+) -> tuple[WindowScatterCheck | None, dict[str, Any], list[str]]:
+    """The measured-window check (None, with a note, when the map is too small for 2 × 2 windows)
+    and the between- / within-scan scatter of μ."""
+    notes: list[str] = []
     window_check = None
     scan_mu = _full_map_mu(found, material, u)
     measured_tile_mu = np.empty((0, u.size))
     if tiles is not None and ens.tile_samples is not None:
-        measured_tile_mu = _measured_tiles(scans, material, u, tiles, cfg.summit_rule)
-        i0, i1, j0, j1 = tile_grid(surface.nb_grid_pts, tiles)[0]
-        dx, dy = surface.grid_spacing_m
+        measured_tile_mu = _measured_tiles(scans, material, u, tiles, rule)
+        i0, i1, j0, j1 = tile_grid(scans[0].nb_grid_pts, tiles)[0]
+        dx, dy = scans[0].grid_spacing_m
         window_check = window_scatter_check(
             measured_tile_mu, ens.tile_samples.mu, tiles=tiles, window_size_m=((i1 - i0) * dx, (j1 - j0) * dy)
         )
     else:
         notes.append(
             f"the measured-window check needs at least {4 * WINDOW_MIN_SUMMITS} summits for 2 x 2 windows; "
-            f"the map has {min(measured_counts)}: the scatter across windows could not be checked"
+            f"the map has {min(f.count for f in found)}: the scatter across windows could not be checked"
         )
-    scan_scatter = _scan_scatter(scan_mu, measured_tile_mu, len(scans), ens.mu)
-    copies = copy_check(scans, options, spawn_seed_sequences(s_ens, cfg.realizations))
+    return window_check, _scan_scatter(scan_mu, measured_tile_mu, len(scans), ens.mu), notes
 
-    # --- path statistics (c) --------------------------------------------------------------
+
+def _path_moments(path: PathContact) -> _PathMoments:
+    """E[μ], σ_μ pooled over the K long surfaces with standard errors from the scatter between them
+    (sd/√K: windows of one surface overlap), the mean pressure and A_c/A_nom, the averaged
+    autocorrelation (3.18) and its first zero crossing [m]."""
     mu_p = path.samples.mu  # (K, W, U)
-    k_count, n_win, n_u = mu_p.shape
+    k_count, _n_win, n_u = mu_p.shape
     pooled = mu_p.reshape(-1, n_u)
-    mu_mean = pooled.mean(axis=0)
-    mu_std = pooled.std(axis=0, ddof=1)
     per_mean = mu_p.mean(axis=1)
     per_std = mu_p.std(axis=1, ddof=1)
     root_k = math.sqrt(k_count)
-    mu_mean_se = per_mean.std(axis=0, ddof=1) / root_k if k_count > 1 else np.full(n_u, np.nan)
-    mu_std_se = per_std.std(axis=0, ddof=1) / root_k if k_count > 1 else np.full(n_u, np.nan)
-    p_path = path.samples.normal_force_n.mean(axis=(0, 1)) / path.samples.nominal_area_m2
-    frac_path = path.samples.contact_area_m2.mean(axis=(0, 1)) / path.samples.nominal_area_m2
     a_y = path.window_shift_m
     acfs = np.stack([autocorrelation(mu_p[:, :, k]) for k in range(n_u)])
-    lags = np.arange(acfs.shape[1], dtype=np.float64) * a_y
-    zero_crossing = np.array([correlation_length(acfs[k], a_y) for k in range(n_u)])
+    return _PathMoments(
+        pressure_pa=path.samples.normal_force_n.mean(axis=(0, 1)) / path.samples.nominal_area_m2,
+        area_fraction=path.samples.contact_area_m2.mean(axis=(0, 1)) / path.samples.nominal_area_m2,
+        mu_mean=pooled.mean(axis=0),
+        mu_std=pooled.std(axis=0, ddof=1),
+        mu_mean_se=per_mean.std(axis=0, ddof=1) / root_k if k_count > 1 else np.full(n_u, np.nan),
+        mu_std_se=per_std.std(axis=0, ddof=1) / root_k if k_count > 1 else np.full(n_u, np.nan),
+        lags_m=np.arange(acfs.shape[1], dtype=np.float64) * a_y,
+        acf=acfs,
+        zero_crossing_m=np.array([correlation_length(acfs[k], a_y) for k in range(n_u)]),
+    )
+
+
+def _path_spectra(path: PathContact) -> _PathSpectra:
+    """Per approach: the PSD averaged over the K long surfaces (3.19–3.20, method §0), its level
+    S(f → 0) [m] and the integral correlation length S(0)/(4σ_μ²) [m] with their standard errors
+    over the surfaces and the 95 % Student-t interval of the correlation length."""
+    mu_p = path.samples.mu  # (K, W, U)
+    k_count, _n_win, n_u = mu_p.shape
+    root_k = math.sqrt(k_count)
+    a_y, length = path.window_shift_m, path.window_length_m
     psd_rows, psd_se_rows, levels, level_se, corr, corr_se = [], [], [], [], [], []
     corr_ci: list[tuple[float, float]] = []
     freqs: FloatArray = np.empty(0)
@@ -237,123 +337,109 @@ def analyse(
         freqs, s_mean, s_se = mean_psd(mu_p[:, :, k], a_y)
         psd_rows.append(s_mean)
         psd_se_rows.append(s_se)
-        levels.append(psd_level(freqs, s_mean, path.window_length_m))
-        per_surface = [
-            psd_level(freqs, one_sided_psd(mu_p[j, :, k], a_y)[1], path.window_length_m) for j in range(k_count)
-        ]
+        levels.append(psd_level(freqs, s_mean, length))
+        per_surface = [psd_level(freqs, one_sided_psd(mu_p[j, :, k], a_y)[1], length) for j in range(k_count)]
         level_se.append(float(np.std(per_surface, ddof=1) / root_k) if k_count > 1 else math.nan)
-        per_len = np.array([integral_correlation_length(mu_p[j, :, k], a_y, path.window_length_m)
-                            for j in range(k_count)])
+        per_len = np.array([integral_correlation_length(mu_p[j, :, k], a_y, length) for j in range(k_count)])
         cl_mean, cl_se, cl_lo, cl_hi = correlation_length_interval(per_len)
         corr.append(cl_mean)
         corr_se.append(cl_se)
         corr_ci.append((cl_lo, cl_hi))
-    psd = np.stack(psd_rows)
-    psd_se = np.stack(psd_se_rows)
+    return _PathSpectra(
+        frequencies=freqs, psd=np.stack(psd_rows), psd_se=np.stack(psd_se_rows), psd_level=np.asarray(levels),
+        psd_level_se=np.asarray(level_se), correlation_length_m=np.asarray(corr),
+        correlation_length_se_m=np.asarray(corr_se),
+        correlation_length_ci95_m=np.asarray(corr_ci, dtype=np.float64).reshape(-1, 2),
+    )  # fmt: skip
 
-    # --- fits (d) --------------------------------------------------------------------------
-    mask, mask_note = fit_mask(frac_path, p_path, max_area_fraction=cfg.max_area_fraction)
-    valid_points = int(np.count_nonzero(np.isfinite(frac_path) & (frac_path <= cfg.max_area_fraction)))
-    if mask_note:
-        notes.append(mask_note)
+
+def _fit_all(moments: _PathMoments, spectra: _PathSpectra, surfaces: int, cfg: AnalysisConfig) -> _Fits:
+    """f(p) = a p^b + c (3.21) for E[μ], σ_μ and the PSD level over the path's mean pressure,
+    points beyond ``cfg.max_area_fraction`` left out (:func:`~stochfric.process.fit.fit_mask`)."""
+    p, fraction = moments.pressure_pa, moments.area_fraction
+    mask, note = fit_mask(fraction, p, max_area_fraction=cfg.max_area_fraction)
+    valid_points = int(np.count_nonzero(np.isfinite(fraction) & (fraction <= cfg.max_area_fraction)))
     rule = {"exclude": "mean A_c/A_nom > max_area_fraction", "max_area_fraction": cfg.max_area_fraction}
-    se_or_none = (lambda a: a) if k_count > 1 else (lambda a: None)
+
+    def fit(values: FloatArray, se: FloatArray) -> ModelFit:
+        return fit_model_function(p, values, se if surfaces > 1 else None, mask=mask, note=note, rule=rule)
+
     fits = {
-        "mu_mean": fit_model_function(p_path, mu_mean, se_or_none(mu_mean_se), mask=mask, note=mask_note, rule=rule),
-        "mu_std": fit_model_function(p_path, mu_std, se_or_none(mu_std_se), mask=mask, note=mask_note, rule=rule),
-        "psd_level": fit_model_function(
-            p_path, np.asarray(levels), se_or_none(np.asarray(level_se)), mask=mask, note=mask_note, rule=rule
-        ),
+        "mu_mean": fit(moments.mu_mean, moments.mu_mean_se),
+        "mu_std": fit(moments.mu_std, moments.mu_std_se),
+        "psd_level": fit(spectra.psd_level, spectra.psd_level_se),
     }
-    # --- the model (e) ---------------------------------------------------------------------
-    order = np.argsort(p_path)
-    model = TabulatedProcessModel(
-        name=name or "measured surface",
+    return _Fits(fits, mask, valid_points, note)
+
+
+def _process_model(
+    name: str, fits: dict[str, ModelFit], pressure_pa: FloatArray, spectra: _PathSpectra, path: PathContact,
+    cfg: AnalysisConfig,
+) -> TabulatedProcessModel:
+    """The friction-process model (§4e): the fitted E[μ], σ_μ and PSD level, the measured PSDs
+    tabulated at the analysed pressures (ascending), Δx = a_y over the length W·a_y."""
+    order = np.argsort(pressure_pa)
+    a_y = path.window_shift_m
+    return TabulatedProcessModel(
+        name=name,
         mu_mean=fits["mu_mean"].model_function(),
         mu_std=fits["mu_std"].model_function(),
         dx=a_y,
-        length=n_win * a_y,
-        pressures_pa=tuple(float(v) for v in p_path[order]),
-        table_frequencies=tuple(float(v) for v in freqs),
-        table_psd=tuple(tuple(float(v) for v in psd[k]) for k in order),
+        length=path.samples.mu.shape[1] * a_y,
+        pressures_pa=tuple(float(v) for v in pressure_pa[order]),
+        table_frequencies=tuple(float(v) for v in spectra.frequencies),
+        table_psd=tuple(tuple(float(v) for v in spectra.psd[k]) for k in order),
         pressure_rule=cfg.pressure_rule,  # type: ignore[arg-type]
         variance_rule=cfg.variance_rule,  # type: ignore[arg-type]
         sigma_zeta_rule=cfg.sigma_zeta_rule,  # type: ignore[arg-type]
         psd_level=fits["psd_level"].model_function(),
         window_length_m=path.window_length_m,
     )
-    summit_heights = np.concatenate([f.heights_m for f in found])
-    summit_radii = np.concatenate([f.radius_m for f in found])
-    gamma = None
-    if summit_heights.size > 1:
-        gamma = plasticity_index(
-            e_star_pa=material.e_star_pa, hardness_pa=material.hardness,
-            sigma_s_m=float(summit_heights.std()), beta_mean_m=float(summit_radii.mean()),
-        )  # fmt: skip
-    validity = contact_validity(
-        mu=mu_mean, area_fraction=frac_path, n_contacts=path.samples.n_contacts.mean(axis=(0, 1)), approach_m=u,
-        plasticity_index=gamma, max_area_fraction=cfg.max_area_fraction, name=name or "",
+
+
+def _plasticity_index(found: list[Summits], material: Material) -> float | None:
+    """γ (3.7) of the summits of all scans together (None with fewer than two summits)."""
+    heights = np.concatenate([f.heights_m for f in found])
+    radii = np.concatenate([f.radius_m for f in found])
+    if heights.size <= 1:
+        return None
+    return plasticity_index(
+        e_star_pa=material.e_star_pa, hardness_pa=material.hardness,
+        sigma_s_m=float(heights.std()), beta_mean_m=float(radii.mean()),
     )  # fmt: skip
-    credibility = assess_credibility(
-        name=name or "measured surface", approach_m=u, surrogate_ok=s_check_result.credible,
-        surrogate_failures=s_check_result.failures(),
-        window_ok=None if window_check is None else window_check.consistent,
-        window_max_z=None if window_check is None else window_check.max_abs_z, copies=copies,
-        mu_means=[mu_mean, e_mean], area_fractions=[frac_path, e_frac], fit_mask=mask, valid_fit_points=valid_points,
+
+
+def _credibility(
+    name: str, u: FloatArray, checks: _Checks, moments: _PathMoments, ens_stats: _EnsembleStatistics, fits: _Fits
+) -> Credibility:
+    """The gate (:mod:`stochfric.process.credibility`) on the checks, E[μ] and A_c/A_nom of the path
+    and the ensemble, and the points the fits use."""
+    window = checks.window_check
+    return assess_credibility(
+        name=name, approach_m=u, surrogate_ok=checks.surrogate_check.credible,
+        surrogate_failures=checks.surrogate_check.failures(),
+        window_ok=None if window is None else window.consistent,
+        window_max_z=None if window is None else window.max_abs_z, copies=checks.copy_check,
+        mu_means=[moments.mu_mean, ens_stats.ensemble_mu_mean],
+        area_fractions=[moments.area_fraction, ens_stats.ensemble_area_fraction], fit_mask=fits.mask,
+        valid_fit_points=fits.valid_points,
     )  # fmt: skip
-    if not credibility.credible:
-        model = replace(model, not_credible=tuple(f"[{r.code}] {r.message}" for r in credibility.reasons))
-    used_p = p_path[mask]
+
+
+def _process_check(
+    model: TabulatedProcessModel, used_p: FloatArray, cfg: AnalysisConfig, seed: np.random.SeedSequence
+) -> ProcessCheck:
+    """Realisations of ``model`` against their target (Fig. 3.23) at the lowest, the geometric-mean
+    and the highest pressure the fits use."""
     check_p = np.unique(np.array([used_p.min(), float(np.exp(np.mean(np.log(used_p)))), used_p.max()]))
     try:
-        check = check_generated_process(model, check_p, realizations=cfg.check_realizations, seed=s_check)
+        return check_generated_process(model, check_p, realizations=cfg.check_realizations, seed=seed)
     except ValueError as exc:
         raise ContactError(f"the fitted model cannot generate a process: {exc}") from None
-    return StatisticalContactAnalysis(
-        config=cfg,
-        seed_entropy=seed_entropy(root),
-        material=material.to_dict(),
-        surface_info={"source": surface.source, "grid": list(surface.nb_grid_pts),
-                      "physical_size_m": list(surface.physical_size_m), **surface.info,
-                      "scans": [s.source for s in scans]},
-        ensemble=ens,
-        path=path,
-        ensemble_mu_mean=e_mean,
-        ensemble_mu_std=e_std,
-        ensemble_mu_mean_se=e_mean_se,
-        ensemble_mu_std_se=e_std_se,
-        ensemble_pressure_pa=e_p,
-        ensemble_area_fraction=e_frac,
-        pdf_edges=edges,
-        pdf_density=dens,
-        contact_fraction_fit=linear_fit(e_p, e_frac),
-        ergodicity=erg_check,
-        surrogate_check=s_check_result,
-        window_check=window_check,
-        scan_scatter=scan_scatter,
-        credibility=credibility,
-        surrogate_choice=surrogate_choice,
-        copy_check=copies,
-        pressure_pa=p_path,
-        area_fraction=frac_path,
-        mu_mean=mu_mean,
-        mu_std=mu_std,
-        mu_mean_se=mu_mean_se,
-        mu_std_se=mu_std_se,
-        lags_m=lags,
-        acf=acfs,
-        correlation_length_m=np.asarray(corr),
-        correlation_length_se_m=np.asarray(corr_se),
-        correlation_length_ci95_m=np.asarray(corr_ci, dtype=np.float64).reshape(-1, 2),
-        zero_crossing_m=zero_crossing,
-        frequencies=freqs,
-        psd=psd,
-        psd_se=psd_se,
-        psd_level=np.asarray(levels),
-        psd_level_se=np.asarray(level_se),
-        fits=fits,
-        model=model,
-        process_check=check,
-        notes=notes,
-        warnings=validity,
-    )
+
+
+def _surface_info(scans: list[Surface]) -> dict[str, Any]:
+    """Source, grid and size of the first scan, its reader's info and the sources of all scans."""
+    surface = scans[0]
+    return {"source": surface.source, "grid": list(surface.nb_grid_pts),
+            "physical_size_m": list(surface.physical_size_m), **surface.info, "scans": [s.source for s in scans]}

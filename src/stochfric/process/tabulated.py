@@ -91,7 +91,7 @@ class TabulatedProcessModel(ProcessModelBase):
     table_psd: tuple[tuple[float, ...], ...]
     pressure_rule: PressureRule = "nearest"
     variance_rule: VarianceRule = "sigma_mu"
-    sigma_zeta_rule: SigmaZetaRule = "sigma_mu"
+    sigma_zeta_rule: SigmaZetaRule = SigmaZetaRule.SIGMA_MU
     psd_level: ModelFunction | None = None
     window_length_m: float | None = None
     #: Why the analysis that made this model was not credible (empty: it was); a model written

@@ -18,17 +18,24 @@ import os
 import re
 from collections.abc import Callable, Sequence
 from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
 
 from ..contact.figures import write_contact_figures
 from ..io_utils import package_versions, write_text_atomic
+from ..studies.base import StudyResult
 from ..studies.chapter3 import Chapter3
+from ..studies.damping import DampingSummary, DMaxRisk
+from ..studies.forcing import ForcingSummary
+from ..studies.kinds import study_kind
+from ..studies.lyapunov import LyapunovSummary
+from ..studies.normal_force import NormalForceSummary
 from ..surface.figures import write_surface_figures
 from .process_section import friction_process_section
-from .study_figures import FIGURES
+from .study_figures import damping_figures, forcing_figures, lyapunov_figures, normal_force_figures
 
 _CSS = """
 body{font-family:system-ui,sans-serif;max-width:1150px;margin:2em auto;padding:0 1em;color:#222}
@@ -83,7 +90,7 @@ def _figure(path: Path, caption: str, directory: Path) -> str:
             f"<figcaption>{rich_text(caption)}</figcaption></figure>")
 
 
-def _provenance(result: Any) -> str:
+def _provenance(result: StudyResult[Any]) -> str:
     a = result.dataset.attrs
     parts = []
     for key in ("config_json", "setup_json", "executor_json", "versions_json"):
@@ -111,27 +118,43 @@ _WHITE_TEXT = {"sigma_mu": "sigma_mu (thesis: σ_ζ = σ_μ(p))",
                          "intensity depends on Δτ)"}
 
 
-def model_choices_text(summary: dict[str, Any]) -> str:
+class _ModelChoices(Protocol):
+    """What :func:`model_choices_text` reads of a study summary."""
+
+    @property
+    def path_coordinate(self) -> str: ...
+    @property
+    def white_intensity(self) -> str: ...
+    @property
+    def white_increment(self) -> str: ...
+    @property
+    def process_level(self) -> str: ...
+    @property
+    def white_model(self) -> str | None: ...
+    @property
+    def normal_force_n(self) -> list[float] | float: ...
+    @property
+    def sigma_zeta(self) -> list[float] | float: ...
+    @property
+    def sigma_zeta_effective(self) -> list[float] | float: ...
+
+
+def model_choices_text(summary: _ModelChoices) -> str:
     """One line with the path coordinate, the white-noise intensity rule and σ_ζ of a study summary."""
-    pc = summary.get("path_coordinate")
-    wi = summary.get("white_intensity")
-    if pc is None and wi is None:
-        return ""
-    sz = summary.get("sigma_zeta")
-    forces = summary.get("normal_force_n")
+    pc, wi = summary.path_coordinate, summary.white_intensity
+    sz, forces = summary.sigma_zeta, summary.normal_force_n
     if isinstance(sz, list) and isinstance(forces, list) and len(sz) == len(forces):
         sz_txt = ", ".join(f"{_fmt(v, '.4g')} (N = {nf:g} N)" for v, nf in zip(sz, forces, strict=True))
     else:
         sz_txt = _fmt(sz, ".4g")
-    eff = summary.get("sigma_zeta_effective")
+    eff = summary.sigma_zeta_effective
     eff_txt = ""
-    if summary.get("white_increment") == "thesis" and eff is not None:
+    if summary.white_increment == "thesis":
         vals = eff if isinstance(eff, list) else [eff]
         eff_txt = "; effective σ_ζ,eff = " + ", ".join(_fmt(v, ".4g") for v in vals)
-    lvl = summary.get("process_level", "sigma_mu")
     lvl_txt = ("; contact-process variance: psd_level (REPRODUCTION MODE: from the thesis's E[S](p) fit, "
-               "normalised by its check σ = 0.08 at 0.5 MPa)" if lvl == "psd_level" else "")
-    standing = f" The white model is a {summary['white_model']}." if summary.get("white_model") else ""
+               "normalised by its check σ = 0.08 at 0.5 MPa)" if summary.process_level == "psd_level" else "")
+    standing = f" The white model is a {summary.white_model}." if summary.white_model else ""
     return (f"Contact process read along: {_PATH_TEXT.get(str(pc), str(pc))}; white-noise intensity rule: "
             f"{_WHITE_TEXT.get(str(wi), str(wi))}; σ_ζ of the white model = {sz_txt}{eff_txt}{lvl_txt}.{standing}")
 
@@ -140,88 +163,90 @@ def _pct(a: float) -> str:
     return f"{100 * a:g} %"
 
 
-def risk_text(e: dict[str, Any], grid: Sequence[float], runs: int | None = None, compact: bool = False) -> str:
-    """A D_max(α) entry of the summary as "0.205 [0.19, 0.21]"; an open upper end as "≥ 0.25 (grid end)",
+def risk_text(e: DMaxRisk, grid: Sequence[float], runs: int | None = None, compact: bool = False) -> str:
+    """A D_max(α) of the summary as "0.205 [0.19, 0.21]"; an open upper end as "≥ 0.25 (grid end)",
     or, when the runs cannot resolve α, "≥ 0.25 (10 runs cannot resolve 10 %)" (``compact``: "≥ 0.25*");
     "< grid start" below the grid."""
     start = f"< grid start ({min(grid):g})"
-    v, (lo, hi) = e["value"], e["interval"]
+    v, (lo, hi) = e.value, e.interval
     lo_t = start if lo is None else f"{lo:.4g}"
     if hi is None:
         hi_t = start
-    elif e.get("high_open") and e.get("resolved", True):
+    elif e.high_open and e.resolved:
         hi_t = f"≥ {hi:.4g} (grid end)"
-    elif e.get("high_open"):
+    elif e.high_open:
         who = runs if runs is not None else "these"
-        hi_t = f"≥ {hi:.4g}" + ("*" if compact else f" ({who} runs cannot resolve {_pct(e['risk_level'])})")
+        hi_t = f"≥ {hi:.4g}" + ("*" if compact else f" ({who} runs cannot resolve {_pct(e.risk_level)})")
     else:
         hi_t = f"{hi:.4g}"
     return f"{start if v is None else f'{v:.4g}'} [{lo_t}, {hi_t}]"
 
 
-def _unresolved_note(summary: dict[str, Any]) -> str:
+def _unresolved_note(summary: DampingSummary) -> str:
     """"*: open upper end, 10 runs cannot resolve 10 % (≥ 36 runs needed), …" or ""."""
-    risk = summary.get("d_max_risk") or {}
-    alphas = [float(a) for a in summary.get("risk_levels", [])]
-    need = summary.get("risk_levels_runs_to_resolve") or [None] * len(alphas)
+    alphas = summary.risk_levels
+    need = summary.risk_levels_runs_to_resolve
     bad = [j for j in range(len(alphas))
-           if any(not e[j].get("resolved", True) for per_force in risk.values() for e in per_force)]
+           if any(not e[j].resolved for per_force in summary.d_max_risk.values() for e in per_force)]
     if not bad:
         return ""
-    return ("*: open upper end — " + str(summary.get("runs", "these")) + " runs cannot resolve " + ", ".join(
+    return ("*: open upper end — " + str(summary.runs) + " runs cannot resolve " + ", ".join(
         _pct(alphas[j]) + (f" (≥ {need[j]} runs needed)" if need[j] else "") for j in bad)
         + ": 0 sticking runs do not exclude P ≥ α.")
 
 
-def damping_reading(summary: dict[str, Any]) -> tuple[str, str]:
-    """(table HTML, reading: short bullet lines "• …") for a damping study summary."""
-    forces = summary["normal_force_n"]
-    grid = summary.get("damping_ratio") or [math.nan]
-    ext = summary.get("d_max_sample_extreme", {})
-    risk = summary.get("d_max_risk", {})
+def _damping_rows(summary: DampingSummary, alphas: Sequence[float]) -> tuple[list[list[Any]], list[str]]:
+    """Per force: the damping table's row and the reading's line."""
+    grid, runs, risk, ext = summary.damping_ratio, summary.runs, summary.d_max_risk, summary.d_max_sample_extreme
     stoch = list(risk) or list(ext)
-    alphas = [float(a) for a in summary.get("risk_levels", [])] if risk else []
-    runs = summary.get("runs")
-    conf = summary.get("confidence", 0.95)
-    header = (["N [N]", "D_H", "D_max^d"] + [f"D_max({_pct(a)}) {m} [low, high]" for m in stoch for a in alphas]
-              + [f"sample extreme {m} (thesis D_max^s)" for m in stoch])
-    rows = []
-    lines = []
-    for i, nf in enumerate(forces):
-        dd = summary.get("d_max_deterministic", [None] * len(forces))[i]
-        row: list[Any] = [nf, summary["d_hopf"][i],
-                          dmax_text(dd, grid) if "d_max_deterministic" in summary else None]
+    det = summary.d_max_deterministic
+    rows, lines = [], []
+    for i, nf in enumerate(summary.normal_force_n):
+        dd = det[i] if det is not None else None
+        row: list[Any] = [nf, summary.d_hopf[i], dmax_text(dd, grid) if det is not None else None]
         row += [risk_text(risk[m][i][j], grid, runs, compact=True) for m in stoch for j in range(len(alphas))]
-        row += [dmax_text(ext[m][i]["value"], grid) if m in ext else None for m in stoch]
+        row += [dmax_text(ext[m][i].value, grid) if m in ext else None for m in stoch]
         rows.append(row)
-        txt = f"N = {nf:g} N: D_H = {summary['d_hopf'][i]:.3g}, D_max^d = {dmax_text(dd, grid)}"
+        txt = f"N = {nf:g} N: D_H = {summary.d_hopf[i]:.3g}, D_max^d = {dmax_text(dd, grid)}"
         for j, a in enumerate(alphas):
             txt += f"; D_max({_pct(a)}): " + ", ".join(f"{m} {risk_text(risk[m][i][j], grid, runs, compact=True)}"
                                                        for m in stoch)
         lines.append(txt)
+    return rows, lines
+
+
+def damping_reading(summary: DampingSummary) -> tuple[str, str]:
+    """(table HTML, reading: short bullet lines "• …") for a damping study summary."""
+    grid, runs, risk, ext = summary.damping_ratio, summary.runs, summary.d_max_risk, summary.d_max_sample_extreme
+    stoch = list(risk) or list(ext)
+    alphas = summary.risk_levels if risk else []
+    header = (["N [N]", "D_H", "D_max^d"] + [f"D_max({_pct(a)}) {m} [low, high]" for m in stoch for a in alphas]
+              + [f"sample extreme {m} (thesis D_max^s)" for m in stoch])
+    rows, lines = _damping_rows(summary, alphas)
     if alphas:
+        conf = summary.confidence
         lines.append(f"D_max(α) = largest D with P(stick-slip) ≥ α; [low, high] from the per-D Clopper–Pearson "
                      f"{100 * conf:g} % bands of P (each end a one-sided {50 * (1 + conf):g} % bound).")
         note = _unresolved_note(summary)
         if note:
             lines.append(note)
     if ext:
-        lines.append("Sample extreme (thesis D_max^s: largest D at which any of the " + (f"{runs} " if runs else "")
-                     + "runs stuck; grows with the runs, not a limit): " + "; ".join(
-                         f"{m} " + ", ".join(dmax_text(e["value"], grid) for e in ext[m]) for m in ext) + ".")
-    if summary.get("d_max_deterministic"):
-        ok = all(d is None or d >= h - 1e-12 for d, h in zip(summary["d_max_deterministic"], summary["d_hopf"],
+        lines.append(f"Sample extreme (thesis D_max^s: largest D at which any of the {runs} runs stuck; grows with "
+                     "the runs, not a limit): " + "; ".join(
+                         f"{m} " + ", ".join(dmax_text(e.value, grid) for e in ext[m]) for m in ext) + ".")
+    if summary.d_max_deterministic:
+        ok = all(d is None or d >= h - 1e-12 for d, h in zip(summary.d_max_deterministic, summary.d_hopf,
                                                               strict=True))
         lines.append("D_max^d ≥ D_H at every force: subcritical Hopf bifurcation (stick-slip from a large start "
                      "above the linear boundary)." if ok else
                      "D_max^d < D_H at some force (check the grid and the stick window).")
-    ph = summary.get("phase")
+    ph = summary.phase
     if ph:
-        frac = ph.get("has_cycle_fraction", {})
-        parts = "; ".join(f"{m} " + ", ".join(_fmt(v, ".2g") for v in vals) for m, vals in frac.items())
-        lines.append(f"Phase curves at N = {ph['normal_force_n']:g} N, D = "
-                     + ", ".join(f"{v:g}" for v in ph["damping_ratio"])
-                     + f" ({ph.get('damping_rule', 'auto')}); fraction still sticking after the transient: {parts}.")
+        parts = "; ".join(f"{m} " + ", ".join(_fmt(v, ".2g") for v in vals)
+                          for m, vals in ph.has_cycle_fraction.items())
+        lines.append(f"Phase curves at N = {ph.normal_force_n:g} N, D = "
+                     + ", ".join(f"{v:g}" for v in ph.damping_ratio)
+                     + f" ({ph.damping_rule}); fraction still sticking after the transient: {parts}.")
     return _table(header, rows), "\n".join(f"• {x}" for x in lines)
 
 
@@ -233,102 +258,95 @@ def reading_html(reading: str) -> str:
     return f"<p class='reading'>{rich_text(reading)}</p>"
 
 
-def forcing_reading(summary: dict[str, Any]) -> tuple[str, str]:
+def forcing_reading(summary: ForcingSummary) -> tuple[str, str]:
     """(table, reading) for a forcing study summary."""
-    med = summary.get("sigma_ratio_median", {})
-    ci = summary.get("sigma_ratio_median_ci", {})
+    med = summary.sigma_ratio_median or {}
+    ci = summary.sigma_ratio_median_ci or {}
 
     def _ci(q: float) -> str:
-        c = ci.get(f"{q:g}") or {}
-        return f"{_fmt(c.get('low'), '.3g')} … {_fmt(c.get('high'), '.3g')}" if c else "—"
+        c = ci.get(f"{q:g}")
+        return f"{_fmt(c.low, '.3g')} … {_fmt(c.high, '.3g')}" if c else "—"
 
-    rows = [[q, med.get(f"{q:g}"), _ci(q)] for q in summary["forcing_q"]]
+    rows = [[q, med.get(f"{q:g}"), _ci(q)] for q in summary.forcing_q]
     txt = "; ".join(f"q = {q:g}: median σ_contact/σ_white over η = {_fmt(med.get(f'{q:g}'), '.3g')} "
                     f"(95 % bootstrap interval {_ci(q)})"
-                    for q in summary["forcing_q"]) if med else "no white/contact pair"
+                    for q in summary.forcing_q) if med else "no white/contact pair"
     txt += " (thesis brake: ≈ 1.2 small q, ≈ 1.05 large q; sheet ≈ 2.5)."
     return _table(["q", "median σ_contact/σ_white", "95 % interval"], rows), txt
 
 
-def lyapunov_signs(summary: dict[str, Any], model: str) -> list[str]:
+def lyapunov_signs(summary: LyapunovSummary, model: str) -> list[str]:
     """Per forcing amplitude, the η-sign string of ``model``: ``+``/``-`` beyond 2 SE (a diverging cell's
     lower bound counts), ``0`` within, ``.`` undefined; a cell is the sign shared by every N, else ``~``."""
-    if not all(k in summary for k in ("lyapunov", "lyapunov_se", "forcing_q", "eta", "normal_force_n")):
-        return []
-    lam = summary["lyapunov"][model]  # [q][N][η]
-    se = summary["lyapunov_se"][model]
+    lam = summary.lyapunov[model]  # [q][N][η]
+    se = summary.lyapunov_se[model]
     out = []
-    for qi, _q in enumerate(summary["forcing_q"]):
+    for qi in range(len(summary.forcing_q)):
         chars = []
-        for ei in range(len(summary["eta"])):
+        for ei in range(len(summary.eta)):
             signs = set()
-            for ni in range(len(summary["normal_force_n"])):
+            for ni in range(len(summary.normal_force_n)):
                 v, e = lam[qi][ni][ei], se[qi][ni][ei]
-                if v is None or not math.isfinite(v):
+                if not math.isfinite(v):
                     signs.add(".")
                     continue
-                e = e if e is not None and math.isfinite(e) else 0.0
+                e = e if math.isfinite(e) else 0.0
                 signs.add("+" if v - 2 * e > 0 else "-" if v + 2 * e < 0 else "0")
             chars.append(signs.pop() if len(signs) == 1 else "~")
         out.append("".join(chars))
     return out
 
 
-def lyapunov_reading(summary: dict[str, Any]) -> tuple[str, str]:
+def lyapunov_reading(summary: LyapunovSummary) -> tuple[str, str]:
     """(table, reading) for a Lyapunov study summary."""
     rows = []
-    for m in summary["models"]:
-        c = summary["status_counts"][m]
-        sig = summary.get("significance", {}).get(m, {})
+    for m in summary.models:
+        c, sig = summary.status_counts[m], summary.significance[m]
         rows.append([m, c.get("ok"), c.get("diverging"), c.get("merged"), c.get("too-few-transitions"),
-                     c.get("nonlinear"), sig.get("positive"), sig.get("negative")])
-    integ = summary.get("integrator", "euler")
-    mode = summary.get("integrator_mode", "reproduction" if integ == "euler" else "converged")
-    signs = "; ".join(f"{m} q = {q:g}: {line}" for m in summary["models"]
-                      for q, line in zip(summary.get("forcing_q", []), lyapunov_signs(summary, m), strict=False))
+                     c.get("nonlinear"), sig.positive, sig.negative])
+    # no η-sign string for the white model: its defined cells vanish as Δτ → 0 (docs/studies.md)
+    signs = "; ".join(f"{m} q = {q:g}: {line}" for m in summary.models if m != "white"
+                      for q, line in zip(summary.forcing_q, lyapunov_signs(summary, m), strict=True))
+    white = f", white noise {summary.sde_integrator} at Δτ = {summary.dt:g}" if "white" in summary.models else ""
     txt = ("Exponent per slip→stick transition from the linear regime (twin check; NaN = undefined, with the "
            "reason counted; diverging = the separation grew ≥ 100-fold before the check failed, the value a lower "
            "bound). Cells positive / negative by more than 2 standard errors: " + ", ".join(
-               f"{m} {summary.get('significance', {}).get(m, {}).get('positive')} / "
-               f"{summary.get('significance', {}).get(m, {}).get('negative')}" for m in summary["models"])
-           + f"; perturbation δ = {summary['perturbation']:g}, τ_end = {summary['tau_end']:g}, integrator {integ} "
-           f"({mode}" + (f", white noise {summary.get('sde_integrator')} at Δτ = {summary.get('dt'):g}"
-                         if "white" in summary["models"] and summary.get("dt") is not None else "")
-           + ")" + ((". Sign over η (η = " + ", ".join(f"{e:g}" for e in summary["eta"]) + "; + / − beyond 2 SE, "
-                     "0 within, . undefined, ~ the forces differ): " + signs) if signs else "")
+               f"{m} {summary.significance[m].positive} / {summary.significance[m].negative}"
+               for m in summary.models)
+           + f"; perturbation δ = {summary.perturbation:g}, τ_end = {summary.tau_end:g}, integrator "
+           f"{summary.integrator} ({summary.integrator_mode}{white})"
+           + ((". Sign over η (η = " + ", ".join(f"{e:g}" for e in summary.eta) + "; + / − beyond 2 SE, "
+               "0 within, . undefined, ~ the forces differ): " + signs) if signs else "")
+           + (". White noise: no sign is read, since the few cells with a defined exponent at this Δτ vanish as "
+              "Δτ → 0 (full plan 14 / 7 / 2 of 180 brake cells at Δτ = 0.005 / 0.0025 / 0.00125, docs/studies.md)"
+              if "white" in summary.models else "")
            + ". For the contact model the path offset of "
            "the two runs is a neutral direction, so a positive value is no evidence of chaos by itself.")
     return _table(["model", "ok", "diverging (lower bound)", "merged (w = 0)", "too few transitions",
                    "nonlinear (undefined)", "λ > 2 SE", "λ < −2 SE"], rows), txt
 
 
-def normal_force_reading(summary: dict[str, Any]) -> tuple[str, str]:
+def normal_force_reading(summary: NormalForceSummary) -> tuple[str, str]:
     """(table, reading) for a normal-force study summary."""
+    s = summary
     rows = []
-    # tables [normal_force_n][damping_ratio] (docs/glossary.md); rows as before: per D, then per N
-    for m in summary["models"]:
-        for di, d in enumerate(summary["damping_ratio"]):
-            for ni, nf in enumerate(summary["normal_force_n"]):
-                mean = summary["x_gh_mean"][m][ni][di]
-                sd = summary["x_gh_std"][m][ni][di]
-                vk = summary["varK"][m][ni][di]
-                rows.append([m, d, nf, mean, summary["x_gh_mean_se"][m][ni][di], sd,
-                             summary["x_gh_std_se"][m][ni][di],
-                             None if vk is None else 100 * vk,
-                             None if summary["varK_se"][m][ni][di] is None else 100 * summary["varK_se"][m][ni][di],
-                             summary["n_events"][m][ni][di]])
+    # tables [normal_force_n][damping_ratio] (docs/glossary.md); rows per D, then per N
+    for m in s.models:
+        for di, d in enumerate(s.damping_ratio):
+            for ni, nf in enumerate(s.normal_force_n):
+                rows.append([m, d, nf, s.x_gh_mean[m][ni][di], s.x_gh_mean_se[m][ni][di], s.x_gh_std[m][ni][di],
+                             s.x_gh_std_se[m][ni][di], 100 * s.vark[m][ni][di], 100 * s.vark_se[m][ni][di],
+                             s.n_events[m][ni][di]])
     txt = ""
-    if "white" in summary["models"] and "contact" in summary["models"]:
+    if "white" in s.models and "contact" in s.models:
         parts = []
-        for di, d in enumerate(summary["damping_ratio"]):
-            for ni, nf in enumerate(summary["normal_force_n"]):
-                sw = summary["x_gh_std"]["white"][ni][di]
-                sc = summary["x_gh_std"]["contact"][ni][di]
-                if sw is not None and sc is not None and math.isfinite(sw) and math.isfinite(sc) and sw > 0:
-                    rc = (summary.get("sigma_ratio_contact_white") or [[{}] * len(summary["damping_ratio"])] *
-                          len(summary["normal_force_n"]))[ni][di] or {}
-                    iv = (f" [{_fmt(rc.get('low'), '.2g')}, {_fmt(rc.get('high'), '.2g')}]"
-                          if rc.get("low") is not None else "")
+        for di, d in enumerate(s.damping_ratio):
+            for ni, nf in enumerate(s.normal_force_n):
+                sw, sc = s.x_gh_std["white"][ni][di], s.x_gh_std["contact"][ni][di]
+                if math.isfinite(sw) and math.isfinite(sc) and sw > 0:
+                    rc = s.sigma_ratio_contact_white[ni][di] if s.sigma_ratio_contact_white else None
+                    iv = (f" [{_fmt(rc.low, '.2g')}, {_fmt(rc.high, '.2g')}]"
+                          if rc is not None and math.isfinite(rc.low) else "")
                     parts.append(f"N = {nf:g} N, D = {d:g}: {sc / sw:.2g}{iv}")
         txt = ("σ(X_gh) contact/white [95 % bootstrap interval]: " + "; ".join(parts)
                + ". Empty cells: no stick-slip after the transient.")
@@ -354,75 +372,77 @@ def _limit_words(v: float | None, grid: Sequence[float], interval: Sequence[Any]
     return f"{head}{v:.3g}{iv}"
 
 
-def _above(v: float | None, ref: float | None) -> bool:
-    return v is not None and (ref is None or v > ref + 1e-12)
+def _risk_above(e: DMaxRisk, det: float | None) -> bool:
+    """The whole interval of D_max(α) lies above the deterministic limit ``det``."""
+    lo = e.interval[0]
+    return det is not None and lo is not None and lo > det + 1e-12
 
 
-def damping_headline(summary: dict[str, Any]) -> str:
+def _risk_reaches_above(e: DMaxRisk, det: float | None) -> bool:
+    """The interval of D_max(α) reaches above the deterministic limit ``det`` (or there is none)."""
+    hi = e.interval[1]
+    return hi is not None and (det is None or hi > det + 1e-12)
+
+
+def _deterministic_verdict(summary: DampingSummary, det: list[float | None], i: int, a: float) -> str:
+    """The headline's verdict on D_max^d at force ``i`` and the first risk level ``a``, and the forces
+    where P(stick-slip) ≥ α above it."""
+    risk, forces = summary.d_max_risk, summary.normal_force_n
+    stoch = list(risk)
+    over = [m for m in stoch if _risk_above(risk[m][i][0], det[i])]
+    d = det[i]
+    if d is not None and d >= max(summary.damping_ratio) - 1e-12:
+        line = " — the limits reach the grid end: extend the D grid to compare them"
+    elif over:
+        line = (f" — the deterministic limit is exceeded at {_pct(a)} risk ({' and '.join(over)}: "
+                f"P(stick-slip) ≥ {_pct(a)} above D_max^d)")
+    elif any(_risk_reaches_above(risk[m][i][0], det[i]) for m in stoch):
+        line = (f" — the deterministic limit is neither confirmed nor exceeded at {_pct(a)} risk (intervals reach "
+                "above it: more runs)")
+    else:
+        line = f" — the deterministic limit holds at {_pct(a)} risk (P(stick-slip) < {_pct(a)} above it)"
+    if len(forces) > 1:
+        per = []
+        for m in stoch:
+            bad = [forces[k] for k in range(len(forces)) if _risk_above(risk[m][k][0], det[k])]
+            per.append(f"{m}: " + (", ".join(f"{f:g}" for f in bad) + " N" if bad else "none"))
+        line += (f". Forces where P(stick-slip) ≥ {_pct(a)} above D_max^d ({len(forces)} forces): "
+                 + "; ".join(per))
+    return line
+
+
+def damping_headline(summary: DampingSummary) -> str:
     """One-line answer of a damping study at the phase force (the thesis's case): D_max^d, and D_max(α) of
     each stochastic model at the first risk level α with its interval; the verdict whether P(stick-slip) ≥ α
     above D_max^d (interval wholly above it), is excluded there, or is not resolved; over all forces where
-    it is.  Results without D_max(α) (saved before issue 19): the sample extremes, labelled, no verdict."""
-    forces = list(summary["normal_force_n"])
-    grid = summary.get("damping_ratio") or [math.nan]
-    det = summary.get("d_max_deterministic")
-    risk = summary.get("d_max_risk") or {}
+    it is.  Without a stochastic model: the deterministic limit alone."""
+    forces, grid, det, risk = summary.normal_force_n, summary.damping_ratio, summary.d_max_deterministic, \
+        summary.d_max_risk
     stoch = list(risk)
-    nf = float((summary.get("phase") or {}).get("normal_force_n", forces[(len(forces) - 1) // 2]))
+    nf = summary.phase.normal_force_n if summary.phase else forces[(len(forces) - 1) // 2]
     i = min(range(len(forces)), key=lambda k: abs(forces[k] - nf))
-    parts = []
-    if det is not None:
-        parts.append(f"{_limit_words(det[i], grid)} {_WITH['deterministic']}")
-    head = f"{summary.get('preset', '')}, N = {forces[i]:g} N: "
+    parts = [f"{_limit_words(det[i], grid)} {_WITH['deterministic']}"] if det is not None else []
+    head = f"{summary.preset}, N = {forces[i]:g} N: "
     if not stoch:
-        ext = summary.get("d_max_sample_extreme") or {}
-        parts += [f"{_limit_words(e[i]['value'], grid, first=False)} {_WITH.get(m, m)} in some run (sample extreme, "
-                  "no risk level)" for m, e in ext.items()]
         return head + ", ".join(parts) + "."
-    a = float(risk[stoch[0]][i][0]["risk_level"])
-    runs = summary.get("runs")
-    grid_end = max(grid)
-    rparts = [f"{risk_text(risk[m][i][0], grid, runs, compact=True)} {_WITH.get(m, m)}" for m in stoch]
+    a = risk[stoch[0]][i][0].risk_level
+    rparts = [f"{risk_text(risk[m][i][0], grid, summary.runs, compact=True)} {_WITH.get(m, m)}" for m in stoch]
     line = head + "".join(f"{x}, " for x in parts) + f"P(stick-slip) ≥ {_pct(a)} up to D = " + ", ".join(rparts)
     if det is not None:
-        def above(m: str, k: int) -> bool:  # the whole interval above D_max^d
-            lo = risk[m][k][0]["interval"][0]
-            return det[k] is not None and lo is not None and lo > det[k] + 1e-12
-
-        def unresolved(m: str, k: int) -> bool:  # the interval reaches above D_max^d
-            hi = risk[m][k][0]["interval"][1]
-            return hi is not None and (det[k] is None or hi > det[k] + 1e-12)
-
-        over = [m for m in stoch if above(m, i)]
-        if det[i] is not None and det[i] >= grid_end - 1e-12:
-            line += " — the limits reach the grid end: extend the D grid to compare them"
-        elif over:
-            line += (f" — the deterministic limit is exceeded at {_pct(a)} risk ({' and '.join(over)}: "
-                     f"P(stick-slip) ≥ {_pct(a)} above D_max^d)")
-        elif any(unresolved(m, i) for m in stoch):
-            line += (f" — the deterministic limit is neither confirmed nor exceeded at {_pct(a)} risk (intervals reach "
-                     "above it: more runs)")
-        else:
-            line += f" — the deterministic limit holds at {_pct(a)} risk (P(stick-slip) < {_pct(a)} above it)"
-        if len(forces) > 1:
-            per = []
-            for m in stoch:
-                bad = [forces[k] for k in range(len(forces)) if above(m, k)]
-                per.append(f"{m}: " + (", ".join(f"{f:g}" for f in bad) + " N" if bad else "none"))
-            line += (f". Forces where P(stick-slip) ≥ {_pct(a)} above D_max^d ({len(forces)} forces): "
-                     + "; ".join(per))
-    if any(not risk[m][i][0].get("resolved", True) for m in stoch):
-        line += f" (*{runs if runs is not None else 'these'} runs cannot resolve {_pct(a)})"
+        line += _deterministic_verdict(summary, det, i, a)
+    if any(not risk[m][i][0].resolved for m in stoch):
+        line += f" (*{summary.runs} runs cannot resolve {_pct(a)})"
     return line + "."
 
 
-def _det_verdict(risk: dict[str, Any], det: float | None, k: int, j: int, grid: Sequence[float]) -> str:
+def _det_verdict(risk: dict[str, list[list[DMaxRisk]]], det: float | None, k: int, j: int,
+                 grid: Sequence[float]) -> str:
     """Whether the deterministic limit D_max^d at force ``k`` holds at risk level ``j`` for every stochastic model."""
     if det is not None and det >= max(grid) - 1e-12:
         return "at the grid end: extend the D grid"
     over, open_ = [], []
     for m, per_force in risk.items():
-        lo, hi = per_force[k][j]["interval"]
+        lo, hi = per_force[k][j].interval
         if lo is not None and (det is None or lo > det + 1e-12):
             over.append(m)
         elif hi is not None and (det is None or hi > det + 1e-12):
@@ -434,29 +454,28 @@ def _det_verdict(risk: dict[str, Any], det: float | None, k: int, j: int, grid: 
     return "holds"
 
 
-def verdict_section(results: Sequence[Any]) -> str:
+def verdict_section(results: Sequence[StudyResult[Any]]) -> str:
     """The one-look answer at the top of the report: per preset (damping study), per normal force, the
     deterministic limit D_max^d, the stick-slip limit D_max(α) of each stochastic model with its interval at
     the first risk level, and whether the deterministic limit holds at that risk (issue 20 §5)."""
     out = []
     for res in results:
         s = res.summary
-        if res.kind != "damping" or not s.get("d_max_risk"):
+        if not isinstance(s, DampingSummary) or not s.d_max_risk:
             continue
-        risk, grid, runs = s["d_max_risk"], s.get("damping_ratio") or [math.nan], s.get("runs")
-        det = s.get("d_max_deterministic") or [None] * len(s["normal_force_n"])
-        hopf = s.get("d_hopf") or [None] * len(s["normal_force_n"])
-        a = float(next(iter(risk.values()))[0][0]["risk_level"])
+        risk, grid, runs = s.d_max_risk, s.damping_ratio, s.runs
+        det = s.d_max_deterministic or [None] * len(s.normal_force_n)
+        a = next(iter(risk.values()))[0][0].risk_level
         header = ["N [N]", "D_H (linear)", "D_max^d (deterministic)",
                   *[f"D_max({_pct(a)}) {m} [interval]" for m in risk], f"deterministic limit at {_pct(a)} risk"]
         rows = []
-        for k, nf in enumerate(s["normal_force_n"]):
-            rows.append([f"{nf:g}", _fmt(hopf[k], ".3g"), dmax_text(det[k], grid),
+        for k, nf in enumerate(s.normal_force_n):
+            rows.append([f"{nf:g}", _fmt(s.d_hopf[k], ".3g"), dmax_text(det[k], grid),
                          *[risk_text(risk[m][k][0], grid, runs, compact=True) for m in risk],
                          _det_verdict(risk, det[k], k, 0, grid)])
         table = _table(header, rows).replace("&lt;b&gt;", "<b>").replace("&lt;/b&gt;", "</b>")
         note = _unresolved_note(s)
-        out.append(f"<h3>{html.escape(str(s.get('preset', '')))}</h3>" + table
+        out.append(f"<h3>{html.escape(s.preset)}</h3>" + table
                    + (f"<p class='note'>{html.escape(note)}</p>" if note else ""))
     if not out:
         return ""
@@ -466,49 +485,39 @@ def verdict_section(results: Sequence[Any]) -> str:
             "whole interval lies above it. Above D_max(α) the risk is below α.</p>" + "".join(out))
 
 
-def normal_force_headline(summary: dict[str, Any]) -> str:
+def normal_force_headline(summary: NormalForceSummary) -> str:
     """One line: at which forces each model has stick-slip, per damping ratio."""
-    forces = summary["normal_force_n"]
-    models = summary["models"]
+    forces = summary.normal_force_n
     parts = []
-    for di, d in enumerate(summary["damping_ratio"]):
-        has = {m: [forces[k] for k in range(len(forces)) if (summary["n_events"][m][k][di] or 0) > 0]
-               for m in models}
+    for di, d in enumerate(summary.damping_ratio):
+        has = {m: [forces[k] for k in range(len(forces)) if summary.n_events[m][k][di] > 0]
+               for m in summary.models}
         if all(len(v) == len(forces) for v in has.values()):
             parts.append(f"at D = {d:g} stick-slip at every force in every model")
         else:
             parts.append(f"at D = {d:g} stick-slip " + "; ".join(
                 f"{m} " + (", ".join(f"{f:g}" for f in v) + " N" if v else "nowhere") for m, v in has.items()))
-    return (f"{summary.get('preset', '')}, N = " + ", ".join(f"{f:g}" for f in forces) + " N: " + "; ".join(parts)
+    return (f"{summary.preset}, N = " + ", ".join(f"{f:g}" for f in forces) + " N: " + "; ".join(parts)
             + ".")
 
 
-def forcing_headline(summary: dict[str, Any]) -> str:
+def forcing_headline(summary: ForcingSummary) -> str:
     """One line: σ(X_gh) contact/white over η, against the thesis's ratios."""
-    med = summary.get("sigma_ratio_median") or {}
-    nf = summary.get("normal_force_n")
-    head = f"{summary.get('preset', '')}, forced" + (f", N = {nf:g} N" if isinstance(nf, int | float) else "")
+    med = summary.sigma_ratio_median
+    head = f"{summary.preset}, forced, N = {summary.normal_force_n:g} N"
     if not med:
         return head + ": no white/contact pair to compare."
     return (head + ": σ(X_gh) contact/white, median over η: " + ", ".join(
-        f"{_fmt(med.get(f'{q:g}'), '.3g')} at q = {q:g}" for q in summary["forcing_q"])
+        f"{_fmt(med.get(f'{q:g}'), '.3g')} at q = {q:g}" for q in summary.forcing_q)
         + " (thesis: ≈ 1.2 / ≈ 1.05 brake, small / large q; ≈ 2.5 sheet).")
 
 
-def lyapunov_headline(summary: dict[str, Any]) -> str:
-    """One line: how many cells have a positive largest Lyapunov exponent, per model."""
-    head = f"{summary.get('preset', '')}, Lyapunov exponent on the stick line: "
-    sig = summary.get("significance")
-    if sig:
-        return head + "cells with λ > 0 by more than 2 SE: " + ", ".join(
-            f"{m} {sig.get(m, {}).get('positive')}" for m in summary["models"]) + "."
-    pos = summary.get("positive_fraction") or {}
-    return head + "fraction of (q, N, η) cells with λ > 0: " + ", ".join(
-        f"{m} {_fmt(pos.get(m), '.2f')}" for m in summary["models"]) + "."
+def lyapunov_headline(summary: LyapunovSummary) -> str:
+    """One line: how many cells have a positive largest Lyapunov exponent beyond 2 SE, per model."""
+    return (f"{summary.preset}, Lyapunov exponent on the stick line: cells with λ > 0 by more than 2 SE: "
+            + ", ".join(f"{m} {summary.significance[m].positive}" for m in summary.models if m != "white")
+            + (" (white noise: not defined as Δτ → 0)" if "white" in summary.models else "") + ".")
 
-
-HEADLINES = {"damping": damping_headline, "forcing": forcing_headline, "lyapunov": lyapunov_headline,
-             "normal-force": normal_force_headline}
 
 #: what each simulation warning class means for the results, and what to do about it
 WARNING_HELP = {
@@ -530,13 +539,12 @@ WARNING_HELP = {
 }
 
 
-def warnings_section(results: Sequence[Any]) -> str:
+def warnings_section(results: Sequence[StudyResult[Any]]) -> str:
     """Every warning class the run produced: how often, in which studies, what it means, what to do."""
     seen: dict[str, list[str]] = {}
     for res in results:
-        for w in res.summary.get("warnings") or []:
-            seen.setdefault(w["code"], []).append(
-                f"{res.kind} ({res.summary.get('preset', '')}) ×{w['count']}")
+        for w in res.summary.warnings:
+            seen.setdefault(w.code, []).append(f"{res.kind} ({res.summary.preset}) ×{w.count}")
     if not seen:
         return "<p>No simulation warnings in this run.</p>"
     items = []
@@ -547,12 +555,24 @@ def warnings_section(results: Sequence[Any]) -> str:
     return "<p>Warnings this run produced:</p><dl class='warnhelp'>" + "".join(items) + "</dl>"
 
 
-READERS = {"damping": damping_reading, "forcing": forcing_reading, "lyapunov": lyapunov_reading,
-           "normal-force": normal_force_reading}
-TITLES = {"damping": "Damping: P(stick-slip | D), D_max(α), D_max^d and the Hopf boundary (method §6.2)",
-          "forcing": "Forcing: bifurcation diagrams over η (method §6.3)",
-          "lyapunov": "Largest Lyapunov exponent (method §6.4)",
-          "normal-force": "Normal force: phase diagrams, PDFs, E[X_gh] ± σ, VarK (method §6.1)"}
+@dataclass(frozen=True)
+class ReportSection:
+    """How the report shows one study kind (:data:`~stochfric.studies.kinds.STUDY_KINDS`): its figures
+    ``figures(dataset, directory, prefix=…)`` → [(path, caption)], its table and reading
+    ``reading(summary)`` → (table HTML, reading) and its one-line answer ``headline(summary)``."""
+
+    figures: Callable[..., list[Any]]
+    reading: Callable[[Any], tuple[str, str]]
+    headline: Callable[[Any], str]
+
+
+#: One entry per study kind, keyed by the kinds' names.
+SECTIONS: dict[str, ReportSection] = {
+    "damping": ReportSection(damping_figures, damping_reading, damping_headline),
+    "forcing": ReportSection(forcing_figures, forcing_reading, forcing_headline),
+    "lyapunov": ReportSection(lyapunov_figures, lyapunov_reading, lyapunov_headline),
+    "normal-force": ReportSection(normal_force_figures, normal_force_reading, normal_force_headline),
+}
 
 
 def contact_section(directory: Path, ch3: Chapter3) -> str:
@@ -604,8 +624,37 @@ def render_jobs(jobs: Sequence[FigureJob], workers: int | None = None) -> list[A
         return [f.result() for f in futures]
 
 
+_INTRO = ("<p>Friction oscillator driven by deterministic, white-noise and contact-analysis friction, side by "
+          "side (N. Gaus, KIT 2013, chapter 4). Dimensionless x = y/L (L = 1 m), τ = ω0 t; forces in N. "
+          "\"method §…\" refers to the sections of docs/method.md in the stochfric repository. "
+          "White-noise friction is a phenomenological time-domain noise: its intensity σ_ζ is fixed by no surface "
+          "measurement, and it is not the limit of the measured contact process — at a fixed spectral level the "
+          "contact model's σ(X_gh) grows as ℓ^β (β ≈ −0.2 … −0.3) as the correlation length ℓ shrinks "
+          "(docs/method.md §5.1a, <code>stochfric study white-limit</code>).</p>")
+
+
+def study_section(k: int, res: StudyResult[Any], figures: Sequence[tuple[Path, str]], directory: Path
+                  ) -> tuple[str, str]:
+    """The section of the ``k``-th study result (title, reading, choices, table, figures, warnings,
+    provenance) and its line of the Reading list."""
+    section = SECTIONS[res.kind]
+    s = res.summary
+    body = [f"<h2 id='s{k}'>{rich_text(study_kind(res.kind).title)} — {html.escape(s.preset)}</h2>"]
+    table, reading = section.reading(s)
+    answer = f"<li><a href='#s{k}'>{html.escape(res.kind)}</a>: {rich_text(section.headline(s))}</li>"
+    body.append(reading_html(reading))
+    body.append(f"<p class='choices'>{rich_text(model_choices_text(s))}</p>")
+    body.append(table)
+    body += [_figure(path, cap, directory) for path, cap in figures]
+    if s.warnings:
+        body.append("<p>Simulation warnings: " + html.escape(", ".join(f"{x.code} ×{x.count}" for x in s.warnings))
+                    + " (explained under Reading).</p>")
+    body.append(_provenance(res))
+    return "".join(body), answer
+
+
 def write_report(
-    results: Sequence[Any],
+    results: Sequence[StudyResult[Any]],
     directory: str | Path,
     *,
     title: str = "stochfric studies",
@@ -621,44 +670,23 @@ def write_report(
     """
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
-    body = [f"<h1>{html.escape(title)}</h1>",
-            "<p>Friction oscillator driven by deterministic, white-noise and contact-analysis friction, side by "
-            "side (N. Gaus, KIT 2013, chapter 4). Dimensionless x = y/L (L = 1 m), τ = ω0 t; forces in N. "
-            "\"method §…\" refers to the sections of docs/method.md in the stochfric repository. "
-            "White-noise friction is a phenomenological time-domain noise: its intensity σ_ζ is fixed by no surface "
-            "measurement, and it is not the limit of the measured contact process — at a fixed spectral level the "
-            "contact model's σ(X_gh) grows as ℓ^β (β ≈ −0.2 … −0.3) as the correlation length ℓ shrinks "
-            "(docs/method.md §5.1a, <code>stochfric study white-limit</code>).</p>"]
+    body = [f"<h1>{html.escape(title)}</h1>", _INTRO]
     jobs: list[FigureJob] = [
-        (FIGURES[res.kind], (res.dataset, d),
-         {"prefix": f"{k:02d}_{res.kind.replace('-', '_')}_{res.summary.get('preset', '')}"})
+        (SECTIONS[res.kind].figures, (res.dataset, d),
+         {"prefix": f"{k:02d}_{res.kind.replace('-', '_')}_{res.summary.preset}"})
         for k, res in enumerate(results)]
     if chapter3 is not None:
         jobs += [(contact_section, (d, chapter3), {}), (process_statistics_section, (d, chapter3), {})]
     rendered = render_jobs(jobs, workers)
     readings = []
     for k, res in enumerate(results):
-        kind = res.kind
-        preset = res.summary.get("preset", "")
-        body.append(f"<h2 id='s{k}'>{rich_text(TITLES.get(kind, kind))} — {html.escape(str(preset))}</h2>")
-        table, reading = READERS[kind](res.summary)
-        readings.append(f"<li><a href='#s{k}'>{html.escape(kind)}</a>: {rich_text(HEADLINES[kind](res.summary))}</li>")
-        body.append(reading_html(reading))
-        choices = model_choices_text(res.summary)
-        if choices:
-            body.append(f"<p class='choices'>{rich_text(choices)}</p>")
-        body.append(table)
-        for path, cap in rendered[k]:
-            body.append(_figure(path, cap, d))
-        w = res.summary.get("warnings") or []
-        if w:
-            body.append("<p>Simulation warnings: " + html.escape(", ".join(f"{x['code']} ×{x['count']}" for x in w))
-                        + " (explained under Reading).</p>")
-        body.append(_provenance(res))
-    verdict = verdict_section(results)
+        section, answer = study_section(k, res, rendered[k], d)
+        body.append(section)
+        readings.append(answer)
     if readings:
-        body.insert(2, verdict + "<h2>Reading</h2><p>One answer per study; details, tables and figures in its section."
-                    "</p><ul class='answers'>" + "".join(readings) + "</ul>" + warnings_section(results))
+        body.insert(2, verdict_section(results) + "<h2>Reading</h2><p>One answer per study; details, tables and "
+                    "figures in its section.</p><ul class='answers'>" + "".join(readings) + "</ul>"
+                    + warnings_section(results))
     if chapter3 is not None:
         body.append("<h2>Chapter 3: contact analysis of the shipped real surface</h2>")
         body.append(rendered[len(results)])

@@ -503,10 +503,3 @@ def normal_force_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "n
                     "transient in any model."))
     return out
 
-
-FIGURES = {
-    "damping": damping_figures,
-    "forcing": forcing_figures,
-    "lyapunov": lyapunov_figures,
-    "normal-force": normal_force_figures,
-}

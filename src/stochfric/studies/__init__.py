@@ -1,32 +1,42 @@
 """Studies of the friction oscillator (method §6; thesis 4.2, 4.3).
 
 Each study is a function taking a validated config and returning a
-:class:`~stochfric.studies.base.StudyResult` (``to_dataset()``, ``to_json_dict()``):
+:class:`~stochfric.studies.base.StudyResult` (``to_dataset()``, its typed ``summary``,
+``to_json_dict()``):
 :func:`damping_study`, :func:`forcing_study`, :func:`lyapunov_study`,
-:func:`normal_force_study`.  Executors (serial, processes, Dask) and checkpoints never
-change the numbers.  Importing this package does no work.
+:func:`normal_force_study`; :data:`STUDY_KINDS` names each kind's config, function and summary class.
+Executors (serial, processes, Dask) and checkpoints never change the numbers.  Importing this package does no work.
 """
 
 from .base import StudyResult
 from .config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
-from .damping import damping_study
+from .damping import DampingSummary, damping_study
 from .executors import DaskExecutor, ProcessExecutor, SerialExecutor, make_executor, run_tasks
-from .forcing import forcing_study
-from .lyapunov import lyapunov_study
-from .normal_force import normal_force_study
+from .forcing import ForcingSummary, forcing_study
+from .kinds import STUDY_KINDS, StudyKind
+from .lyapunov import LyapunovSummary, lyapunov_study
+from .normal_force import NormalForceSummary, normal_force_study
 from .reproduce import reproduce, run_study
 from .store import CheckpointStore
+from .summary import StudySummary
 
 __all__ = [
+    "STUDY_KINDS",
     "CheckpointStore",
     "DampingConfig",
+    "DampingSummary",
     "DaskExecutor",
     "ForcingConfig",
+    "ForcingSummary",
     "LyapunovConfig",
+    "LyapunovSummary",
     "NormalForceConfig",
+    "NormalForceSummary",
     "ProcessExecutor",
     "SerialExecutor",
+    "StudyKind",
     "StudyResult",
+    "StudySummary",
     "damping_study",
     "forcing_study",
     "lyapunov_study",

@@ -1,5 +1,6 @@
 """What every study shares: the :class:`Study` base (axes, tasks, assemble) and the
-:class:`StudyResult` it returns (an xarray Dataset plus a JSON summary).
+:class:`StudyResult` it returns (an xarray Dataset plus the study kind's typed summary,
+:mod:`~stochfric.studies.summary`).
 
 A study is a grid of independent tasks, one :func:`~stochfric.oscillator.integrate.simulate` call
 each (:class:`~stochfric.studies.tasks.TaskSpec`).  A subclass of :class:`Study` names its task
@@ -18,82 +19,78 @@ import json
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, ClassVar
+from typing import Any, ClassVar, Generic, TypeVar
 
 import numpy as np
 import numpy.typing as npt
 import xarray as xr
 
 from ..io_utils import package_versions, write_netcdf_atomic, write_text_atomic
+from ..oscillator.case import CaseSetup
 from ..progress import Progress
 from . import tasks as task_module
-from .common import StudyError, StudySetup, model_choices, setup_for
+from .errors import StudyError
 from .executors import Executor, SweepStats, run_tasks
 from .grids import pad_events
 from .store import CheckpointStore
-from .tasks import TaskSpec, warnings_of
+from .summary import StudySummary, WarningCount, to_json
+from .tasks import TaskSpec, model_choices, setup_for, warnings_of
 
 #: Version of a study's saved summary and dataset (2: seeds by cell, D_max(α), converged forced studies,
 #: today's names); :meth:`StudyResult.load` refuses another.
 STUDY_SCHEMA = "stochfric.study/2"
 
-
-def jsonable(obj: Any) -> Any:
-    """Plain JSON values (NaN/inf → None, numpy → Python)."""
-    if isinstance(obj, dict):
-        return {str(k): jsonable(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [jsonable(v) for v in obj]
-    if isinstance(obj, np.ndarray):
-        return jsonable(obj.tolist())
-    if isinstance(obj, np.generic):
-        return jsonable(obj.item())
-    if isinstance(obj, float):
-        return obj if np.isfinite(obj) else None
-    return obj
+S = TypeVar("S", bound=StudySummary)
 
 
 @dataclass
-class StudyResult:
-    """A finished study: ``dataset`` (labelled arrays, units, provenance) and ``summary``."""
+class StudyResult(Generic[S]):
+    """A finished study: ``dataset`` (labelled arrays, units, provenance) and its typed ``summary``
+    (the study kind's summary class, :mod:`~stochfric.studies.kinds`)."""
 
     kind: str
     dataset: xr.Dataset
-    summary: dict[str, Any]
+    summary: S
     stats: SweepStats = field(default_factory=SweepStats)
 
     def __repr__(self) -> str:
         s = self.summary
         dims = ", ".join(f"{k} {v}" for k, v in self.dataset.sizes.items())
-        return (f"StudyResult({self.kind}, preset {s.get('preset')}, models {s.get('models')}, runs {s.get('runs')}, "
-                f"seed {s.get('seed')}; dataset: {dims}; {self.stats.computed} task(s) computed, "
-                f"{self.stats.loaded} loaded; summary keys: {', '.join(sorted(s)[:12])}"
-                + (", …" if len(s) > 12 else "") + ")")
+        return (f"StudyResult({self.kind}, preset {s.preset}, models {s.models}, runs {s.runs}, seed {s.seed}; "
+                f"dataset: {dims}; {self.stats.computed} task(s) computed, {self.stats.loaded} loaded; "
+                f"summary: {type(s).__name__})")
 
     def to_dataset(self) -> xr.Dataset:
         """The labelled arrays (dims named, units in attributes, config/seed/versions in attrs)."""
         return self.dataset
 
     def to_json_dict(self) -> dict[str, Any]:
-        """The CLI's ``--json`` object (the summary as plain JSON values)."""
-        out: dict[str, Any] = jsonable(self.summary)
-        return out
+        """The CLI's ``--json`` object and the saved ``<kind>.json``: the summary as plain JSON values."""
+        return self.summary.to_json()
 
     @classmethod
-    def load(cls, directory: str | Path, kind: str) -> StudyResult:
-        """The result :meth:`save` wrote to ``directory`` (``<kind>.nc``, ``<kind>.json``).  A result of
-        another schema (:data:`STUDY_SCHEMA`: written by an older stochfric) is refused with one line
-        saying to rerun; :class:`StudyError`."""
+    def load(cls, directory: str | Path, kind: str) -> StudyResult[Any]:
+        """The result :meth:`save` wrote to ``directory`` (``<kind>.nc``, ``<kind>.json``), its summary
+        read into the kind's summary class.  A result of another schema (:data:`STUDY_SCHEMA`: written by
+        an older stochfric) is refused with one line saying to rerun; :class:`StudyError`."""
+        from .kinds import study_kind
+
         d = Path(directory)
-        summary = json.loads((d / f"{kind}.json").read_text(encoding="utf-8"))
-        found = summary.get("schema") if isinstance(summary, dict) else None
+        path = d / f"{kind}.json"
+        data = json.loads(path.read_text(encoding="utf-8"))
+        found = data.get("schema") if isinstance(data, dict) else None
         if found != STUDY_SCHEMA:
-            raise StudyError(f"{d / (kind + '.json')} was written by another stochfric ({found or 'no schema'}; this "
+            raise StudyError(f"{path} was written by another stochfric ({found or 'no schema'}; this "
                              f"one reads {STUDY_SCHEMA}): rerun the study (stochfric study {kind} …, or stochfric "
                              "reproduce)")
+        try:
+            summary = study_kind(kind).summary.from_json(data)
+        except (KeyError, TypeError, ValueError) as exc:
+            raise StudyError(f"{path} is not a {kind} study summary of {STUDY_SCHEMA} ({exc!r}): rerun the "
+                             "study") from None
         with xr.open_dataset(d / f"{kind}.nc", engine="h5netcdf") as ds:
             dataset = ds.load()
-        return cls(kind, dataset, summary)
+        return StudyResult(kind, dataset, summary)
 
     def to_netcdf(self, path: str | Path) -> Path:
         """Write the dataset to NetCDF (h5netcdf) atomically."""
@@ -115,8 +112,8 @@ def provenance_attrs(
     return {
         "title": f"stochfric {kind} study",
         "study": kind,
-        "config_json": json.dumps(jsonable(config.model_dump(mode="json"))),
-        "setup_json": json.dumps(jsonable(setup.describe())),
+        "config_json": json.dumps(to_json(config.model_dump(mode="json"))),
+        "setup_json": json.dumps(to_json(setup.describe())),
         "seed_entropy": str(root_entropy),
         "seed_rule": ("run r of a cell uses SeedSequence(seed, spawn_key=(h0, h1, r)), (h0, h1) = BLAKE2b words of "
                       "the model and the cell's parameter values (studies.tasks.cell_stream_key; common random "
@@ -149,10 +146,10 @@ def sweep(
     return results, stats, (store.hash if store is not None else None)
 
 
-def warning_counts(warns: Sequence[dict[str, str]]) -> list[dict[str, Any]]:
-    """``[{"code", "count"}]`` of simulation warnings, sorted by code (the summaries' ``warnings``)."""
+def warning_counts(warns: Sequence[dict[str, str]]) -> list[WarningCount]:
+    """How often each simulation warning class occurred, sorted by code (the summaries' ``warnings``)."""
     codes = sorted({w["code"] for w in warns})
-    return [{"code": c, "count": sum(w["code"] == c for w in warns)} for c in codes]
+    return [WarningCount(c, sum(w["code"] == c for w in warns)) for c in codes]
 
 
 class Study:
@@ -167,7 +164,7 @@ class Study:
 
     def __init__(self, config: Any) -> None:
         self.config = config
-        self.setup: StudySetup = setup_for(config, tau_end=self.default_tau_end)
+        self.setup: CaseSetup = setup_for(config, tau_end=self.default_tau_end)
 
     # --- to be given by a study ---------------------------------------------------------
 
@@ -180,7 +177,7 @@ class Study:
         raise NotImplementedError
 
     def assemble(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]], stats: SweepStats,
-                 checkpoint_hash: str | None, executor: Executor | None) -> StudyResult:
+                 checkpoint_hash: str | None, executor: Executor | None) -> StudyResult[Any]:
         """The study's dataset and summary from the task results."""
         raise NotImplementedError
 
@@ -205,12 +202,12 @@ class Study:
 
     @classmethod
     def study(cls, config: Any, *, executor: Executor | None = None, checkpoint: str | None = None,
-              progress: Progress | None = None) -> StudyResult:
+              progress: Progress | None = None) -> StudyResult[Any]:
         """Run the study of ``config``: ``cls(config).run(…)`` (the functions ``damping_study`` etc.)."""
         return cls(config).run(executor=executor, checkpoint=checkpoint, progress=progress)
 
     def run(self, *, executor: Executor | None = None, checkpoint: str | None = None,
-            progress: Progress | None = None) -> StudyResult:
+            progress: Progress | None = None) -> StudyResult[Any]:
         """Build the tasks, run them (checkpointed when ``checkpoint``), assemble the result.  A study
         with a second stage (the damping study's phase diagrams) overrides this."""
         tasks = self.tasks()
@@ -252,14 +249,20 @@ class Study:
         """The simulation warnings of every task, in task order."""
         return [w for t in tasks for w in warnings_of(results[t.index])]
 
-    def summary_head(self, forces: Sequence[float], grid: dict[str, Any], **more: Any) -> dict[str, Any]:
-        """The summary fields every study starts with: case, the study's ``grid`` values, seed, time
-        grid, ``more``, models and the modelling choices (σ_ζ at ``forces``)."""
+    def summary_head(self, forces: Sequence[float], warns: Sequence[dict[str, str]]) -> dict[str, Any]:
+        """The :class:`~stochfric.studies.summary.StudySummary` fields of this study (case, seed, time
+        grid, models, modelling choices, ``warns`` counted, versions) and σ_ζ, σ_ζ,eff at ``forces``
+        (one per force), as keyword arguments of its summary class."""
         cfg, setup = self.config, self.setup
+        choices = model_choices(cfg, setup, forces)
         return {"schema": STUDY_SCHEMA, "study": self.kind, "preset": setup.preset.name,
-                "process_source": setup.process_source, **grid,
-                "runs": cfg.runs, "seed": cfg.seed, "tau_end": setup.tau_end, "dt": setup.dt, **more,
-                "models": list(cfg.models), **model_choices(cfg, setup, forces)}
+                "process_source": setup.process_source, "runs": cfg.runs, "seed": cfg.seed,
+                "tau_end": setup.tau_end, "dt": setup.dt, "models": list(cfg.models),
+                "path_coordinate": choices["path_coordinate"], "white_intensity": choices["white_intensity"],
+                "white_increment": choices["white_increment"], "process_level": choices["process_level"],
+                "white_model": choices.get("white_model"), "sigma_zeta": choices["sigma_zeta"],
+                "sigma_zeta_effective": choices["sigma_zeta_effective"], "warnings": warning_counts(warns),
+                "versions": package_versions()}
 
     def dataset(self, data: dict[str, Any], coords: dict[str, Any], executor: Executor | None,
                 checkpoint_hash: str | None, **attrs: Any) -> xr.Dataset:

@@ -2,16 +2,18 @@
 
 Every study takes one of these frozen models.  Fields left ``None`` take the thesis's
 values from the preset (method §6 table): the study forces, D = 5·10⁻⁶ undamped, τ_end = 50,
-Δτ = 0.005.  Grids accept ``"START:STOP:NUM"`` (inclusive), ``"a,b,c"`` or a list.
+Δτ = 0.005.  Grids (plural names: ``normal_forces``, ``damping_ratios``; a thesis symbol keeps its
+name: ``eta``, ``forcing_q``) accept ``"START:STOP:NUM"`` (inclusive), ``"a,b,c"`` or a list.
+Forces are in newtons (docs/glossary.md: units).
 
-Two modelling choices of method §5 are fields of every study: ``path_coordinate`` (where the
-contact-analysis process is read: ``"mass"`` = the thesis's global coordinate of the mass,
-``"relative"`` = the relative path) and ``white_intensity`` (the σ_ζ rule of the white-noise
-model: ``"sigma_mu"`` = the thesis's σ_ζ = σ_μ(p), ``"spectral_level"`` = white noise with the
-process's low-frequency spectral level, ``"thesis"`` = the printed-(4.31) reproduction
-mode σ_ζ,eff = σ_μ(p)·Lω0·Δτ, whose intensity depends on Δτ; docs/oscillator.md); the study
-applies the latter to its process model (preset or ``process_file``) with
-``dataclasses.replace(model, sigma_zeta_rule=…)``.
+The choices are the library's enums (:mod:`stochfric.oscillator.options`,
+:class:`~stochfric.process.presets.ProcessLevel`).  Two modelling choices of method §5 are fields of
+every study: ``path_coordinate`` (where the contact-analysis process is read: ``"mass"`` = the
+thesis's global coordinate of the mass, ``"relative"`` = the relative path) and ``white_intensity``
+(the σ_ζ rule of the white-noise model: ``"sigma_mu"`` = the thesis's σ_ζ = σ_μ(p),
+``"spectral_level"`` = white noise with the process's low-frequency spectral level, ``"thesis"`` =
+the printed-(4.31) reproduction mode σ_ζ,eff = σ_μ(p)·Lω0·Δτ, whose intensity depends on Δτ;
+docs/oscillator.md); the study applies the latter to its process model (preset or ``process_file``).
 
 :meth:`StudyConfig.hash_config` is what the checkpoint hash covers: every field (they all
 change the numbers) plus the content of a ``process_file``.
@@ -20,18 +22,32 @@ change the numbers) plus the content of a ``process_file``.
 from __future__ import annotations
 
 import json
+from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated, Any, Literal
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
+from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
-from ..oscillator.case import MODELS
+from ..oscillator.options import Integrator, Model, PathCoordinate, WhiteIntensity
+from ..oscillator.presets import PresetName
+from ..process.presets import ProcessLevel
 from .grids import STICK_WINDOW, parse_grid
 
 Grid = Annotated[tuple[float, ...], BeforeValidator(parse_grid)]
-ModelName = Literal["deterministic", "white", "contact"]
-PathCoordinate = Literal["mass", "relative", "position"]
-WhiteIntensity = Literal["sigma_mu", "spectral_level", "thesis"]
+
+
+def _one_of(*allowed: Integrator) -> Callable[[Integrator], Integrator]:
+    """A validator that accepts only the integrators ``allowed``."""
+    def check(value: Integrator) -> Integrator:
+        if value not in allowed:
+            raise ValueError("Input should be " + " or ".join(f"'{a}'" for a in allowed))
+        return value
+    return check
+
+
+#: The scheme of the deterministic and contact models, and of the white-noise SDE.
+OdeIntegrator = Annotated[Integrator, AfterValidator(_one_of(Integrator.EULER, Integrator.ACCURATE))]
+SdeIntegrator = Annotated[Integrator, AfterValidator(_one_of(Integrator.EULER, Integrator.MILSTEIN))]
 
 
 def parse_risk_levels(spec: Any) -> Any:
@@ -56,30 +72,30 @@ class StudyConfig(BaseModel):
 
     model_config = ConfigDict(frozen=True, extra="forbid")
 
-    preset: Literal["brake", "sheet"] = "brake"
+    preset: PresetName = PresetName.BRAKE
     process_file: str | None = Field(
         default=None, description="friction-process model file (JSON) instead of the preset's"
     )
-    models: tuple[ModelName, ...] = MODELS  # type: ignore[assignment]
+    models: tuple[Model, ...] = tuple(Model)
     runs: int = Field(default=10, ge=1, le=100_000)
     seed: int = Field(default=0, ge=0)
     tau_end: float | None = Field(default=None, gt=0)
     dt: float | None = Field(default=None, gt=0)
-    integrator: Literal["euler", "accurate"] = "euler"
-    sde_integrator: Literal["euler", "milstein"] = "euler"
+    integrator: OdeIntegrator = Integrator.EULER
+    sde_integrator: SdeIntegrator = Integrator.EULER
     path_coordinate: PathCoordinate = Field(
-        default="mass",
+        default=PathCoordinate.MASS,
         description="where the contact process is read: mass (thesis text) | relative | position (reproduction "
                     "mode: at x1, eq. 4.36/4.38 as printed; euler only)"
     )
     white_intensity: WhiteIntensity = Field(
-        default="sigma_mu",
+        default=WhiteIntensity.SIGMA_MU,
         description="σ_ζ rule of the white-noise model: sigma_mu (thesis rule, consistent Itô model) | "
                     "spectral_level | thesis (printed eq. 4.31: σ_ζ,eff = σ_μ(p)·Lω0·Δτ, a Δτ-dependent "
                     "reproduction mode)",
     )
-    process_level: Literal["sigma_mu", "psd_level"] = Field(
-        default="sigma_mu",
+    process_level: ProcessLevel = Field(
+        default=ProcessLevel.SIGMA_MU,
         description="variance of the contact process: sigma_mu (σ_μ(p)², method §4d) | psd_level (reproduction "
                     "mode: from the thesis's E[S](p) fit, normalised by its 0.08-at-0.5-MPa check)")
     stick_window: float = Field(default=STICK_WINDOW, ge=0.0, lt=1.0)
@@ -98,11 +114,11 @@ class StudyConfig(BaseModel):
 
     @field_validator("models")
     @classmethod
-    def _unique_models(cls, v: tuple[str, ...]) -> tuple[str, ...]:
+    def _unique_models(cls, v: tuple[Model, ...]) -> tuple[Model, ...]:
         if not v:
             raise ValueError("give at least one model")
         if len(set(v)) != len(v):
-            raise ValueError(f"a model is listed twice: {list(v)}")
+            raise ValueError(f"a model is listed twice: {[str(m) for m in v]}")
         return v
 
     def hash_config(self) -> dict[str, Any]:
@@ -120,31 +136,27 @@ class DampingConfig(StudyConfig):
     """Damping study (method §6.2, thesis 4.2.2/4.3.2): grid D × N."""
 
     kind: Literal["damping"] = "damping"
-    normal_force_n: Grid | None = Field(default=None, description="normal forces N [N] (default: the preset's "
-                                                                    "damping-study force)")
-    damping_ratio: Grid = Field(default_factory=lambda: parse_grid("0.05:0.25:41"))
+    normal_forces: Grid | None = Field(default=None, description="normal forces N [N] (default: the preset's "
+                                                                   "damping-study force)")
+    damping_ratios: Grid = Field(default_factory=lambda: parse_grid("0.05:0.25:41"), description="damping ratios D")
     common_random_numbers: bool = True
     confidence: float = Field(default=0.95, gt=0, lt=1)
     p_detect: float = Field(default=0.1, gt=0, lt=1)
     risk_levels: Annotated[tuple[float, ...], BeforeValidator(parse_risk_levels)] = Field(
         default=(0.1, 0.01),
         description="risk levels α of D_max(α), the largest D with P(stick-slip) >= α (each in (0, 1))")
-    phase_force_n: float | None = Field(
+    phase_normal_force: float | None = Field(
         default=None, gt=0,
         description="N [N] of the phase diagrams over D (default: the preset's damping-study force if it is "
                     "one of the normal forces, else the middle force)",
     )
-    phase_damping: Grid | None = Field(
+    phase_damping_ratios: Grid | None = Field(
         default=None, description="D values of the phase diagrams (default: chosen from the results, see docs)"
     )
     phase_runs: int = Field(default=3, ge=0, le=1000, description="runs kept per D (stochastic models); 0: none")
     save_every: int = Field(default=10, ge=1, description="keep every k-th step of the phase trajectories")
 
-
-
-
-
-    @field_validator("damping_ratio")
+    @field_validator("damping_ratios")
     @classmethod
     def _damping_range(cls, v: tuple[float, ...]) -> tuple[float, ...]:
         if any(not 0 <= d < 1 for d in v):
@@ -167,12 +179,12 @@ class DampingConfig(StudyConfig):
 
     def hash_config(self) -> dict[str, Any]:
         """As :meth:`StudyConfig.hash_config` without ``risk_levels``: they change the analysis only, so
-        checkpoints of the same simulations (and those written before the field existed) still resume."""
+        checkpoints of the same simulations resume under other risk levels."""
         d = super().hash_config()
         d.pop("risk_levels", None)
         return d
 
-    @field_validator("phase_damping")
+    @field_validator("phase_damping_ratios")
     @classmethod
     def _phase_damping_range(cls, v: tuple[float, ...] | None) -> tuple[float, ...] | None:
         if v is None:
@@ -192,11 +204,11 @@ class _ForcedConfig(StudyConfig):
     #: The forced studies run on the converged integrator by default (issue 19): Euler at the thesis's
     #: Δτ = 0.005 locks spurious cycles at some η (brake 4000 N, q = 5e-4, η = 1.2: λ = -0.86 against
     #: +0.28 converged).  ``euler`` is their reproduction mode (recorded in the outputs).
-    integrator: Literal["euler", "accurate"] = Field(
-        default="accurate", description="deterministic and contact models: accurate (adaptive RK45 with events, "
-                                        "default) | euler (reproduction mode: the thesis's fixed Δτ)")
-    damping_ratio: float | None = Field(default=None, ge=0, lt=1)
-
+    integrator: OdeIntegrator = Field(
+        default=Integrator.ACCURATE,
+        description="deterministic and contact models: accurate (adaptive RK45 with events, default) | euler "
+                    "(reproduction mode: the thesis's fixed Δτ)")
+    damping_ratio: float | None = Field(default=None, ge=0, lt=1, description="damping ratio D")
 
     @model_validator(mode="before")
     @classmethod
@@ -234,17 +246,16 @@ class ForcingConfig(_ForcedConfig):
     """Forcing study (method §6.3, thesis 4.2.3/4.3.3): bifurcation data over η."""
 
     kind: Literal["forcing"] = "forcing"
-    normal_force_n: float | None = Field(default=None, gt=0, description="normal force N [N] (default: the "
-                                                                          "preset's forcing-study force)")
-
+    normal_force: float | None = Field(default=None, gt=0, description="normal force N [N] (default: the "
+                                                                       "preset's forcing-study force)")
 
 
 class LyapunovConfig(_ForcedConfig):
     """Largest Lyapunov exponent (method §6.4, eq. 4.43/4.44) over η and N."""
 
     kind: Literal["lyapunov"] = "lyapunov"
-    normal_force_n: Grid | None = Field(default=None, description="normal forces N [N] (default: the preset's "
-                                                                    "normal-force-study forces)")
+    normal_forces: Grid | None = Field(default=None, description="normal forces N [N] (default: the preset's "
+                                                                   "normal-force-study forces)")
     eta: Grid = Field(default_factory=lambda: parse_grid("0.1:3:30"))
     perturbation: float = Field(default=1e-6, gt=0, description="shift of the initial x1 of the comparison run")
     linearity_tolerance: float = Field(
@@ -252,19 +263,17 @@ class LyapunovConfig(_ForcedConfig):
         description="a pair is linear when the twin run (2δ) separates by 2w within this relative tolerance")
 
 
-
 class NormalForceConfig(StudyConfig):
     """Normal-force study (method §6.1, thesis 4.2.1/4.3.1)."""
 
     kind: Literal["normal-force"] = "normal-force"
-    normal_force_n: Grid | None = Field(default=None, description="normal forces N [N] (default: the preset's "
-                                                                    "normal-force-study forces)")
-    damping_ratio: Grid | None = None
+    normal_forces: Grid | None = Field(default=None, description="normal forces N [N] (default: the preset's "
+                                                                   "normal-force-study forces)")
+    damping_ratios: Grid | None = Field(default=None, description="damping ratios D (default: the preset's "
+                                                                    "undamped and damped D)")
     runs: int = Field(default=30, ge=1, le=100_000)
     phase_runs: int = Field(default=5, ge=0)
     save_every: int = Field(default=10, ge=1)
-
-
 
 
 AnyStudyConfig = Annotated[

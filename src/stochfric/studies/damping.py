@@ -41,23 +41,25 @@ trajectories; they use task indices after the grid tasks (own seeds, checkpointe
 
 from __future__ import annotations
 
+import contextlib
 import math
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Iterator, Sequence
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 import xarray as xr
 
-from ..io_utils import package_versions
 from ..oscillator.reference import hopf_damping
 from ..random import BOOTSTRAP_KEY, child_generator
-from .base import Progress, Study, StudyResult, sweep, warning_counts
+from .base import Progress, Study, StudyResult, sweep
 from .config import DampingConfig
 from .executors import Executor, SweepStats
 from .grids import window_mask
 from .stats import clopper_pearson, pooled_bootstrap_se, risk_limit, runs_to_resolve
+from .summary import OPTIONAL, StudySummary, Table
 from .tasks import TaskSpec, runs_for, task_for
 
 
@@ -124,6 +126,278 @@ def auto_phase_damping(damping: npt.ArrayLike, d_max: npt.ArrayLike, n: int = N_
     return tuple(picked)
 
 
+Array = npt.NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class DMaxRisk:
+    """D_max(α) at one normal force and risk level α (``risk_level``, a probability): ``value`` [-] the
+    largest grid D with estimated P(stick-slip) ≥ α, ``interval`` (low, high) [-] from the per-D
+    Clopper–Pearson bands (:class:`~stochfric.studies.stats.RiskLimit`); ``None``: below the grid start.
+    ``high_open``: the upper end is the grid end; ``resolved``: the runs can resolve α at all."""
+
+    risk_level: float
+    value: float | None
+    interval: tuple[float | None, float | None]
+    high_open: bool
+    resolved: bool
+
+
+@dataclass(frozen=True)
+class SampleExtreme:
+    """The thesis's D_max^s at one normal force: ``value`` [-] the largest grid D at which any run stuck
+    (grows with the runs), ``interval`` (D_max^s, D_hi) [-]; ``None``: undefined (module docstring)."""
+
+    value: float | None
+    interval: tuple[float | None, float | None]
+
+
+@dataclass(frozen=True)
+class StickProbability:
+    """P(stick-slip | D) of one model, tables ``[normal_force_n][damping_ratio]`` [-]: the fraction of runs
+    with a slip→stick transition in the stick window (``value``) and its two-sided Clopper–Pearson bounds."""
+
+    value: Table
+    low: Table
+    high: Table
+
+
+@dataclass(frozen=True)
+class PhaseSummary:
+    """The phase diagrams over D: at ``normal_force_n`` [N], the D in ``damping_ratio`` [-] chosen by
+    ``damping_rule`` (``auto`` | ``given``); runs kept per model, ``save_every`` (steps between saved
+    samples) and per model and D the fraction of runs with a cycle after the transient."""
+
+    normal_force_n: float
+    damping_ratio: list[float]
+    damping_rule: str
+    runs: dict[str, int]
+    save_every: int
+    has_cycle_fraction: dict[str, list[float]]
+
+
+@dataclass(frozen=True, kw_only=True)
+class DampingSummary(StudySummary):
+    """The damping study's summary (module docstring).
+
+    Grid: ``normal_force_n`` [N], ``damping_ratio`` [-]; ``d_hopf`` [-] per force; σ_ζ, σ_ζ,eff [-] per
+    force; ``stick_window`` (τ from, τ to), dimensionless.  Per stochastic model and force:
+    ``d_max_risk`` (one :class:`DMaxRisk` per risk level of ``risk_levels``) and ``d_max_sample_extreme``;
+    with the deterministic model ``d_max_deterministic`` [-] per force (``None``: below the grid start)
+    and the next grid D above it.  Per model: ``stick_probability`` and the tables ``[N][D]`` of E[M]
+    (``stick_count_mean``), its SE and the bootstrap SEs of E[X_gh] and σ(X_gh) [-]; ``m_diff``
+    (M_d − E[M_s], eq. 4.41) per stochastic model where the deterministic model ran; ``phase`` where
+    phase diagrams were drawn.
+    """
+
+    normal_force_n: list[float]
+    damping_ratio: list[float]
+    d_hopf: list[float]
+    sigma_zeta: list[float]
+    sigma_zeta_effective: list[float]
+    stick_window: tuple[float, float]
+    confidence: float
+    p_detect: float
+    risk_levels: list[float]
+    risk_levels_runs_to_resolve: list[int]
+    stick_probability_interval: str
+    d_max_deterministic: list[float | None] | None = field(default=None, metadata=OPTIONAL)
+    d_max_deterministic_next_grid: list[float | None] | None = field(default=None, metadata=OPTIONAL)
+    d_max_risk: dict[str, list[list[DMaxRisk]]]
+    d_max_sample_extreme: dict[str, list[SampleExtreme]]
+    stick_probability: dict[str, StickProbability]
+    stick_count_mean: dict[str, Table]
+    stick_count_mean_se: dict[str, Table]
+    x_gh_mean_se: dict[str, Table]
+    x_gh_std_se: dict[str, Table]
+    m_diff: dict[str, Table] | None = field(default=None, metadata=OPTIONAL)
+    phase: PhaseSummary | None = field(default=None, metadata=OPTIONAL)
+    checkpoint_hash: str | None = None
+
+
+@dataclass(frozen=True)
+class _Cycles:
+    """Per-run arrays of the grid ``[model, N, D, run(, event)]`` (NaN: a run not done)."""
+
+    stick_count: Array
+    passes_without_stick: Array
+    x_gh: Array
+    t_gh: Array
+    in_window: npt.NDArray[np.bool_]
+    has_cycle: Array
+    window_count: Array
+    n_runs: npt.NDArray[np.int64]
+    k: Array  #: runs with a cycle, per cell
+
+
+def sample_extremes(models: Sequence[str], damping: Array, k: Array, n_runs: npt.NDArray[np.int64], *,
+                    confidence: float, p_detect: float) -> tuple[Array, Array, Array]:
+    """D_max^s with its interval per model and force ``[model, N]`` (deterministic: D_max^d and the next
+    grid D), from the runs with a cycle ``k[model, N, D]`` of ``n_runs``."""
+    nm, nn = k.shape[:2]
+    dmax, dlo, dhi = (np.full((nm, nn), np.nan) for _ in range(3))
+    for mi, model in enumerate(models):
+        for ni in range(nn):
+            if model == "deterministic":
+                v = d_max_deterministic(damping, k[mi, ni] > 0)
+                dmax[mi, ni] = v
+                dlo[mi, ni] = v
+                above = damping[damping > v] if math.isfinite(v) else damping
+                dhi[mi, ni] = float(above.min()) if above.size else math.nan
+            else:
+                dmax[mi, ni], dlo[mi, ni], dhi[mi, ni] = d_max_stochastic(
+                    damping, k[mi, ni], int(n_runs[mi, ni, 0]), confidence=confidence, p_detect=p_detect)
+    return dmax, dlo, dhi
+
+
+def risk_limits(models: Sequence[str], damping: Array, k: Array, n_runs: npt.NDArray[np.int64], d_max: Array,
+                risk_levels: Sequence[float], confidence: float) -> dict[str, npt.NDArray[Any]]:
+    """D_max(α) ``[model, N, risk level]``: ``value``, ``low``, ``high``, ``high_open``, ``resolved``
+    (:func:`~stochfric.studies.stats.risk_limit`; deterministic: D_max^d, exact)."""
+    nm, nn, na = len(models), k.shape[1], len(risk_levels)
+    rk: dict[str, npt.NDArray[Any]] = {f: np.full((nm, nn, na), np.nan) for f in ("value", "low", "high")}
+    rk["high_open"] = np.zeros((nm, nn, na), dtype=np.int8)
+    rk["resolved"] = np.ones((nm, nn, na), dtype=np.int8)
+    for mi, model in enumerate(models):
+        for ni in range(nn):
+            for ai, a in enumerate(risk_levels):
+                if model == "deterministic":
+                    for f in ("value", "low", "high"):
+                        rk[f][mi, ni, ai] = d_max[mi, ni]
+                    rk["high_open"][mi, ni, ai] = int(math.isfinite(d_max[mi, ni])
+                                                      and d_max[mi, ni] >= damping[-1] - 1e-12)
+                    continue
+                r = risk_limit(damping, k[mi, ni], n_runs[mi, ni], a, confidence)
+                rk["value"][mi, ni, ai], rk["low"][mi, ni, ai], rk["high"][mi, ni, ai] = r.value, r.low, r.high
+                rk["high_open"][mi, ni, ai], rk["resolved"][mi, ni, ai] = int(r.high_open), int(r.resolved)
+    return rk
+
+
+@contextlib.contextmanager
+def _quiet_nan_statistics() -> Iterator[None]:
+    """Silence the all-NaN warnings of the per-cell statistics (cells without events are NaN)."""
+    with np.errstate(invalid="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)
+        yield
+
+
+def cell_statistics(c: _Cycles, seed: int) -> dict[str, Array]:
+    """Per cell ``[model, N, D]``: E[X_gh], σ(X_gh) in the window (NaN where undefined, and the thesis's 0),
+    E[M] with its SE (s/√R, runs independent) and the bootstrap SEs of E[X_gh], σ(X_gh) (runs resampled)."""
+    xw = np.where(c.in_window, c.x_gh, np.nan)
+    with _quiet_nan_statistics():
+        xmean_nan = np.nanmean(xw, axis=(-2, -1))
+        xstd_nan = np.nanstd(xw, axis=(-2, -1), ddof=1)
+        m_mean = np.nanmean(c.stick_count, axis=-1)
+    with _quiet_nan_statistics():
+        m_se = np.nanstd(c.stick_count, axis=-1, ddof=1) / np.sqrt(c.n_runs)
+    x_se_mean, x_se_std = pooled_bootstrap_se(xw, n_boot=200, rng=child_generator(seed, BOOTSTRAP_KEY))
+    return {"x_gh_mean_nan": xmean_nan, "x_gh_std_nan": xstd_nan, "stick_count_mean": m_mean,
+            "stick_count_mean_se": m_se, "x_gh_mean_se": x_se_mean, "x_gh_std_se": x_se_std,
+            "x_gh_mean": np.where(np.isfinite(xmean_nan), xmean_nan, 0.0),
+            "x_gh_std": np.where(np.isfinite(xstd_nan), xstd_nan, 0.0)}
+
+
+_DIMS5 = ("model", "normal_force_n", "damping_ratio", "run", "event")
+_DIMS_LIMIT = ("model", "normal_force_n")
+_DIMS_RISK = ("model", "normal_force_n", "risk_level")
+
+
+def _run_variables(c: _Cycles, prob: Array, lo: Array, hi: Array, confidence: float) -> dict[str, Any]:
+    """The per-run and per-cell cycle variables: X_gh, τ_gh, M, cycles, P(stick-slip | D) with its bands."""
+    dims4, dims3 = _DIMS5[:4], _DIMS5[:3]
+    bound = f"of P(stick-slip | D) at confidence {confidence:g}"
+    return {
+        "x_gh": (_DIMS5, c.x_gh, {"units": "1", "long_name": "slip->stick position X_gh = y/L"}),
+        "t_gh": (_DIMS5, c.t_gh, {"units": "1", "long_name": "tau of slip->stick"}),
+        "stick_count": (dims4, c.stick_count, {"units": "1",
+                                               "long_name": "M: slip->stick transitions in (0, tau_end]"}),
+        "stick_count_window": (dims4, c.window_count, {"units": "1", "long_name": "transitions in the stick window"}),
+        "n_belt_speed_without_stick": (dims4, c.passes_without_stick, {"units": "1"}),
+        "has_cycle": (dims4, c.has_cycle, {"units": "1",
+                                           "long_name": "1 if a slip->stick transition in the stick window"}),
+        "n_runs": (dims3, c.n_runs, {"units": "1"}),
+        "stick_probability": (dims3, prob, {"units": "1", "long_name": "P(stick-slip | D): fraction of runs with "
+                                            "a slip->stick transition in the stick window"}),
+        "stick_probability_low": (dims3, lo, {"units": "1",
+                                              "long_name": f"two-sided Clopper-Pearson lower bound {bound}"}),
+        "stick_probability_high": (dims3, hi, {"units": "1",
+                                               "long_name": f"two-sided Clopper-Pearson upper bound {bound}"}),
+    }
+
+
+def _statistics_variables(st: dict[str, Array]) -> dict[str, Any]:
+    """The per-cell statistics of :func:`cell_statistics` as dataset variables ``[model, N, D]``."""
+    names = {
+        "stick_count_mean": "E[M] (deterministic: M_d)",
+        "stick_count_mean_se": "standard error of E[M] (runs independent)",
+        "x_gh_mean_se": "bootstrap SE of E[X_gh] (NaN: undefined)",
+        "x_gh_std_se": "bootstrap SE of sigma(X_gh)",
+        "x_gh_mean": "E[X_gh] in the window, 0 where no stick (thesis)",
+        "x_gh_std": "sigma(X_gh) in the window, 0 where none",
+        "x_gh_mean_nan": "E[X_gh] in the window, NaN where none",
+        "x_gh_std_nan": "sigma(X_gh), NaN where undefined",
+    }
+    return {k: (_DIMS5[:3], st[k], {"units": "1", "long_name": v}) for k, v in names.items()}
+
+
+def _limit_variables(sig: Array, extreme: tuple[Array, Array, Array], rk: dict[str, npt.NDArray[Any]]
+                     ) -> dict[str, Any]:
+    """σ_ζ, the sample extreme D_max^s with its interval ``[model, N]`` and D_max(α) ``[model, N, α]``."""
+    dmax, dlo, dhi = extreme
+    return {
+        "sigma_zeta": (_DIMS_LIMIT, sig, {"units": "1", "long_name": "white-noise intensity"}),
+        "d_max_sample_extreme": (_DIMS_LIMIT, dmax, {
+            "units": "1", "long_name": "largest D at which any of the R runs stuck (grows with R; thesis D_max^s; "
+                                       "deterministic: D_max^d)"}),
+        "d_max_sample_extreme_low": (_DIMS_LIMIT, dlo, {"units": "1"}),
+        "d_max_sample_extreme_high": (_DIMS_LIMIT, dhi, {
+            "units": "1", "long_name": "deterministic: next grid D; stochastic: D_hi (pooled bound < p_detect)"}),
+        "d_max_risk": (_DIMS_RISK, rk["value"], {
+            "units": "1", "long_name": "D_max(alpha): largest grid D with estimated P(stick-slip) >= alpha "
+                                       "(deterministic: D_max^d; NaN: below the grid start)"}),
+        "d_max_risk_low": (_DIMS_RISK, rk["low"], {
+            "units": "1", "long_name": "lower end of D_max(alpha): largest grid D whose Clopper-Pearson lower "
+                                       "bound is >= alpha (NaN: none, below the grid start)"}),
+        "d_max_risk_high": (_DIMS_RISK, rk["high"], {
+            "units": "1", "long_name": "upper end of D_max(alpha): largest grid D whose Clopper-Pearson upper "
+                                       "bound is >= alpha (open when d_max_risk_high_open)"}),
+        "d_max_risk_high_open": (_DIMS_RISK, rk["high_open"], {
+            "units": "1", "long_name": "1: the upper end is the grid end, D_max(alpha) may lie beyond it"}),
+        "d_max_risk_resolved": (_DIMS_RISK, rk["resolved"], {
+            "units": "1", "long_name": "1: R runs can resolve alpha (upper bound after 0 of R sticking < alpha)"}),
+    }
+
+
+def _add_m_diff(data: dict[str, Any], coords: dict[str, Any], models: list[str], m_mean: Array) -> None:
+    """M_diff = M_d − E[M_s] (4.41) and M_quot = E[M_s]/M_d (4.42) per stochastic model, where the
+    deterministic model ran."""
+    if "deterministic" not in models:
+        return
+    md = m_mean[models.index("deterministic")]
+    stoch = [m for m in models if m != "deterministic"]
+    if not stoch:
+        return
+    ms = np.stack([m_mean[models.index(m)] for m in stoch])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        quot = np.where(md > 0, ms / np.where(md > 0, md, 1.0), np.nan)
+    coords["stochastic_model"] = stoch
+    dims = ("stochastic_model", "normal_force_n", "damping_ratio")
+    data["m_diff"] = (dims, md[None] - ms, {"units": "1", "long_name": "M_diff = M_d - E[M_s] (4.41)"})
+    data["m_quot"] = (dims, quot, {"units": "1", "long_name": "M_quot = E[M_s]/M_d (4.42), NaN where M_d = 0"})
+
+
+def _offset_progress(progress: Progress | None, offset: int, total: int) -> Callable[[int, int], None] | None:
+    """``progress`` of a sweep that is one stage of ``total`` tasks, starting after ``offset`` of them."""
+    if progress is None:
+        return None
+
+    def report(done: int, _n: int) -> None:
+        progress(offset + done, total)
+
+    return report
+
+
 class DampingStudy(Study):
     """One task per (model, N): all D of that N batched into one simulate call (the grid); after
     the grid one phase-diagram task per model (:meth:`phase_tasks`), whose D may depend on the grid."""
@@ -133,16 +407,16 @@ class DampingStudy(Study):
     def __init__(self, config: DampingConfig) -> None:
         super().__init__(config)
         sp = self.setup.preset.study_parameters
-        self.forces: tuple[float, ...] = config.normal_force_n or (float(sp["damping_study_force_n"]),)
-        self.phase_force_n = float(config.phase_force_n if config.phase_force_n is not None else default_phase_force(
-            float(sp["damping_study_force_n"]), tuple(self.forces)))
+        self.forces: tuple[float, ...] = config.normal_forces or (sp.damping_study_force,)
+        self.phase_force_n = float(config.phase_normal_force if config.phase_normal_force is not None
+                                   else default_phase_force(sp.damping_study_force, tuple(self.forces)))
 
     def axes(self) -> dict[str, Sequence[Any]]:
         return {"model": self.config.models, "normal_force_n": self.forces}
 
     def task(self, index: int, point: dict[str, Any]) -> TaskSpec:
         return self.task_for(index, point, [self.setup.parameters(point["normal_force_n"], d)
-                                            for d in self.config.damping_ratio],
+                                            for d in self.config.damping_ratios],
                              common_random_numbers=self.config.common_random_numbers)
 
     def phase_tasks(self, dampings: tuple[float, ...], first_index: int) -> list[TaskSpec]:
@@ -160,186 +434,159 @@ class DampingStudy(Study):
         return tasks
 
     def run(self, *, executor: Executor | None = None, checkpoint: str | None = None,
-            progress: Progress | None = None) -> StudyResult:
+            progress: Progress | None = None) -> StudyResult[DampingSummary]:
         """The grid, then the phase diagrams (progress counts both), analysed (module docstring)."""
-        config, setup, forces, phase_force = self.config, self.setup, self.forces, self.phase_force_n
+        config = self.config
         tasks = self.tasks()
-        n_phase = len(config.models) if config.phase_runs > 0 else 0
-        total = len(tasks) + n_phase
-
-        def grid_progress(done: int, _n: int) -> None:
-            if progress is not None:
-                progress(done, total)
-
+        total = len(tasks) + (len(config.models) if config.phase_runs > 0 else 0)
         results, stats, chash = sweep(self.kind, config, tasks, executor, checkpoint,
-                                      grid_progress if progress is not None else None)
-        models: list[str] = list(config.models)
-        dgrid = np.asarray(config.damping_ratio)
-        nm, nn, nr = len(models), len(forces), config.runs
-        sc = self.stack(tasks, results, "stick_count")
-        nbs = self.stack(tasks, results, "n_belt_speed_without_stick")
-        sig = np.array([float(results[t.index]["sigma_zeta"][0]) for t in tasks]).reshape(nm, nn)
+                                      _offset_progress(progress, 0, total))
         warns = self.warnings(tasks, results)
-        x_gh = self.stack(tasks, results, "x_gh")
+        coords, data, d_max = self.grid_variables(tasks, results)
+        data["d_hopf"] = (("normal_force_n",), self.hopf_dampings(warns),
+                          {"units": "1", "long_name": "D_H = -n mu'(v0) v0/(2 gamma0)"})
+        _add_m_diff(data, coords, list(config.models), data["stick_count_mean"][1])
+        phase_rule = "none"
+        if total > len(tasks):
+            phase_d, phase_rule = self.phase_dampings(d_max)
+            ptasks = self.phase_tasks(phase_d, first_index=len(tasks))
+            presults, pstats, _ = sweep("damping", config, ptasks, executor, checkpoint,
+                                        _offset_progress(progress, len(tasks), total))
+            stats = SweepStats(computed=stats.computed + pstats.computed, loaded=stats.loaded + pstats.loaded)
+            self.add_phase(data, coords, ptasks, presults, phase_d)
+            warns += self.warnings(ptasks, presults)
+        ds = self.dataset(data, coords, executor, chash, stick_window=config.stick_window)
+        ds.attrs["phase_damping_rule"] = phase_rule
+        return StudyResult(self.kind, ds, self.summarise(ds, warns), stats)
+
+    def cycles(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]]) -> _Cycles:
+        """The grid's per-run arrays and which runs have a cycle in the stick window."""
+        sc = self.stack(tasks, results, "stick_count")
         t_gh = self.stack(tasks, results, "t_gh")
-        nev = x_gh.shape[-1]
         valid = np.isfinite(sc)  # which runs exist (deterministic: run 0 only)
-        inwin = window_mask(t_gh, setup.tau_end, config.stick_window)
+        inwin = window_mask(t_gh, self.setup.tau_end, self.config.stick_window)
         late = np.where(valid, inwin.any(axis=-1), np.nan)
-        m_late = np.where(valid, inwin.sum(axis=-1), np.nan)
-        n_runs = valid.sum(axis=-1)
-        k = np.nansum(late, axis=-1)
-        prob = k / n_runs
-        lo, hi = clopper_pearson(k, n_runs, config.confidence)
-        xw = np.where(inwin, x_gh, np.nan)
-        with np.errstate(invalid="ignore"), warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            xmean_nan = np.nanmean(xw, axis=(-2, -1))
-            xstd_nan = np.nanstd(xw, axis=(-2, -1), ddof=1)
-            m_mean = np.nanmean(sc, axis=-1)  # E[M]
-        # Monte Carlo uncertainty: E[M] over independent runs (s/√R); E[X_gh], σ(X_gh) by a bootstrap over runs
-        with np.errstate(invalid="ignore"), warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            m_se = np.nanstd(sc, axis=-1, ddof=1) / np.sqrt(n_runs)
-        x_se_mean, x_se_std = pooled_bootstrap_se(
-            xw, n_boot=200, rng=child_generator(config.seed, BOOTSTRAP_KEY))
-        xmean = np.where(np.isfinite(xmean_nan), xmean_nan, 0.0)
-        xstd = np.where(np.isfinite(xstd_nan), xstd_nan, 0.0)
-        # D_max per model and force
-        dmax = np.full((nm, nn), np.nan)
-        dlo = np.full((nm, nn), np.nan)
-        dhi = np.full((nm, nn), np.nan)
-        for mi, model in enumerate(models):
-            for ni in range(nn):
-                if model == "deterministic":
-                    v = d_max_deterministic(dgrid, k[mi, ni] > 0)
-                    dmax[mi, ni] = v
-                    dlo[mi, ni] = v
-                    above = dgrid[dgrid > v] if math.isfinite(v) else dgrid
-                    dhi[mi, ni] = float(above.min()) if above.size else math.nan
-                else:
-                    dmax[mi, ni], dlo[mi, ni], dhi[mi, ni] = d_max_stochastic(
-                        dgrid, k[mi, ni], int(n_runs[mi, ni, 0]), confidence=config.confidence,
-                        p_detect=config.p_detect)
-        # D_max(α) per model, force and risk level (deterministic: D_max^d, exact)
-        alphas = tuple(config.risk_levels)
-        na = len(alphas)
-        rk = {f: np.full((nm, nn, na), np.nan) for f in ("value", "low", "high")}
-        rk_open = np.zeros((nm, nn, na), dtype=np.int8)
-        rk_res = np.ones((nm, nn, na), dtype=np.int8)
-        for mi, model in enumerate(models):
-            for ni in range(nn):
-                for ai, a in enumerate(alphas):
-                    if model == "deterministic":
-                        for f in rk:
-                            rk[f][mi, ni, ai] = dmax[mi, ni]
-                        rk_open[mi, ni, ai] = int(math.isfinite(dmax[mi, ni]) and dmax[mi, ni] >= dgrid[-1] - 1e-12)
-                        continue
-                    r = risk_limit(dgrid, k[mi, ni], n_runs[mi, ni], a, config.confidence)
-                    rk["value"][mi, ni, ai], rk["low"][mi, ni, ai], rk["high"][mi, ni, ai] = r.value, r.low, r.high
-                    rk_open[mi, ni, ai], rk_res[mi, ni, ai] = int(r.high_open), int(r.resolved)
-        d_hopf = np.array([hopf_damping(c.params, c.law) for c in (setup.case(nf, float(dgrid[0])) for nf in forces)])
-        for nf, dh in zip(forces, d_hopf, strict=True):
+        return _Cycles(stick_count=sc, passes_without_stick=self.stack(tasks, results, "n_belt_speed_without_stick"),
+                       x_gh=self.stack(tasks, results, "x_gh"), t_gh=t_gh, in_window=inwin, has_cycle=late,
+                       window_count=np.where(valid, inwin.sum(axis=-1), np.nan), n_runs=valid.sum(axis=-1),
+                       k=np.nansum(late, axis=-1))
+
+    def grid_variables(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]]
+                       ) -> tuple[dict[str, Any], dict[str, Any], Array]:
+        """Coordinates and variables of the grid's analysis, and D_max^s ``[model, N]`` (module docstring)."""
+        config, models = self.config, list(self.config.models)
+        dgrid = np.asarray(config.damping_ratios)
+        c = self.cycles(tasks, results)
+        prob = c.k / c.n_runs
+        lo, hi = clopper_pearson(c.k, c.n_runs, config.confidence)
+        extreme = sample_extremes(models, dgrid, c.k, c.n_runs, confidence=config.confidence,
+                                  p_detect=config.p_detect)
+        rk = risk_limits(models, dgrid, c.k, c.n_runs, extreme[0], tuple(config.risk_levels), config.confidence)
+        sig = np.array([float(results[t.index]["sigma_zeta"][0]) for t in tasks]).reshape(len(models),
+                                                                                             len(self.forces))
+        coords: dict[str, Any] = {
+            "model": models,
+            "normal_force_n": ("normal_force_n", np.asarray(self.forces, float),
+                               {"units": "N", "long_name": "normal force N"}),
+            "damping_ratio": ("damping_ratio", dgrid, {"units": "1", "long_name": "damping ratio D"}),
+            "run": np.arange(config.runs),
+            "event": np.arange(c.x_gh.shape[-1]),
+            "risk_level": ("risk_level", np.asarray(tuple(config.risk_levels), float),
+                           {"units": "1", "long_name": "risk level alpha: tolerated P(stick-slip)"}),
+        }
+        data = {**_run_variables(c, prob, lo, hi, config.confidence),
+                **_statistics_variables(cell_statistics(c, config.seed)),
+                **_limit_variables(sig, extreme, rk)}
+        return coords, data, extreme[0]
+
+    def hopf_dampings(self, warns: list[dict[str, str]]) -> Array:
+        """D_H per force (:func:`~stochfric.oscillator.reference.hopf_damping`); a warning in ``warns``
+        for each D_H > 1."""
+        d0 = float(self.config.damping_ratios[0])
+        d_hopf = np.array([hopf_damping(c.params, c.law) for c in (self.setup.case(nf, d0) for nf in self.forces)])
+        for nf, dh in zip(self.forces, d_hopf, strict=True):
             if dh > 1.0:  # beyond critical damping: no oscillator of this field, a typing slip in N or the case
                 warns.append({"code": "hopf-damping-above-one",
                               "message": f"N = {nf:g} N gives a Hopf damping ratio D_H = {dh:.3g} > 1 (beyond critical "
                                          "damping): check the normal force and the case's parameters"})
-        coords: dict[str, Any] = {
-            "model": models,
-            "normal_force_n": ("normal_force_n", np.asarray(forces, float),
-                               {"units": "N", "long_name": "normal force N"}),
-            "damping_ratio": ("damping_ratio", dgrid, {"units": "1", "long_name": "damping ratio D"}),
-            "run": np.arange(nr),
-            "event": np.arange(nev),
-            "risk_level": ("risk_level", np.asarray(alphas, float),
-                           {"units": "1", "long_name": "risk level alpha: tolerated P(stick-slip)"}),
-        }
-        dims5 = ("model", "normal_force_n", "damping_ratio", "run", "event")
-        dims4 = dims5[:4]
-        dims3 = dims5[:3]
-        data: dict[str, Any] = {
-            "x_gh": (dims5, x_gh, {"units": "1", "long_name": "slip->stick position X_gh = y/L"}),
-            "t_gh": (dims5, t_gh, {"units": "1", "long_name": "tau of slip->stick"}),
-            "stick_count": (dims4, sc, {"units": "1", "long_name": "M: slip->stick transitions in (0, tau_end]"}),
-            "stick_count_window": (dims4, m_late, {"units": "1", "long_name": "transitions in the stick window"}),
-            "n_belt_speed_without_stick": (dims4, nbs, {"units": "1"}),
-            "has_cycle": (dims4, late, {"units": "1",
-                                        "long_name": "1 if a slip->stick transition in the stick window"}),
-            "n_runs": (dims3, n_runs, {"units": "1"}),
-            "stick_probability": (dims3, prob, {"units": "1", "long_name": "P(stick-slip | D): fraction of runs with "
-                                                "a slip->stick transition in the stick window"}),
-            "stick_probability_low": (dims3, lo, {"units": "1", "long_name": "two-sided Clopper-Pearson lower bound "
-                                                  f"of P(stick-slip | D) at confidence {config.confidence:g}"}),
-            "stick_probability_high": (dims3, hi, {"units": "1", "long_name": "two-sided Clopper-Pearson upper bound "
-                                                   f"of P(stick-slip | D) at confidence {config.confidence:g}"}),
-            "stick_count_mean": (dims3, m_mean, {"units": "1", "long_name": "E[M] (deterministic: M_d)"}),
-            "stick_count_mean_se": (dims3, m_se, {"units": "1",
-                                                  "long_name": "standard error of E[M] (runs independent)"}),
-            "x_gh_mean_se": (dims3, x_se_mean, {"units": "1", "long_name": "bootstrap SE of E[X_gh] (NaN: undefined)"}),
-            "x_gh_std_se": (dims3, x_se_std, {"units": "1", "long_name": "bootstrap SE of sigma(X_gh)"}),
-            "x_gh_mean": (dims3, xmean, {"units": "1",
-                                         "long_name": "E[X_gh] in the window, 0 where no stick (thesis)"}),
-            "x_gh_std": (dims3, xstd, {"units": "1", "long_name": "sigma(X_gh) in the window, 0 where none"}),
-            "x_gh_mean_nan": (dims3, xmean_nan, {"units": "1", "long_name": "E[X_gh] in the window, NaN where none"}),
-            "x_gh_std_nan": (dims3, xstd_nan, {"units": "1", "long_name": "sigma(X_gh), NaN where undefined"}),
-            "sigma_zeta": (("model", "normal_force_n"), sig, {"units": "1", "long_name": "white-noise intensity"}),
-            "d_max_sample_extreme": (("model", "normal_force_n"), dmax, {
-                "units": "1", "long_name": "largest D at which any of the R runs stuck (grows with R; thesis D_max^s; "
-                                           "deterministic: D_max^d)"}),
-            "d_max_sample_extreme_low": (("model", "normal_force_n"), dlo, {"units": "1"}),
-            "d_max_sample_extreme_high": (("model", "normal_force_n"), dhi, {
-                "units": "1", "long_name": "deterministic: next grid D; stochastic: D_hi (pooled bound < p_detect)"}),
-            "d_max_risk": (("model", "normal_force_n", "risk_level"), rk["value"], {
-                "units": "1", "long_name": "D_max(alpha): largest grid D with estimated P(stick-slip) >= alpha "
-                                           "(deterministic: D_max^d; NaN: below the grid start)"}),
-            "d_max_risk_low": (("model", "normal_force_n", "risk_level"), rk["low"], {
-                "units": "1", "long_name": "lower end of D_max(alpha): largest grid D whose Clopper-Pearson lower "
-                                           "bound is >= alpha (NaN: none, below the grid start)"}),
-            "d_max_risk_high": (("model", "normal_force_n", "risk_level"), rk["high"], {
-                "units": "1", "long_name": "upper end of D_max(alpha): largest grid D whose Clopper-Pearson upper "
-                                           "bound is >= alpha (open when d_max_risk_high_open)"}),
-            "d_max_risk_high_open": (("model", "normal_force_n", "risk_level"), rk_open, {
-                "units": "1", "long_name": "1: the upper end is the grid end, D_max(alpha) may lie beyond it"}),
-            "d_max_risk_resolved": (("model", "normal_force_n", "risk_level"), rk_res, {
-                "units": "1", "long_name": "1: R runs can resolve alpha (upper bound after 0 of R sticking < alpha)"}),
-            "d_hopf": (("normal_force_n",), d_hopf, {"units": "1", "long_name": "D_H = -n mu'(v0) v0/(2 gamma0)"}),
-        }
-        if "deterministic" in models:
-            di = models.index("deterministic")
-            md = m_mean[di]
-            stoch = [m for m in models if m != "deterministic"]
-            if stoch:
-                ms = np.stack([m_mean[models.index(m)] for m in stoch])
-                with np.errstate(invalid="ignore", divide="ignore"):
-                    quot = np.where(md > 0, ms / np.where(md > 0, md, 1.0), np.nan)
-                coords["stochastic_model"] = stoch
-                data["m_diff"] = (("stochastic_model", "normal_force_n", "damping_ratio"), md[None] - ms,
-                                  {"units": "1", "long_name": "M_diff = M_d - E[M_s] (4.41)"})
-                data["m_quot"] = (("stochastic_model", "normal_force_n", "damping_ratio"), quot,
-                                  {"units": "1", "long_name": "M_quot = E[M_s]/M_d (4.42), NaN where M_d = 0"})
-        phase_rule = "none"
-        if n_phase:
-            if config.phase_damping is not None:
-                phase_d, phase_rule = tuple(config.phase_damping), "given"
-            else:
-                fi = int(np.argmin(np.abs(np.asarray(forces, float) - phase_force)))
-                phase_d, phase_rule = auto_phase_damping(dgrid, dmax[:, fi]), "auto"
-            ptasks = self.phase_tasks(phase_d, first_index=len(tasks))
+        return d_hopf
 
-            def phase_progress(done: int, _n: int) -> None:
-                if progress is not None:
-                    progress(len(tasks) + done, total)
+    def phase_dampings(self, d_max: Array) -> tuple[tuple[float, ...], str]:
+        """The D of the phase diagrams and their rule: the config's (``given``) or :func:`auto_phase_damping`
+        from D_max^s ``[model, N]`` at the phase force (``auto``)."""
+        if self.config.phase_damping_ratios is not None:
+            return tuple(self.config.phase_damping_ratios), "given"
+        fi = int(np.argmin(np.abs(np.asarray(self.forces, float) - self.phase_force_n)))
+        return auto_phase_damping(np.asarray(self.config.damping_ratios), d_max[:, fi]), "auto"
 
-            presults, pstats, _ = sweep("damping", config, ptasks, executor, checkpoint,
-                                        phase_progress if progress is not None else None)
-            stats = SweepStats(computed=stats.computed + pstats.computed, loaded=stats.loaded + pstats.loaded)
-            _add_phase(data, coords, models, ptasks, presults, phase_force, phase_d, setup.tau_end,
-                       config.stick_window, max(1, config.phase_runs))
-            warns += self.warnings(ptasks, presults)
-        ds = self.dataset(data, coords, executor, chash, stick_window=config.stick_window)
-        ds.attrs["phase_damping_rule"] = phase_rule
-        summary = _summary(self, ds, warns)
-        return StudyResult(self.kind, ds, summary, stats)
+    def add_phase(self, data: dict[str, Any], coords: dict[str, Any], ptasks: list[TaskSpec],
+                  presults: dict[int, dict[str, Any]], phase_d: tuple[float, ...]) -> None:
+        """Phase-diagram variables: trajectories [model, phase_damping, phase_run, sample, component]."""
+        config = self.config
+        nm, npd, npr = len(config.models), len(phase_d), max(1, config.phase_runs)
+        trs = [presults[t.index].get("trajectory") for t in ptasks]
+        nsamp = max((tr.shape[2] for tr in trs if tr is not None), default=0)
+        traj = np.full((nm, npd, npr, nsamp, 3), np.nan)
+        cyc = np.full((nm, npd, npr), np.nan)
+        sc = np.full((nm, npd, npr), np.nan)
+        for mi, (t, tr) in enumerate(zip(ptasks, trs, strict=True)):
+            r = presults[t.index]
+            if tr is not None:
+                traj[mi, :, : tr.shape[1], : tr.shape[2]] = tr
+            cyc[mi, :, : t.runs] = window_mask(r["t_gh"], self.setup.tau_end, config.stick_window).any(axis=-1)
+            sc[mi, :, : t.runs] = r["stick_count"]
+        coords["phase_damping"] = ("phase_damping", np.asarray(phase_d, float),
+                                   {"units": "1", "long_name": "damping ratio D of the phase diagrams"})
+        coords["phase_run"] = ("phase_run", np.arange(npr), {"units": "1"})
+        coords["sample"] = ("sample", np.arange(nsamp), {"units": "1", "long_name": "saved time step"})
+        coords["component"] = ("component", ["tau", "x1", "x2"],
+                               {"long_name": "tau = omega0 t, x1 = y/L, x2 = x1' (dimensionless, L = 1 m)"})
+        pdims = ("model", "phase_damping", "phase_run")
+        data["phase_normal_force_n"] = ((), float(self.phase_force_n), {"units": "N", "long_name": "normal force of "
+                                                                                                 "the phase diagrams"})
+        data["phase_trajectory"] = ((*pdims, "sample", "component"), traj,
+                                    {"units": "1", "long_name": "decimated trajectory (tau, x1, x2) at the phase "
+                                                                "force; NaN: run not kept (deterministic: run 0 only)"})
+        data["phase_has_cycle"] = (pdims, cyc, {"units": "1", "long_name": "1 if a slip->stick transition in the "
+                                                                            "stick window"})
+        data["phase_stick_count"] = (pdims, sc, {"units": "1", "long_name": "M: slip->stick transitions in "
+                                                                             "(0, tau_end]"})
+
+    def summarise(self, ds: xr.Dataset, warns: list[dict[str, str]]) -> DampingSummary:
+        """The :class:`DampingSummary` of the study's dataset."""
+        config, setup, models = self.config, self.setup, list(self.config.models)
+        stoch = [m for m in models if m != "deterministic"]
+        ex = "d_max_sample_extreme"
+        det = ds[ex].sel(model="deterministic").values if "deterministic" in models else None
+        det_next = ds[f"{ex}_high"].sel(model="deterministic").values if "deterministic" in models else None
+
+        def per_model(name: str) -> dict[str, Table]:
+            return {m: ds[name].sel(model=m).values.tolist() for m in models}
+
+        return DampingSummary(
+            **self.summary_head(self.forces, warns),
+            normal_force_n=list(self.forces), damping_ratio=list(config.damping_ratios),
+            d_hopf=[float(v) for v in ds["d_hopf"].values],
+            stick_window=(config.stick_window * setup.tau_end, setup.tau_end), confidence=config.confidence,
+            p_detect=config.p_detect, risk_levels=list(config.risk_levels),
+            risk_levels_runs_to_resolve=[runs_to_resolve(a, config.confidence) for a in config.risk_levels],
+            stick_probability_interval="clopper-pearson",
+            d_max_deterministic=None if det is None else [_none(v) for v in det],
+            d_max_deterministic_next_grid=None if det_next is None else [_none(v) for v in det_next],
+            d_max_risk={m: _risk_entries(ds, m, config.risk_levels, len(self.forces)) for m in stoch},
+            d_max_sample_extreme={m: [SampleExtreme(_none(float(ds[ex].sel(model=m).values[i])),
+                                                    (_none(float(ds[f"{ex}_low"].sel(model=m).values[i])),
+                                                     _none(float(ds[f"{ex}_high"].sel(model=m).values[i]))))
+                                      for i in range(len(self.forces))] for m in stoch},
+            stick_probability={m: StickProbability(*(ds[f"stick_probability{s}"].sel(model=m).values.tolist()
+                                                     for s in ("", "_low", "_high"))) for m in models},
+            stick_count_mean=per_model("stick_count_mean"), stick_count_mean_se=per_model("stick_count_mean_se"),
+            x_gh_mean_se=per_model("x_gh_mean_se"), x_gh_std_se=per_model("x_gh_std_se"),
+            m_diff=({m: ds["m_diff"].sel(stochastic_model=m).values.tolist()
+                     for m in ds["stochastic_model"].values.tolist()} if "m_diff" in ds else None),
+            phase=_phase_summary(ds, models, config.save_every) if "phase_trajectory" in ds else None,
+            checkpoint_hash=ds.attrs.get("checkpoint_hash") or None,
+        )
 
 
 def damping_tasks(config: DampingConfig) -> tuple[list[TaskSpec], dict[str, Any]]:
@@ -352,102 +599,30 @@ def damping_tasks(config: DampingConfig) -> tuple[list[TaskSpec], dict[str, Any]
 damping_study = DampingStudy.study
 
 
-def _add_phase(data: dict[str, Any], coords: dict[str, Any], models: list[str], ptasks: list[TaskSpec],
-               presults: dict[int, dict[str, Any]], phase_force: float, phase_d: tuple[float, ...],
-               tau_end: float, window: float, npr: int) -> None:
-    """Phase-diagram variables: trajectories [model, phase_damping, phase_run, sample, component]."""
-    nm, npd = len(models), len(phase_d)
-    trs = [presults[t.index].get("trajectory") for t in ptasks]
-    nsamp = max((tr.shape[2] for tr in trs if tr is not None), default=0)
-    traj = np.full((nm, npd, npr, nsamp, 3), np.nan)
-    cyc = np.full((nm, npd, npr), np.nan)
-    sc = np.full((nm, npd, npr), np.nan)
-    for mi, (t, tr) in enumerate(zip(ptasks, trs, strict=True)):
-        r = presults[t.index]
-        if tr is not None:
-            traj[mi, :, : tr.shape[1], : tr.shape[2]] = tr
-        cyc[mi, :, : t.runs] = window_mask(r["t_gh"], tau_end, window).any(axis=-1)
-        sc[mi, :, : t.runs] = r["stick_count"]
-    coords["phase_damping"] = ("phase_damping", np.asarray(phase_d, float),
-                               {"units": "1", "long_name": "damping ratio D of the phase diagrams"})
-    coords["phase_run"] = ("phase_run", np.arange(npr), {"units": "1"})
-    coords["sample"] = ("sample", np.arange(nsamp), {"units": "1", "long_name": "saved time step"})
-    coords["component"] = ("component", ["tau", "x1", "x2"],
-                           {"long_name": "tau = omega0 t, x1 = y/L, x2 = x1' (dimensionless, L = 1 m)"})
-    pdims = ("model", "phase_damping", "phase_run")
-    data["phase_normal_force_n"] = ((), float(phase_force), {"units": "N", "long_name": "normal force of the "
-                                                                                      "phase diagrams"})
-    data["phase_trajectory"] = ((*pdims, "sample", "component"), traj,
-                                {"units": "1", "long_name": "decimated trajectory (tau, x1, x2) at the phase force; "
-                                                            "NaN: run not kept (deterministic: run 0 only)"})
-    data["phase_has_cycle"] = (pdims, cyc, {"units": "1", "long_name": "1 if a slip->stick transition in the "
-                                                                        "stick window"})
-    data["phase_stick_count"] = (pdims, sc, {"units": "1", "long_name": "M: slip->stick transitions in "
-                                                                         "(0, tau_end]"})
-
-
 def _none(v: float) -> float | None:
     return float(v) if math.isfinite(v) else None
 
 
-def _summary(study: DampingStudy, ds: xr.Dataset, warns: list[dict[str, str]]) -> dict[str, Any]:
-    config, setup, models, forces = study.config, study.setup, list(study.config.models), study.forces
-    out = study.summary_head(
-        forces, {"normal_force_n": list(forces), "damping_ratio": list(config.damping_ratio),
-                 "d_hopf": [float(v) for v in ds["d_hopf"].values]},
-        stick_window=[config.stick_window * setup.tau_end, setup.tau_end], confidence=config.confidence,
-        p_detect=config.p_detect, risk_levels=list(config.risk_levels),
-        risk_levels_runs_to_resolve=[runs_to_resolve(a, config.confidence) for a in config.risk_levels],
-        stick_probability_interval="clopper-pearson")
-    ex = "d_max_sample_extreme"
-    if "deterministic" in models:
-        out["d_max_deterministic"] = [_none(v) for v in ds[ex].sel(model="deterministic").values]
-        out["d_max_deterministic_next_grid"] = [_none(v) for v in ds[f"{ex}_high"].sel(model="deterministic").values]
-    stoch = [m for m in models if m != "deterministic"]
-    out["d_max_risk"] = {
-        m: [[{"risk_level": float(a),
-              "value": _none(float(ds["d_max_risk"].sel(model=m).values[i, j])),
-              "interval": [_none(float(ds["d_max_risk_low"].sel(model=m).values[i, j])),
-                           _none(float(ds["d_max_risk_high"].sel(model=m).values[i, j]))],
-              "high_open": bool(ds["d_max_risk_high_open"].sel(model=m).values[i, j]),
-              "resolved": bool(ds["d_max_risk_resolved"].sel(model=m).values[i, j])}
-             for j, a in enumerate(config.risk_levels)]
-            for i in range(len(forces))]
-        for m in stoch
-    }
-    out[ex] = {
-        m: [
-            {"value": _none(float(ds[ex].sel(model=m).values[i])),
-             "interval": [_none(float(ds[f"{ex}_low"].sel(model=m).values[i])),
-                          _none(float(ds[f"{ex}_high"].sel(model=m).values[i]))]}
-            for i in range(len(forces))
-        ]
-        for m in stoch
-    }
-    out["stick_probability"] = {
-        m: {"value": ds["stick_probability"].sel(model=m).values.tolist(),
-            "low": ds["stick_probability_low"].sel(model=m).values.tolist(),
-            "high": ds["stick_probability_high"].sel(model=m).values.tolist()}
-        for m in models
-    }
-    out["stick_count_mean"] = {m: ds["stick_count_mean"].sel(model=m).values.tolist() for m in models}
-    out["stick_count_mean_se"] = {m: ds["stick_count_mean_se"].sel(model=m).values.tolist() for m in models}
-    out["x_gh_mean_se"] = {m: ds["x_gh_mean_se"].sel(model=m).values.tolist() for m in models}
-    out["x_gh_std_se"] = {m: ds["x_gh_std_se"].sel(model=m).values.tolist() for m in models}
-    if "m_diff" in ds:
-        out["m_diff"] = {m: ds["m_diff"].sel(stochastic_model=m).values.tolist()
-                         for m in ds["stochastic_model"].values.tolist()}
-    if "phase_trajectory" in ds:
-        out["phase"] = {
-            "normal_force_n": float(ds["phase_normal_force_n"].values),
-            "damping_ratio": [float(v) for v in ds["phase_damping"].values],
-            "damping_rule": ds.attrs.get("phase_damping_rule", "auto"),
-            "runs": {m: int(np.isfinite(ds["phase_has_cycle"].sel(model=m).values[0]).sum()) for m in models},
-            "save_every": config.save_every,
-            "has_cycle_fraction": {m: [float(np.nanmean(v)) for v in ds["phase_has_cycle"].sel(model=m).values]
-                                   for m in models},
-        }
-    out["warnings"] = warning_counts(warns)
-    out["versions"] = package_versions()
-    out["checkpoint_hash"] = ds.attrs.get("checkpoint_hash") or None
-    return out
+def _risk_entries(ds: xr.Dataset, model: str, risk_levels: Sequence[float], n_forces: int) -> list[list[DMaxRisk]]:
+    """D_max(α) of ``model`` per force and risk level, from the dataset's ``d_max_risk*`` variables."""
+    def at(name: str, i: int, j: int) -> Any:
+        return ds[name].sel(model=model).values[i, j]
+
+    return [[DMaxRisk(risk_level=float(a), value=_none(float(at("d_max_risk", i, j))),
+                      interval=(_none(float(at("d_max_risk_low", i, j))), _none(float(at("d_max_risk_high", i, j)))),
+                      high_open=bool(at("d_max_risk_high_open", i, j)), resolved=bool(at("d_max_risk_resolved", i, j)))
+             for j, a in enumerate(risk_levels)]
+            for i in range(n_forces)]
+
+
+def _phase_summary(ds: xr.Dataset, models: list[str], save_every: int) -> PhaseSummary:
+    """The :class:`PhaseSummary` of the dataset's phase-diagram variables."""
+    return PhaseSummary(
+        normal_force_n=float(ds["phase_normal_force_n"].values),
+        damping_ratio=[float(v) for v in ds["phase_damping"].values],
+        damping_rule=ds.attrs.get("phase_damping_rule", "auto"),
+        runs={m: int(np.isfinite(ds["phase_has_cycle"].sel(model=m).values[0]).sum()) for m in models},
+        save_every=save_every,
+        has_cycle_fraction={m: [float(np.nanmean(v)) for v in ds["phase_has_cycle"].sel(model=m).values]
+                            for m in models},
+    )

@@ -30,7 +30,7 @@ from typing import Any
 
 import numpy.typing as npt
 
-from .common import StudyError
+from .errors import StudyError
 from .store import CheckpointStore
 from .tasks import TaskSpec, execute_task
 

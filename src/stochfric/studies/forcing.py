@@ -12,18 +12,52 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Sequence
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
-from ..io_utils import package_versions
 from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
-from .base import Study, StudyResult, warning_counts
+from .base import Study, StudyResult
 from .config import ForcingConfig, integrator_record
 from .executors import Executor, SweepStats
 from .grids import window_mask
-from .stats import sample_summary, std_ratio_over_cells
+from .stats import RatioEstimate, sample_summary, std_ratio_over_cells
+from .summary import OPTIONAL, StudySummary, Table
 from .tasks import TaskSpec
+
+
+@dataclass(frozen=True, kw_only=True)
+class ForcingSummary(StudySummary):
+    """The forcing study's summary (module docstring).
+
+    Case: ``normal_force_n`` [N], ``damping_ratio`` [-], σ_ζ and σ_ζ,eff [-] at that force; grid:
+    ``forcing_q`` (q = Q/(cL), [-]) with ``forcing_amplitude_n`` (Q [N]) and ``eta`` (η = Ω/ω0, [-]);
+    the integrators.  Per model, tables ``[forcing_q][eta]`` [-]: E[X_gh] and σ(X_gh) after the
+    transient with their bootstrap SEs.  With white and contact, per q (keyed ``f"{q:g}"``):
+    σ_contact/σ_white per η with its 95 % bootstrap interval (``[eta][low, high]``), and its median
+    over η with SE and interval.
+    """
+
+    normal_force_n: float
+    damping_ratio: float
+    forcing_q: list[float]
+    forcing_amplitude_n: list[float]
+    eta: list[float]
+    integrator: str
+    sde_integrator: str
+    integrator_mode: str
+    sigma_zeta: float
+    sigma_zeta_effective: float
+    x_gh_mean: dict[str, Table]
+    x_gh_std: dict[str, Table]
+    x_gh_mean_se: dict[str, Table]
+    x_gh_std_se: dict[str, Table]
+    sigma_ratio: dict[str, list[float]] | None = field(default=None, metadata=OPTIONAL)
+    sigma_ratio_median: dict[str, float | None] | None = field(default=None, metadata=OPTIONAL)
+    sigma_ratio_interval: dict[str, Table] | None = field(default=None, metadata=OPTIONAL)
+    sigma_ratio_median_ci: dict[str, RatioEstimate] | None = field(default=None, metadata=OPTIONAL)
 
 
 class ForcingStudy(Study):
@@ -34,9 +68,8 @@ class ForcingStudy(Study):
     def __init__(self, config: ForcingConfig) -> None:
         super().__init__(config)
         sp = self.setup.preset.study_parameters
-        self.normal_force_n = config.normal_force_n if config.normal_force_n is not None else float(
-            sp["forcing_study_force_n"])
-        self.damping_ratio = config.damping_ratio if config.damping_ratio is not None else float(sp["damping_undamped"])
+        self.normal_force_n = config.normal_force if config.normal_force is not None else sp.forcing_study_force
+        self.damping_ratio = config.damping_ratio if config.damping_ratio is not None else sp.damping_undamped
 
     def axes(self) -> dict[str, Sequence[Any]]:
         return {"model": self.config.models, "forcing_q": self.config.forcing_q}
@@ -47,75 +80,98 @@ class ForcingStudy(Study):
                                                           q * st.preset.stiffness, eta) for eta in self.config.eta])
 
     def assemble(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]], stats: SweepStats,
-                 chash: str | None, executor: Executor | None) -> StudyResult:
-        config, setup, nf = self.config, self.setup, self.normal_force_n
-        models, qs, etas = list(config.models), list(config.forcing_q), np.asarray(config.eta)
-        nm, nq, ne, nr = len(models), len(qs), len(etas), config.runs
+                 chash: str | None, executor: Executor | None) -> StudyResult[ForcingSummary]:
+        config, qs = self.config, list(self.config.forcing_q)
         x_gh = self.stack(tasks, results, "x_gh")
         t_gh = self.stack(tasks, results, "t_gh")
-        inwin = window_mask(t_gh, setup.tau_end, config.stick_window)
+        inwin = window_mask(t_gh, self.setup.tau_end, config.stick_window)
         xw = np.where(inwin, x_gh, np.nan)
-        n_ev = inwin.sum(axis=(-2, -1))
         with np.errstate(invalid="ignore"), warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
             mean = np.nanmean(xw, axis=(-2, -1))
             std = np.nanstd(xw, axis=(-2, -1), ddof=1)
         coords, data, dims5 = self.event_variables({
             "forcing_q": ("forcing_q", np.asarray(qs), {"units": "1", "long_name": "q = Q/(cL)"}),
-            "eta": ("eta", etas, {"units": "1", "long_name": "eta = Omega/omega0"})}, x_gh, t_gh, inwin)
+            "eta": ("eta", np.asarray(config.eta), {"units": "1", "long_name": "eta = Omega/omega0"})},
+            x_gh, t_gh, inwin)
+        se = self.bootstrap_se(xw)
         data.update({
             "x_gh_mean": (dims5[:3], mean, {"units": "1", "long_name": "E[X_gh] after the transient"}),
             "x_gh_std": (dims5[:3], std, {"units": "1", "long_name": "sigma(X_gh) after the transient (ddof 1)"}),
-            "n_events": (dims5[:3], n_ev, {"units": "1"}),
+            "n_events": (dims5[:3], inwin.sum(axis=(-2, -1)), {"units": "1"}),
+            "x_gh_mean_se": (dims5[:3], se[..., 0], {"units": "1", "long_name": "bootstrap SE of E[X_gh]"}),
+            "x_gh_std_se": (dims5[:3], se[..., 1], {"units": "1", "long_name": "bootstrap SE of sigma(X_gh)"}),
         })
-        summary: dict[str, Any] = {
-            **self.summary_head([nf], {
-                "normal_force_n": nf, "damping_ratio": self.damping_ratio, "forcing_q": qs,
-                "forcing_amplitude_n": [q * setup.preset.stiffness for q in qs], "eta": etas.tolist()},
-            **integrator_record(config)),
-            "x_gh_mean": {m: mean[i].tolist() for i, m in enumerate(models)},
-            "x_gh_std": {m: std[i].tolist() for i, m in enumerate(models)},
-        }
-        summary["sigma_zeta"] = summary["sigma_zeta"][0]  # one normal force
-        summary["sigma_zeta_effective"] = summary["sigma_zeta_effective"][0]
-        # Monte Carlo uncertainty of E and σ per cell: bootstrap over runs (the run is the unit)
+        ratio = self.sigma_ratio(xw, std)
+        if ratio is not None:
+            boot = {"units": "1", "long_name": "95 % bootstrap"}
+            data["sigma_ratio"] = (("forcing_q", "eta"), ratio["value"],
+                                   {"units": "1", "long_name": "sigma_contact / sigma_white"})
+            data["sigma_ratio_low"] = (("forcing_q", "eta"), ratio["interval"][..., 0], boot)
+            data["sigma_ratio_high"] = (("forcing_q", "eta"), ratio["interval"][..., 1], dict(boot))
+        ds = self.dataset(data, coords, executor, chash, stick_window=config.stick_window, **integrator_record(config))
+        summary = self.summarise(mean, std, se, ratio, self.warnings(tasks, results))
+        return StudyResult(self.kind, ds, summary, stats)
+
+    def bootstrap_se(self, xw: npt.NDArray[np.float64]) -> npt.NDArray[np.float64]:
+        """Monte Carlo uncertainty of E and σ per cell ``[model, q, η, (E, σ)]``: bootstrap over runs
+        (the run is the unit; the deterministic model's one run)."""
+        nm, nq, ne = xw.shape[:3]
         se = np.full((nm, nq, ne, 2), np.nan)
         for mi, qi, ei in np.ndindex(nm, nq, ne):
-            runs = 1 if models[mi] == "deterministic" else nr
-            g = child_generator(config.seed, BOOTSTRAP_KEY, mi, qi, ei)
+            runs = 1 if self.config.models[mi] == "deterministic" else self.config.runs
+            g = child_generator(self.config.seed, BOOTSTRAP_KEY, mi, qi, ei)
             sm = sample_summary([xw[mi, qi, ei, r] for r in range(runs)], n_boot=200, rng=g)
             se[mi, qi, ei] = [sm.se_mean_boot, sm.se_std_boot]
-        data["x_gh_mean_se"] = (dims5[:3], se[..., 0], {"units": "1", "long_name": "bootstrap SE of E[X_gh]"})
-        data["x_gh_std_se"] = (dims5[:3], se[..., 1], {"units": "1", "long_name": "bootstrap SE of sigma(X_gh)"})
-        summary["x_gh_mean_se"] = {m: se[i, ..., 0].tolist() for i, m in enumerate(models)}
-        summary["x_gh_std_se"] = {m: se[i, ..., 1].tolist() for i, m in enumerate(models)}
-        if "white" in models and "contact" in models:
-            with np.errstate(invalid="ignore", divide="ignore"):
-                ratio = std[models.index("contact")] / std[models.index("white")]
-            data["sigma_ratio"] = (("forcing_q", "eta"), ratio,
-                                   {"units": "1", "long_name": "sigma_contact / sigma_white"})
-            summary["sigma_ratio"] = {f"{q:g}": ratio[i].tolist() for i, q in enumerate(qs)}
-            summary["sigma_ratio_median"] = {f"{q:g}": float(np.nanmedian(ratio[i])) if np.isfinite(ratio[i]).any()
-                                             else None for i, q in enumerate(qs)}
-            ci, cw = models.index("contact"), models.index("white")
-            lo_hi = np.full((nq, ne, 2), np.nan)
-            med_ci: dict[str, dict[str, Any]] = {}
-            for qi, q in enumerate(qs):
-                g = child_generator(config.seed, INTERVAL_KEY, qi)
-                per, med = std_ratio_over_cells([[xw[ci, qi, e, r] for r in range(nr)] for e in range(ne)],
-                                                [[xw[cw, qi, e, r] for r in range(nr)] for e in range(ne)], rng=g)
-                lo_hi[qi] = [[p.low, p.high] for p in per]
-                med_ci[f"{q:g}"] = med.to_dict()
-            boot = {"units": "1", "long_name": "95 % bootstrap"}
-            data["sigma_ratio_low"] = (("forcing_q", "eta"), lo_hi[..., 0], boot)
-            data["sigma_ratio_high"] = (("forcing_q", "eta"), lo_hi[..., 1], dict(boot))
-            summary["sigma_ratio_interval"] = {f"{q:g}": lo_hi[i].tolist() for i, q in enumerate(qs)}
-            # the median over η with its bootstrap SE and 95 % interval (all η resampled together)
-            summary["sigma_ratio_median_ci"] = med_ci
-        ds = self.dataset(data, coords, executor, chash, stick_window=config.stick_window, **integrator_record(config))
-        summary["warnings"] = warning_counts(self.warnings(tasks, results))
-        summary["versions"] = package_versions()
-        return StudyResult(self.kind, ds, summary, stats)
+        return se
+
+    def sigma_ratio(self, xw: npt.NDArray[np.float64], std: npt.NDArray[np.float64]) -> dict[str, Any] | None:
+        """σ_contact/σ_white per (q, η) (``value``), its 95 % bootstrap interval (``interval``,
+        ``[q, η, (low, high)]``) and per q its median over η (``median``, all η resampled together);
+        ``None`` without both models."""
+        models, nr = list(self.config.models), self.config.runs
+        if not ("white" in models and "contact" in models):
+            return None
+        ci, cw = models.index("contact"), models.index("white")
+        nq, ne = xw.shape[1:3]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            value = std[ci] / std[cw]
+        lo_hi = np.full((nq, ne, 2), np.nan)
+        medians: list[RatioEstimate] = []
+        for qi in range(nq):
+            g = child_generator(self.config.seed, INTERVAL_KEY, qi)
+            per, med = std_ratio_over_cells([[xw[ci, qi, e, r] for r in range(nr)] for e in range(ne)],
+                                            [[xw[cw, qi, e, r] for r in range(nr)] for e in range(ne)], rng=g)
+            lo_hi[qi] = [[p.low, p.high] for p in per]
+            medians.append(med)
+        return {"value": value, "interval": lo_hi, "median": medians}
+
+    def summarise(self, mean: npt.NDArray[np.float64], std: npt.NDArray[np.float64], se: npt.NDArray[np.float64],
+                  ratio: dict[str, Any] | None, warns: list[dict[str, str]]) -> ForcingSummary:
+        """The :class:`ForcingSummary` of the study's statistics."""
+        config, nf = self.config, self.normal_force_n
+        models, qs = list(config.models), list(config.forcing_q)
+        head, rec = self.summary_head([nf], warns), integrator_record(config)
+        keys = [f"{q:g}" for q in qs]
+        return ForcingSummary(
+            **{**head, "sigma_zeta": head["sigma_zeta"][0],  # one normal force
+               "sigma_zeta_effective": head["sigma_zeta_effective"][0]},
+            normal_force_n=nf, damping_ratio=self.damping_ratio, forcing_q=qs,
+            forcing_amplitude_n=[q * self.setup.preset.stiffness for q in qs], eta=list(config.eta),
+            integrator=rec["integrator"], sde_integrator=rec["sde_integrator"],
+            integrator_mode=rec["integrator_mode"],
+            x_gh_mean={m: mean[i].tolist() for i, m in enumerate(models)},
+            x_gh_std={m: std[i].tolist() for i, m in enumerate(models)},
+            x_gh_mean_se={m: se[i, ..., 0].tolist() for i, m in enumerate(models)},
+            x_gh_std_se={m: se[i, ..., 1].tolist() for i, m in enumerate(models)},
+            sigma_ratio=None if ratio is None else {k: ratio["value"][i].tolist() for i, k in enumerate(keys)},
+            sigma_ratio_median=None if ratio is None else {
+                k: float(np.nanmedian(ratio["value"][i])) if np.isfinite(ratio["value"][i]).any() else None
+                for i, k in enumerate(keys)},
+            sigma_ratio_interval=None if ratio is None else {k: ratio["interval"][i].tolist()
+                                                              for i, k in enumerate(keys)},
+            sigma_ratio_median_ci=None if ratio is None else dict(zip(keys, ratio["median"], strict=True)),
+        )
 
 
 #: Run the forcing study (module docstring); ``executor``, ``checkpoint``, ``progress`` as :meth:`Study.run`.

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from ..oscillator.case import CaseError as StudyError
+from .errors import StudyError
 
 #: Default stick window: a run "has a stick-slip cycle" when it has at least one slip→stick
 #: transition with τ in (STICK_WINDOW · τ_end, τ_end] (after the transient, method §7.9).

@@ -61,17 +61,19 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from ..io_utils import package_versions
 from ..oscillator.case import MU0
-from .base import Study, StudyResult, warning_counts
+from .base import Study, StudyResult
 from .config import LyapunovConfig, integrator_record
+from .errors import StudyError
 from .executors import Executor, SweepStats
-from .tasks import StudyError, TaskSpec
+from .summary import StudySummary
+from .tasks import TaskSpec
 
 STATUS = ("ok", "diverging", "merged", "too-few-transitions", "nonlinear")
 #: Fewest transitions in the linear regime for a growth rate.
@@ -166,13 +168,6 @@ def diverging_rate(w: npt.ArrayLike, n_linear: int) -> tuple[float, float, bool]
     return float(slope), se, True
 
 
-def _significant(rate: npt.NDArray[np.float64], se: npt.NDArray[np.float64]) -> dict[str, int]:
-    ok = np.isfinite(rate)
-    se0 = np.where(np.isfinite(se), se, 0.0)
-    return {"defined": int(ok.sum()), "positive": int(np.sum(ok & (rate - 2 * se0 > 0))),
-            "negative": int(np.sum(ok & (rate + 2 * se0 < 0)))}
-
-
 def is_linear(d: npt.ArrayLike, d_twin: npt.ArrayLike, tolerance: float) -> bool:
     """True when the twin run's signed X_gh differences (perturbation 2δ) are twice the pair's.
 
@@ -191,6 +186,118 @@ def is_linear(d: npt.ArrayLike, d_twin: npt.ArrayLike, tolerance: float) -> bool
     return bool(np.all(np.abs(b - 2.0 * a) <= tolerance * scale))
 
 
+def pair_rate(w: npt.ArrayLike, d: npt.ArrayLike, d_twin: npt.ArrayLike, tolerance: float,
+              linear: bool) -> tuple[float, float, str, int]:
+    """``(rate, se, status, K)`` of one run pair: :func:`lyapunov_rate` (``linear``: the twin check,
+    :func:`is_linear`); a pair that fails the check after growing by :data:`DIVERGING_GROWTH` within its
+    linear prefix is ``diverging``, its slope up to there a lower bound (:func:`diverging_rate`)."""
+    rate, se, status, k = lyapunov_rate(w, linear)
+    if status == "nonlinear":
+        n_pre = linear_prefix(d, d_twin, tolerance)
+        lb, lb_se, div = diverging_rate(w, n_pre)
+        if div:
+            return lb, lb_se, "diverging", n_pre
+    return rate, se, status, k
+
+
+def ensemble_rate(rates: npt.NDArray[np.float64], statuses: npt.NDArray[Any]) -> tuple[float, float, str, int]:
+    """``(mean, se, status, pairs ok or diverging)`` of a cell's R > 1 run pairs: the mean exponent with
+    SE = s/√R when every pair is ``ok`` or ``diverging`` (then a lower bound, status ``diverging``, if one
+    is); else NaN with the first undefined pair's reason (one undefined pair makes the mean undefined: no
+    selection bias)."""
+    runs = len(rates)
+    if np.all((statuses == "ok") | (statuses == "diverging")):
+        return (float(np.mean(rates)), float(np.std(rates, ddof=1) / math.sqrt(runs)),
+                "ok" if np.all(statuses == "ok") else "diverging", runs)
+    bad = [s_ for s_ in ("merged", "nonlinear", "too-few-transitions") if np.any(statuses == s_)]
+    return math.nan, math.nan, bad[0], int(np.sum(statuses == "ok"))
+
+
+@dataclass(frozen=True)
+class Significance:
+    """Cells of one model whose exponent is defined, positive by more than 2 SE, negative by more than 2 SE."""
+
+    defined: int
+    positive: int
+    negative: int
+
+
+def significance(rate: npt.NDArray[np.float64], se: npt.NDArray[np.float64]) -> Significance:
+    """:class:`Significance` of the exponents ``rate`` with standard errors ``se`` (NaN SE counts as 0)."""
+    ok = np.isfinite(rate)
+    se0 = np.where(np.isfinite(se), se, 0.0)
+    return Significance(defined=int(ok.sum()), positive=int(np.sum(ok & (rate - 2 * se0 > 0))),
+                        negative=int(np.sum(ok & (rate + 2 * se0 < 0))))
+
+
+#: Per model, a value per cell ``[forcing_q][normal_force_n][eta]``.
+Cells = list[list[list[float]]]
+
+
+@dataclass(frozen=True, kw_only=True)
+class LyapunovSummary(StudySummary):
+    """The Lyapunov study's summary (module docstring).
+
+    Grid: ``normal_force_n`` [N], ``forcing_q`` (q = Q/(cL), [-]), ``eta`` (η = Ω/ω0, [-]) at
+    ``damping_ratio`` [-]; σ_ζ, σ_ζ,eff [-] per force; ``perturbation`` δ (dimensionless x = y/L),
+    ``linearity_tolerance`` of the twin check, the integrators.  Per model and cell
+    ``[forcing_q][normal_force_n][eta]``: ``lyapunov`` (exponent per slip→stick transition, [-]) with its
+    SE and ``status``, whether it is a lower bound (``diverging``, growth ≥ ``diverging_growth``), K of
+    (4.43)/(4.44), and (4.43)/(4.44) as printed (``separation_index_443``) with its status.  Per model:
+    cells per status, :class:`Significance` and the fraction of defined cells positive beyond 2 SE.
+    """
+
+    normal_force_n: list[float]
+    forcing_q: list[float]
+    eta: list[float]
+    damping_ratio: float
+    sigma_zeta: list[float]
+    sigma_zeta_effective: list[float]
+    perturbation: float
+    linearity_tolerance: float
+    integrator: str
+    sde_integrator: str
+    integrator_mode: str
+    lyapunov: dict[str, Cells]
+    lyapunov_se: dict[str, Cells]
+    status: dict[str, list[list[list[str]]]]
+    lyapunov_is_lower_bound: dict[str, list[list[list[bool]]]]
+    diverging_growth: float
+    n_transitions: dict[str, list[list[list[int]]]]
+    status_counts: dict[str, dict[str, int]]
+    significance: dict[str, Significance]
+    positive_fraction: dict[str, float | None]
+    separation_index_443: dict[str, Cells]
+    separation_index_status: dict[str, list[list[list[str]]]]
+
+
+@dataclass(frozen=True)
+class _Exponents:
+    """The analysis of every cell ``[model, q, N, η]`` (and run pair): the exponent per transition
+    (``rate``…), and (4.43)/(4.44) as printed (``separation``…)."""
+
+    separation: npt.NDArray[np.float64]
+    separation_status: npt.NDArray[Any]
+    n_transitions: npt.NDArray[np.int64]
+    separation_runs: npt.NDArray[np.float64]
+    rate: npt.NDArray[np.float64]
+    rate_se: npt.NDArray[np.float64]
+    rate_status: npt.NDArray[Any]
+    n_ok: npt.NDArray[np.int64]
+    rate_runs: npt.NDArray[np.float64]
+    rate_status_runs: npt.NDArray[Any]
+
+    @classmethod
+    def empty(cls, shape: tuple[int, ...], runs: int) -> _Exponents:
+        """NaN values, empty statuses, zero counts."""
+        return cls(separation=np.full(shape, np.nan), separation_status=np.full(shape, "", dtype=object),
+                   n_transitions=np.zeros(shape, dtype=np.int64), separation_runs=np.full((*shape, runs), np.nan),
+                   rate=np.full(shape, np.nan), rate_se=np.full(shape, np.nan),
+                   rate_status=np.full(shape, "", dtype=object), n_ok=np.zeros(shape, dtype=np.int64),
+                   rate_runs=np.full((*shape, runs), np.nan),
+                   rate_status_runs=np.full((*shape, runs), "", dtype=object))
+
+
 class LyapunovStudy(Study):
     """One task per (model, q, N): parameter sets (η0, η0, η0, η1, …) = (ref, pert δ, twin 2δ)."""
 
@@ -200,8 +307,8 @@ class LyapunovStudy(Study):
     def __init__(self, config: LyapunovConfig) -> None:
         super().__init__(config)
         sp = self.setup.preset.study_parameters
-        self.forces = config.normal_force_n or tuple(float(v) for v in sp["normal_force_study_forces_n"])
-        self.damping_ratio = config.damping_ratio if config.damping_ratio is not None else float(sp["damping_undamped"])
+        self.forces = config.normal_forces or sp.normal_force_study_forces
+        self.damping_ratio = config.damping_ratio if config.damping_ratio is not None else sp.damping_undamped
         self._check_perturbation()
 
     def _check_perturbation(self) -> None:
@@ -233,125 +340,112 @@ class LyapunovStudy(Study):
         return self.task_for(index, point, params, x0=tuple(x0s), common_random_numbers=True)
 
     def assemble(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]], stats: SweepStats,
-                 chash: str | None, executor: Executor | None) -> StudyResult:
-        config, forces = self.config, self.forces
-        models, qs, etas = list(config.models), list(config.forcing_q), np.asarray(config.eta)
-        nm, nq, nn, ne, nr = len(models), len(qs), len(forces), len(etas), config.runs
+                 chash: str | None, executor: Executor | None) -> StudyResult[LyapunovSummary]:
+        config = self.config
         x = self.stack(tasks, results, "x_gh")  # [model, q, N, 3 eta, run, event]
         ref, pert, twin = x[:, :, :, 0::3], x[:, :, :, 1::3], x[:, :, :, 2::3]
         w = np.abs(ref - pert)
         dd = pert - ref  # signed differences of the pair and of the twin
         dd2 = twin - ref
-        nev = x.shape[-1]
-        warns = self.warnings(tasks, results)
-        shape = (nm, nq, nn, ne)
-        sep443 = np.full(shape, np.nan)  # (4.43)/(4.44) as printed, whether linear or not
-        status = np.full(shape, "", dtype=object)
-        kk = np.zeros(shape, dtype=np.int64)
-        lam_runs = np.full((*shape, nr), np.nan)
-        rate = np.full(shape, np.nan)
-        rate_se = np.full(shape, np.nan)
-        rate_status = np.full(shape, "", dtype=object)
-        n_lin = np.zeros(shape, dtype=np.int64)
-        rate_runs = np.full((*shape, nr), np.nan)
-        rate_status_runs = np.full((*shape, nr), "", dtype=object)
-        tol = config.linearity_tolerance
-        for idx in np.ndindex(*shape):
-            mi = idx[0]
-            runs = 1 if models[mi] == "deterministic" else nr
-            ww = w[idx][:runs]
-            linear = np.array([is_linear(dd[idx][r], dd2[idx][r], tol) for r in range(runs)])
-            for r in range(runs):
-                lam_runs[(*idx, r)], _, _ = lyapunov_exponent(ww[r])
-                rate_runs[(*idx, r)], se_r, rate_status_runs[(*idx, r)], k_fit = lyapunov_rate(ww[r], bool(linear[r]))
-                if rate_status_runs[(*idx, r)] == "nonlinear":
-                    # grown by orders of magnitude before the twin check failed: diverging, the slope
-                    # up to there a lower bound (never "undefined")
-                    n_pre = linear_prefix(dd[idx][r], dd2[idx][r], tol)
-                    lb, lb_se, div = diverging_rate(ww[r], n_pre)
-                    if div:
-                        rate_runs[(*idx, r)], se_r, rate_status_runs[(*idx, r)], k_fit = lb, lb_se, "diverging", n_pre
-                if runs == 1:
-                    rate_se[idx], n_lin[idx] = se_r, k_fit
-            # E[W(i)] over the runs, up to the smallest number of transitions
-            counts = np.sum(np.isfinite(ww), axis=-1)
-            kmin = int(counts.min()) if counts.size else 0
-            ew = ww[:, :kmin].mean(axis=0) if kmin else np.zeros(0)
-            sep443[idx], status[idx], kk[idx] = lyapunov_exponent(ew)
-            if status[idx] == "ok" and not linear.all():
-                status[idx] = "nonlinear"  # w not ∝ δ: the printed value is a function of δ here
-            rs = rate_status_runs[idx][:runs]
-            if runs == 1:
-                rate[idx], rate_status[idx] = rate_runs[(*idx, 0)], rs[0]
-            elif np.all((rs == "ok") | (rs == "diverging")):
-                # a diverging pair's value is a lower bound, so is the mean of the cell then
-                vals = rate_runs[idx][:runs]
-                rate[idx], rate_status[idx] = float(np.mean(vals)), ("ok" if np.all(rs == "ok") else "diverging")
-                rate_se[idx] = float(np.std(vals, ddof=1) / math.sqrt(runs))
-                n_lin[idx] = runs
-            else:  # one undefined pair makes the ensemble mean undefined (no selection bias)
-                bad = [s_ for s_ in ("merged", "nonlinear", "too-few-transitions") if np.any(rs == s_)]
-                rate_status[idx] = bad[0]
-                n_lin[idx] = int(np.sum(rs == "ok"))
+        ex = _Exponents.empty(w.shape[:4], config.runs)
+        for idx in np.ndindex(*w.shape[:4]):
+            runs = 1 if config.models[idx[0]] == "deterministic" else config.runs
+            self.analyse_cell(ex, idx, w[idx][:runs], dd[idx], dd2[idx])
         coords: dict[str, Any] = {
-            "model": models,
-            "forcing_q": ("forcing_q", np.asarray(qs), {"units": "1"}),
-            "normal_force_n": ("normal_force_n", np.asarray(forces, float), {"units": "N"}),
-            "eta": ("eta", etas, {"units": "1"}),
-            "run": np.arange(nr),
-            "event": np.arange(nev),
+            "model": list(config.models),
+            "forcing_q": ("forcing_q", np.asarray(config.forcing_q), {"units": "1"}),
+            "normal_force_n": ("normal_force_n", np.asarray(self.forces, float), {"units": "N"}),
+            "eta": ("eta", np.asarray(config.eta), {"units": "1"}),
+            "run": np.arange(config.runs),
+            "event": np.arange(x.shape[-1]),
         }
-        d4 = ("model", "forcing_q", "normal_force_n", "eta")
-        ds = self.dataset({
-            "w": ((*d4, "run", "event"), w, {"units": "1", "long_name": "w(i) = |X_gh,ref(i) - X_gh,pert(i)|"}),
-            "d_pair": ((*d4, "run", "event"), dd, {"units": "1", "long_name": "X_gh,pert - X_gh,ref (delta)"}),
-            "d_twin": ((*d4, "run", "event"), dd2, {"units": "1", "long_name": "X_gh,twin - X_gh,ref (2 delta)"}),
-            "lyapunov": (d4, rate, {"units": "1", "long_name": "largest Lyapunov exponent per slip->stick transition: "
-                                    "slope of ln w(i), i = 1..K (mean over run pairs); a lower bound where "
-                                    "status is diverging; NaN unless status ok or diverging"}),
-            "lyapunov_is_lower_bound": (d4, (rate_status == "diverging").astype(np.int8),
-                                        {"units": "1", "long_name": "1 where lyapunov is a lower bound (diverging)"}),
-            "lyapunov_se": (d4, rate_se, {"units": "1", "long_name": "standard error of lyapunov"}),
-            "status": (d4, rate_status.astype(str), {"long_name": "ok | diverging | merged | too-few-transitions | "
-                                                     "nonlinear"}),
-            "n_transitions": (d4, kk, {"units": "1", "long_name": "K used in (4.43)/(4.44)"}),
-            "n_ok_pairs": (d4, n_lin, {"units": "1", "long_name": "deterministic: K of the fit; stochastic: pairs ok "
-                                       "or diverging"}),
-            "lyapunov_runs": ((*d4, "run"), rate_runs, {"units": "1", "long_name": "exponent of each run pair"}),
-            "status_runs": ((*d4, "run"), rate_status_runs.astype(str), {}),
-            "separation_index_443": (d4, sep443, {"units": "1", "long_name": "(4.43)/(4.44) evaluated as printed at "
-                                                  "this delta, also where the pair is nonlinear (then delta-dependent; "
-                                                  "not a Lyapunov exponent)"}),
-            "separation_index_status": (d4, status.astype(str), {"long_name": "ok | merged | too-few-transitions | "
-                                                                "nonlinear (twin check failed)"}),
-            "separation_index_443_runs": ((*d4, "run"), lam_runs, {"units": "1"}),
-        }, coords, executor, chash, perturbation=config.perturbation, linearity_tolerance=tol,
-            **integrator_record(config))
-        sig = {m: _significant(rate[i], rate_se[i]) for i, m in enumerate(models)}
-        summary: dict[str, Any] = {
-            **self.summary_head(forces, {"normal_force_n": list(forces), "forcing_q": qs, "eta": etas.tolist(),
-                                         "damping_ratio": self.damping_ratio},
-                                perturbation=config.perturbation, linearity_tolerance=tol,
-                                **integrator_record(config)),
-            "lyapunov": {m: rate[i].tolist() for i, m in enumerate(models)},
-            "lyapunov_se": {m: rate_se[i].tolist() for i, m in enumerate(models)},
-            "status": {m: rate_status[i].tolist() for i, m in enumerate(models)},
-            "lyapunov_is_lower_bound": {m: (rate_status[i] == "diverging").tolist() for i, m in enumerate(models)},
-            "diverging_growth": DIVERGING_GROWTH,
-            "n_transitions": {m: kk[i].tolist() for i, m in enumerate(models)},
-            "status_counts": {m: {s_: int(np.sum(rate_status[i] == s_)) for s_ in STATUS}
-                              for i, m in enumerate(models)},
+        ds = self.dataset(_variables(w, dd, dd2, ex), coords, executor, chash, perturbation=config.perturbation,
+                          linearity_tolerance=config.linearity_tolerance, **integrator_record(config))
+        return StudyResult(self.kind, ds, self.summarise(ex, self.warnings(tasks, results)), stats)
+
+    def analyse_cell(self, ex: _Exponents, idx: tuple[int, ...], w: npt.NDArray[np.float64],
+                     d: npt.NDArray[np.float64], d_twin: npt.NDArray[np.float64]) -> None:
+        """Fill ``ex`` at the cell ``idx`` from its run pairs' separations ``w`` (the runs done) and signed
+        differences ``d`` (δ), ``d_twin`` (2δ): per pair :func:`pair_rate`, per cell :func:`ensemble_rate`
+        (one pair: its own) and (4.43)/(4.44) of E[W(i)] up to the smallest K of the runs."""
+        tol, runs = self.config.linearity_tolerance, len(w)
+        linear = np.array([is_linear(d[r], d_twin[r], tol) for r in range(runs)])
+        for r in range(runs):
+            ex.separation_runs[(*idx, r)], _, _ = lyapunov_exponent(w[r])
+            rate, se, status, k_fit = pair_rate(w[r], d[r], d_twin[r], tol, bool(linear[r]))
+            ex.rate_runs[(*idx, r)], ex.rate_status_runs[(*idx, r)] = rate, status
+            if runs == 1:
+                ex.rate_se[idx], ex.n_ok[idx] = se, k_fit
+        counts = np.sum(np.isfinite(w), axis=-1)
+        kmin = int(counts.min()) if counts.size else 0
+        ew = w[:, :kmin].mean(axis=0) if kmin else np.zeros(0)
+        ex.separation[idx], ex.separation_status[idx], ex.n_transitions[idx] = lyapunov_exponent(ew)
+        if ex.separation_status[idx] == "ok" and not linear.all():
+            ex.separation_status[idx] = "nonlinear"  # w not ∝ δ: the printed value is a function of δ here
+        rs = ex.rate_status_runs[idx][:runs]
+        if runs == 1:
+            ex.rate[idx], ex.rate_status[idx] = ex.rate_runs[(*idx, 0)], rs[0]
+        else:
+            ex.rate[idx], ex.rate_se[idx], ex.rate_status[idx], ex.n_ok[idx] = ensemble_rate(
+                ex.rate_runs[idx][:runs], rs)
+
+    def summarise(self, ex: _Exponents, warns: list[dict[str, str]]) -> LyapunovSummary:
+        """The :class:`LyapunovSummary` of the analysed cells."""
+        config, models, rec = self.config, list(self.config.models), integrator_record(self.config)
+        sig = {m: significance(ex.rate[i], ex.rate_se[i]) for i, m in enumerate(models)}
+
+        def per_model(a: npt.NDArray[Any]) -> dict[str, Any]:
+            return {m: a[i].tolist() for i, m in enumerate(models)}
+
+        return LyapunovSummary(
+            **self.summary_head(self.forces, warns),
+            normal_force_n=list(self.forces), forcing_q=list(config.forcing_q), eta=list(config.eta),
+            damping_ratio=self.damping_ratio, perturbation=config.perturbation,
+            linearity_tolerance=config.linearity_tolerance, integrator=rec["integrator"],
+            sde_integrator=rec["sde_integrator"], integrator_mode=rec["integrator_mode"],
+            lyapunov=per_model(ex.rate), lyapunov_se=per_model(ex.rate_se), status=per_model(ex.rate_status),
+            lyapunov_is_lower_bound=per_model(ex.rate_status == "diverging"),
+            diverging_growth=DIVERGING_GROWTH, n_transitions=per_model(ex.n_transitions),
+            status_counts={m: {s_: int(np.sum(ex.rate_status[i] == s_)) for s_ in STATUS}
+                           for i, m in enumerate(models)},
             # cells whose exponent is positive (negative) by more than 2 standard errors, of the defined ones
-            "significance": sig,
-            "positive_fraction": {m: (sig[m]["positive"] / sig[m]["defined"]) if sig[m]["defined"] else None
-                                  for m in models},
-            "separation_index_443": {m: sep443[i].tolist() for i, m in enumerate(models)},
-            "separation_index_status": {m: status[i].tolist() for i, m in enumerate(models)},
-            "warnings": warning_counts(warns),
-            "versions": package_versions(),
-        }
-        return StudyResult(self.kind, ds, summary, stats)
+            significance=sig,
+            positive_fraction={m: (sig[m].positive / sig[m].defined) if sig[m].defined else None for m in models},
+            separation_index_443=per_model(ex.separation), separation_index_status=per_model(ex.separation_status),
+        )
 
 
 #: Run the lyapunov study (module docstring); ``executor``, ``checkpoint``, ``progress`` as :meth:`Study.run`.
 lyapunov_study = LyapunovStudy.study
+
+_D4 = ("model", "forcing_q", "normal_force_n", "eta")
+
+
+def _variables(w: npt.NDArray[np.float64], dd: npt.NDArray[np.float64], dd2: npt.NDArray[np.float64],
+               ex: _Exponents) -> dict[str, Any]:
+    """The dataset variables of the separations and of the analysed cells."""
+    d4, d6 = _D4, (*_D4, "run", "event")
+    return {
+        "w": (d6, w, {"units": "1", "long_name": "w(i) = |X_gh,ref(i) - X_gh,pert(i)|"}),
+        "d_pair": (d6, dd, {"units": "1", "long_name": "X_gh,pert - X_gh,ref (delta)"}),
+        "d_twin": (d6, dd2, {"units": "1", "long_name": "X_gh,twin - X_gh,ref (2 delta)"}),
+        "lyapunov": (d4, ex.rate, {"units": "1", "long_name": "largest Lyapunov exponent per slip->stick transition: "
+                                   "slope of ln w(i), i = 1..K (mean over run pairs); a lower bound where "
+                                   "status is diverging; NaN unless status ok or diverging"}),
+        "lyapunov_is_lower_bound": (d4, (ex.rate_status == "diverging").astype(np.int8),
+                                    {"units": "1", "long_name": "1 where lyapunov is a lower bound (diverging)"}),
+        "lyapunov_se": (d4, ex.rate_se, {"units": "1", "long_name": "standard error of lyapunov"}),
+        "status": (d4, ex.rate_status.astype(str), {"long_name": "ok | diverging | merged | too-few-transitions | "
+                                                    "nonlinear"}),
+        "n_transitions": (d4, ex.n_transitions, {"units": "1", "long_name": "K used in (4.43)/(4.44)"}),
+        "n_ok_pairs": (d4, ex.n_ok, {"units": "1", "long_name": "deterministic: K of the fit; stochastic: pairs ok "
+                                     "or diverging"}),
+        "lyapunov_runs": ((*d4, "run"), ex.rate_runs, {"units": "1", "long_name": "exponent of each run pair"}),
+        "status_runs": ((*d4, "run"), ex.rate_status_runs.astype(str), {}),
+        "separation_index_443": (d4, ex.separation, {"units": "1", "long_name": "(4.43)/(4.44) evaluated as printed "
+                                                     "at this delta, also where the pair is nonlinear (then "
+                                                     "delta-dependent; not a Lyapunov exponent)"}),
+        "separation_index_status": (d4, ex.separation_status.astype(str), {
+            "long_name": "ok | merged | too-few-transitions | nonlinear (twin check failed)"}),
+        "separation_index_443_runs": ((*d4, "run"), ex.separation_runs, {"units": "1"}),
+    }

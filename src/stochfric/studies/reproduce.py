@@ -12,55 +12,46 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
+from ..oscillator.presets import PresetName
 from ..progress import StagedProgress
 from .base import StudyResult
 from .chapter3 import chapter3_analysis
 from .config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
-from .damping import damping_study
 from .executors import Executor
-from .forcing import forcing_study
 from .grids import parse_grid
-from .lyapunov import lyapunov_study
-from .normal_force import normal_force_study
-
-STUDIES: dict[str, Callable[..., StudyResult]] = {
-    "damping": damping_study,
-    "forcing": forcing_study,
-    "lyapunov": lyapunov_study,
-    "normal-force": normal_force_study,
-}
+from .kinds import study_kind
 
 _DAMPING_FORCES = {"brake": (1800.0, 2800.0, 3800.0, 4800.0, 5600.0, 6800.0, 8000.0),
                    "sheet": (400.0, 700.0, 1000.0, 1200.0, 1400.0, 1700.0, 2000.0)}
 _LYAP_FORCES = {"brake": (2000.0, 4000.0, 8000.0), "sheet": (500.0, 1100.0, 1750.0)}
 
 
-def run_study(config: Any, **kwargs: Any) -> StudyResult:
-    """Dispatch a config to its study function."""
-    return STUDIES[config.kind](config, **kwargs)
+def run_study(config: Any, **kwargs: Any) -> StudyResult[Any]:
+    """Run the study of ``config`` (its kind's study function, :mod:`~stochfric.studies.kinds`)."""
+    return study_kind(config.kind).run(config, **kwargs)
 
 
 def plan(quick: bool, seed: int = 2013) -> list[Any]:
     """The study configs of ``reproduce`` (both presets)."""
     out: list[Any] = []
     g = parse_grid
-    for pre in ("brake", "sheet"):
+    for pre in PresetName:
         forces = _DAMPING_FORCES[pre]
         if quick:
             out += [
                 NormalForceConfig(preset=pre, runs=10, seed=seed, phase_runs=3),
                 # the lowest, the thesis's phase-diagram force (brake 5600 N, sheet 1400 N) and the highest
-                DampingConfig(preset=pre, normal_force_n=(forces[0], forces[4], forces[-1]),
-                              damping_ratio=g("0.05:0.25:21"), runs=5, seed=seed),
+                DampingConfig(preset=pre, normal_forces=(forces[0], forces[4], forces[-1]),
+                              damping_ratios=g("0.05:0.25:21"), runs=5, seed=seed),
                 ForcingConfig(preset=pre, eta=g("0:3:16"), runs=5, seed=seed),
-                LyapunovConfig(preset=pre, normal_force_n=_LYAP_FORCES[pre][1:2], eta=g("0.2:3:8"), runs=4, seed=seed),
+                LyapunovConfig(preset=pre, normal_forces=_LYAP_FORCES[pre][1:2], eta=g("0.2:3:8"), runs=4, seed=seed),
             ]
         else:
             out += [
                 NormalForceConfig(preset=pre, runs=30, seed=seed),
-                DampingConfig(preset=pre, normal_force_n=forces, damping_ratio=g("0.05:0.25:41"), runs=10, seed=seed),
+                DampingConfig(preset=pre, normal_forces=forces, damping_ratios=g("0.05:0.25:41"), runs=10, seed=seed),
                 ForcingConfig(preset=pre, eta=g("0:3:61"), runs=10, seed=seed),
-                LyapunovConfig(preset=pre, normal_force_n=_LYAP_FORCES[pre], eta=g("0.1:3:30"), runs=10, seed=seed),
+                LyapunovConfig(preset=pre, normal_forces=_LYAP_FORCES[pre], eta=g("0.1:3:30"), runs=10, seed=seed),
             ]
     return out
 
@@ -74,8 +65,8 @@ def reproduce(
     checkpoint: str | Path | None = None,
     progress: StagedProgress | None = None,
     report: Callable[..., Any] | None = None,
-    study_done: Callable[[StudyResult], None] | None = None,
-) -> tuple[list[StudyResult], dict[str, float]]:
+    study_done: Callable[[StudyResult[Any]], None] | None = None,
+) -> tuple[list[StudyResult[Any]], dict[str, float]]:
     """Run :func:`plan`, save every result under ``out/<preset>/`` and, with ``report``, write the report.
 
     ``report(results, out, title=…, chapter3=…)`` renders the results and the chapter-3 analysis of
@@ -89,7 +80,7 @@ def reproduce(
     """
     base = Path(out)
     ck = str(checkpoint) if checkpoint is not None else str(base / "checkpoints")
-    results: list[StudyResult] = []
+    results: list[StudyResult[Any]] = []
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
     for cfg in plan(quick, seed):

@@ -18,8 +18,8 @@ Layout (every table optional except ``[[study]]``)::
 
     [[study]]
     kind = "damping"         # damping | forcing | lyapunov | normal-force
-    normal_force_n = [1800, 5600, 8000]
-    damping_ratio = "0.05:0.25:41"
+    normal_forces = [1800, 5600, 8000]
+    damping_ratios = "0.05:0.25:41"
 
 Errors name the place in the file (``study[0].damping_ratio: …``) and what is allowed.
 """
@@ -33,8 +33,8 @@ from typing import Any, Literal
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError
 
-from .common import StudyError
 from .config import AnyStudyConfig
+from .errors import StudyError
 
 
 class Execution(BaseModel):
@@ -67,7 +67,7 @@ class RunFile(BaseModel):
 
 def _format_errors(exc: ValidationError, names: Callable[[str], str] | None = None) -> str:
     """Every problem of ``exc`` on one line; ``names`` renames the field a location starts with
-    (the command line shows its flag, e.g. ``--normal-force`` for ``normal_force_n``)."""
+    (the command line shows its flag, e.g. ``--normal-force`` for ``normal_forces``)."""
     lines = []
     for e in exc.errors():
         loc = ""

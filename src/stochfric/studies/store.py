@@ -23,8 +23,8 @@ import numpy.typing as npt
 from ..io_utils import atomic_path, write_text_atomic
 
 #: Version of the checkpoint layout and of the stream rule; part of the hash, so checkpoints of
-#: another version are never loaded (2: streams keyed by the cell's parameters, segmented process).
-SCHEMA = "stochfric.checkpoint/2"
+#: another version are never loaded (3: the config under the field names of docs/glossary.md).
+SCHEMA = "stochfric.checkpoint/3"
 
 
 def _canonical(obj: Any) -> Any:

@@ -14,6 +14,11 @@ rerun alone, or inside a larger grid, gives the same numbers bit for bit.  Commo
 (the damping study's default) leave D out of the key, so every D of one (model, N) sees the same
 noise; the Lyapunov study's reference, perturbed and twin runs have the same parameters and so
 the same key.
+
+A study's config becomes its case setup by :func:`setup_for` (preset, process model under its
+rules, time grid: :func:`stochfric.oscillator.case.case_setup`), each cell a
+:class:`~stochfric.oscillator.case.Case` of that setup; :func:`model_choices` records the modelling
+choices with every result.
 """
 
 from __future__ import annotations
@@ -27,12 +32,18 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from ..oscillator.case import CaseError as StudyError
-from ..oscillator.case import CaseSetup as StudySetup
-from ..oscillator.case import law_for
-from ..oscillator.friction_laws import FrictionLaw
+from ..oscillator.case import WHITE_MODEL_STANDING, Case, CaseSetup, case_setup
 from ..oscillator.integrate import simulate
+from ..oscillator.options import (
+    ExecutionOptions,
+    IntegrationOptions,
+    Integrator,
+    Model,
+    NoiseOptions,
+    OutputOptions,
+)
 from ..oscillator.parameters import OscillatorParameters
+from .errors import StudyError
 
 #: Version of the cell-key rule, the first word hashed (a new rule gives new streams).
 CELL_KEY_RULE = "stochfric.cell/1"
@@ -53,63 +64,65 @@ def cell_stream_key(model: str, params: OscillatorParameters, shared: Sequence[s
 class TaskSpec:
     """One independent unit of a study: a single batched :func:`simulate` call.
 
-    ``params`` are the parameter sets of the call; ``x0`` one initial state per set (or
-    ``None``: sticking at the origin, ``(0, γ0)``).  ``keep_trajectory_runs`` > 0 keeps the
-    decimated trajectories of that many runs (phase diagrams).
+    ``cases`` are the parameter sets of the call, each a :class:`~stochfric.oscillator.case.Case` of
+    the study's setup (its law, process model, time grid and σ_ζ rule); ``x0`` one initial state per
+    set (or ``None``: sticking at the origin, ``(0, γ0)``); ``noise`` carries the cells' stream keys and
+    the path coordinate, ``integration`` the integrator.  ``keep_trajectory_runs`` > 0 keeps the
+    decimated trajectories (every ``save_every``-th step) of that many runs (phase diagrams).
     """
 
     index: int
     label: str
-    model: str
-    params: tuple[OscillatorParameters, ...]
+    model: Model
+    cases: tuple[Case, ...]
     runs: int
-    tau_end: float
-    dt: float
-    integrator: str
-    root_entropy: int
-    process: Any
+    seed: int
     x0: tuple[tuple[float, float], ...] | None = None
-    stream_keys: tuple[tuple[int, ...], ...] | None = None
-    path_coordinate: str = "mass"
+    noise: NoiseOptions = field(default_factory=NoiseOptions)
+    integration: IntegrationOptions = field(default_factory=IntegrationOptions)
     keep_trajectory_runs: int = 0
     save_every: int = 10
-    white_increment: str = "ito"
     extra: dict[str, Any] = field(default_factory=dict, compare=False)
+
+    @property
+    def params(self) -> tuple[OscillatorParameters, ...]:
+        """The parameter sets of the task."""
+        return tuple(c.params for c in self.cases)
 
 
 def task_for(
     config: Any,
-    setup: StudySetup,
+    setup: CaseSetup,
     *,
     index: int,
     label: str,
-    model: str,
+    model: Model | str,
     params: Sequence[OscillatorParameters],
     runs: int | None = None,
     x0: tuple[tuple[float, float], ...] | str | None = "config",
     common_random_numbers: bool = False,
-    **fields: Any,
+    keep_trajectory_runs: int = 0,
+    save_every: int = 10,
 ) -> TaskSpec:
     """A :class:`TaskSpec` with the fields every study fills the same way from its config and setup.
 
     ``runs`` defaults to :func:`runs_for` ``(model, config.runs)``; ``x0="config"`` repeats
     ``config.x0`` for every parameter set (``None`` if the config has none); the integrator
-    follows :func:`integrator_for`, the time grid, process and white-noise increment the setup.
+    follows :func:`integrator_for`, the cases, time grid and σ_ζ rule the setup.
     ``common_random_numbers`` leaves D out of the cells' stream keys (:func:`cell_stream_key`).
-    ``fields`` sets the remaining :class:`TaskSpec` fields (``keep_trajectory_runs``, ``save_every``).
     """
     ps = tuple(params)
+    m = Model(model)
     shared = ("damping_ratio",) if common_random_numbers else ()
     start = (None if config.x0 is None else tuple(config.x0 for _ in ps)) if isinstance(x0, str) else x0
     return TaskSpec(
-        index=index, label=label, model=model, params=ps,
-        runs=runs_for(model, config.runs) if runs is None else runs,
-        tau_end=setup.tau_end, dt=setup.dt,
-        integrator=integrator_for(model, config.integrator, config.sde_integrator),
-        root_entropy=config.seed, process=setup.process, x0=start,
-        stream_keys=tuple(cell_stream_key(model, p, shared) for p in ps),
-        path_coordinate=config.path_coordinate, white_increment=setup.white_increment, **fields,
-    )  # fmt: skip
+        index=index, label=label, model=m, cases=tuple(setup.case_of(p) for p in ps),
+        runs=runs_for(m, config.runs) if runs is None else runs, seed=config.seed, x0=start,
+        noise=NoiseOptions(stream_keys=tuple(cell_stream_key(m, p, shared) for p in ps),
+                           path_coordinate=config.path_coordinate),
+        integration=IntegrationOptions(integrator=integrator_for(m, config.integrator, config.sde_integrator)),
+        keep_trajectory_runs=keep_trajectory_runs, save_every=save_every,
+    )
 
 
 def execute_task(spec: TaskSpec, threads: int | None = None) -> dict[str, npt.NDArray[Any]]:
@@ -118,19 +131,12 @@ def execute_task(spec: TaskSpec, threads: int | None = None) -> dict[str, npt.ND
 
     ``threads`` only changes the speed of :func:`simulate`, never the numbers.
     """
-    process = spec.process
-
-    def law(p: OscillatorParameters) -> FrictionLaw:
-        return law_for(process, p)
-
     keep = spec.keep_trajectory_runs > 0
     res = simulate(
-        list(spec.params), model=spec.model, law=law, process=process,
-        x0=list(spec.x0) if spec.x0 is not None else None, tau_end=spec.tau_end, dt=spec.dt,
-        integrator=spec.integrator, runs=spec.runs, seed=int(spec.root_entropy), stream_keys=spec.stream_keys,
-        path_coordinate=spec.path_coordinate, save_trajectory=keep, save_every=spec.save_every,
-        workers=threads,
-        white_increment=spec.white_increment if spec.model == "white" else "ito",
+        list(spec.cases), model=spec.model, x0=list(spec.x0) if spec.x0 is not None else None, runs=spec.runs,
+        seed=int(spec.seed), noise=spec.noise, integration=spec.integration,
+        output=OutputOptions(save_trajectory=keep, save_every=spec.save_every),
+        execution=ExecutionOptions(workers=threads),
     )
     nev = int(max(1, np.max(np.sum(np.isfinite(res.x_gh), axis=2))))
     out: dict[str, npt.NDArray[Any]] = {
@@ -146,20 +152,42 @@ def execute_task(spec: TaskSpec, threads: int | None = None) -> dict[str, npt.ND
     return out
 
 
-def runs_for(model: str, runs: int) -> int:
+def runs_for(model: Model | str, runs: int) -> int:
     """Monte Carlo runs of a model: one for the deterministic model (all runs would be equal)."""
-    return 1 if model == "deterministic" else int(runs)
+    return 1 if model == Model.DETERMINISTIC else int(runs)
 
 
-def integrator_for(model: str, integrator: str, sde_integrator: str) -> str:
+def integrator_for(model: Model | str, integrator: Integrator | str, sde_integrator: Integrator | str) -> Integrator:
     """``integrator`` for the deterministic and contact models, ``sde_integrator`` for white noise."""
-    if model == "white":
-        if sde_integrator not in ("euler", "milstein"):
+    if model == Model.WHITE:
+        if sde_integrator not in (Integrator.EULER, Integrator.MILSTEIN):
             raise StudyError(f"sde_integrator must be 'euler' or 'milstein', got {sde_integrator!r}")
-        return sde_integrator
-    if integrator not in ("euler", "accurate"):
+        return Integrator(sde_integrator)
+    if integrator not in (Integrator.EULER, Integrator.ACCURATE):
         raise StudyError(f"integrator must be 'euler' or 'accurate', got {integrator!r}")
-    return integrator
+    return Integrator(integrator)
+
+
+def setup_for(config: Any, tau_end: float | None = None) -> CaseSetup:
+    """The :class:`~stochfric.oscillator.case.CaseSetup` of a study config (``tau_end`` stands in for a
+    missing ``config.tau_end``)."""
+    te = config.tau_end if config.tau_end is not None else tau_end
+    return case_setup(config.preset, config.process_file, te, config.dt, config.white_intensity,
+                      config.process_level)
+
+
+def model_choices(config: Any, setup: CaseSetup, forces: Sequence[float]) -> dict[str, Any]:
+    """JSON record of the modelling choices: path coordinate, σ_ζ rule, σ_ζ per force [N] and the
+    effective σ_ζ of the white-noise SDE (differs only in ``thesis`` mode)."""
+    return {
+        "path_coordinate": str(config.path_coordinate),
+        "white_intensity": str(config.white_intensity),
+        "white_increment": str(setup.white_increment),
+        "process_level": str(setup.process_level),
+        "sigma_zeta": [setup.sigma_zeta(nf) for nf in forces],
+        "sigma_zeta_effective": [setup.sigma_zeta_effective(nf) for nf in forces],
+        **({"white_model": WHITE_MODEL_STANDING} if Model.WHITE in config.models else {}),
+    }
 
 
 def warnings_of(arrays: dict[str, npt.NDArray[Any]]) -> list[dict[str, str]]:

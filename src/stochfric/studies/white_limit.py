@@ -21,10 +21,11 @@ no result reads a repeated process.
 
 from __future__ import annotations
 
+import json
 import math
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import asdict, dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -34,11 +35,13 @@ import numpy.typing as npt
 from ..io_utils import package_versions, write_json_atomic, write_netcdf_atomic
 from ..oscillator.case import CaseError, case_setup
 from ..oscillator.integrate import simulate
+from ..oscillator.options import ExecutionOptions, Model, NoiseOptions, PathCoordinate
 from ..process.rescaled import band_correlation_length, low_frequency_psd, rescaled_process
 from ..random import BOOTSTRAP_KEY, child_generator, child_seed
 from .grids import window_mask
+from .summary import OPTIONAL, to_json
 
-__all__ = ["WhiteLimitConfig", "WhiteLimitResult", "power_law_fit", "white_limit_study"]
+__all__ = ["WhiteLimitConfig", "WhiteLimitResult", "WhiteLimitSummary", "power_law_fit", "white_limit_study"]
 
 PATH_COORDINATES = ("relative", "mass")
 #: Most doublings of the process length when a run's path exceeds it.
@@ -102,12 +105,119 @@ class WhiteLimitConfig:
                 raise CaseError(f"{name} must be a positive number, got {v!r}")
 
 
+@dataclass(frozen=True)
+class StepStatistics:
+    """The X_gh in the stick window at one time step, all runs: E[X_gh], σ(X_gh) [-] (X = y/L, L = 1 m) with
+    bootstrap SEs (runs resampled), their number, the time step ``dt`` (τ = ω0 t), the fraction of slip
+    phases shorter than one grid spacing, the longest path over the process length (< 1: never repeated),
+    warning codes, slip→stick transitions and passes of v_rel = 0 without sticking per run."""
+
+    x_gh_mean: float
+    x_gh_mean_se: float
+    x_gh_std: float
+    x_gh_std_se: float
+    n_events: int
+    dt: float
+    slip_shorter_than_grid_fraction: float
+    max_path_over_length: float
+    warnings: list[str]
+    sticks_per_run: float
+    passes_without_stick_per_run: float
+
+
+@dataclass(frozen=True)
+class LengthRow:
+    """One correlation length ℓ [m]: the rescaled process (grid spacing ``dx_m``, length [m], points,
+    σ_μ at p [-], low-frequency one-sided PSD [m]), the statistics at Δτ (``coarse``) and Δτ/refine
+    (``fine``), and σ(Δτ) − σ(Δτ/refine) on the same realisations with its paired SE, as z and over
+    SE(σ(Δτ/refine))."""
+
+    correlation_length_m: float
+    dx_m: float
+    process_length_m: float
+    process_points: int
+    sigma_mu: float
+    low_frequency_psd_m: float
+    coarse: StepStatistics
+    fine: StepStatistics
+    std_difference: float
+    std_difference_se: float
+    std_difference_z: float
+    std_difference_over_se: float
+
+
+@dataclass(frozen=True)
+class LocalSlope:
+    """The slope of log σ over log ℓ between two neighbouring ℓ [m], with its SE."""
+
+    from_m: float
+    to_m: float
+    slope: float
+    slope_se: float
+
+
+@dataclass(frozen=True)
+class PowerLawFit:
+    """σ(X_gh) = ``prefactor`` · ℓ^``beta`` (ℓ in m), weighted least squares of log σ on log ℓ
+    (:func:`power_law_fit`); ``beta``/``beta_se`` ``None`` with a ``note`` where fewer than two points
+    could be used.  ``lengths_m``: the ℓ fitted."""
+
+    beta: float | None
+    beta_se: float | None
+    lengths_m: list[float]
+    note: str | None = field(default=None, metadata=OPTIONAL)
+    chi2: float | None = field(default=None, metadata=OPTIONAL)
+    dof: int | None = field(default=None, metadata=OPTIONAL)
+    beta_se_scaled: float | None = field(default=None, metadata=OPTIONAL)
+    beta_se_reported: float | None = field(default=None, metadata=OPTIONAL)
+    prefactor: float | None = field(default=None, metadata=OPTIONAL)
+    z_beta_vs_0: float | None = field(default=None, metadata=OPTIONAL)
+    local_slopes: list[LocalSlope] | None = field(default=None, metadata=OPTIONAL)
+    model: str | None = field(default=None, metadata=OPTIONAL)
+
+
+@dataclass(frozen=True)
+class WhiteLimitSummary:
+    """The white-limit study's record (module docstring): its ``config``; the case (``normal_force_n``
+    [N], ``pressure_pa`` [Pa], ``damping_ratio`` [-], ``tau_end``, γ0 and n, dimensionless); the preset
+    process's correlation length [m] and low-frequency PSD [m], the fixed level S0 [m] and the white
+    path level S0/2 [m]; one :class:`LengthRow` per ℓ, the :class:`PowerLawFit`, the ``verdict``, the
+    seed, versions, ``units`` and the wall time [s]."""
+
+    study: str
+    config: WhiteLimitConfig
+    preset: str
+    normal_force_n: float
+    pressure_pa: float
+    damping_ratio: float
+    tau_end: float
+    gamma0: float
+    n: float
+    preset_correlation_length_m: float
+    preset_low_frequency_psd_m: float
+    low_frequency_psd_m: float
+    white_path_level_m: float
+    rule: str
+    table: list[LengthRow]
+    fit: PowerLawFit
+    verdict: str
+    seed: int
+    versions: dict[str, str]
+    units: dict[str, str]
+    elapsed_s: float
+
+    def to_json(self) -> dict[str, Any]:
+        """The record as one JSON object (NaN kept as NaN, as the files and ``--json`` have it)."""
+        out: dict[str, Any] = to_json(self, nan_as_null=False)
+        return out
+
+
 @dataclass
 class WhiteLimitResult:
     """Per correlation length ℓ (index i) and time step (j = 0: Δτ, 1: Δτ/refine): the statistics of
-    X_gh in the stick window; ``summary`` is the JSON record (units in ``summary["units"]``)."""
+    X_gh in the stick window; ``summary`` is the typed record (units in ``summary.units``)."""
 
-    summary: dict[str, Any]
+    summary: WhiteLimitSummary
     x_gh: list[list[npt.NDArray[np.float64]]] = field(repr=False)  #: [i][j] (runs, events), NaN-padded
     t_gh: list[list[npt.NDArray[np.float64]]] = field(repr=False)
 
@@ -116,14 +226,14 @@ class WhiteLimitResult:
         import xarray as xr
 
         s = self.summary
-        rows = s["table"]
-        ell = np.array([r["correlation_length_m"] for r in rows])
+        rows = s.table
+        ell = np.array([r.correlation_length_m for r in rows])
         coords = {"correlation_length": ("correlation_length", ell, {"units": "m"}),
-                  "dt_level": ("dt_level", np.array(["dt", f"dt/{s['config']['refine']}"]))}
+                  "dt_level": ("dt_level", np.array(["dt", f"dt/{s.config.refine}"]))}
         data: dict[str, Any] = {}
 
         def both(key: str, units: str, long_name: str) -> None:
-            arr = np.array([[r["coarse"][key], r["fine"][key]] for r in rows], dtype=float)
+            arr = np.array([[getattr(r.coarse, key), getattr(r.fine, key)] for r in rows], dtype=float)
             data[key] = (("correlation_length", "dt_level"), arr, {"units": units, "long_name": long_name})
 
         both("dt", "1", "dimensionless time step")
@@ -140,24 +250,18 @@ class WhiteLimitResult:
                                  ("sigma_mu", "1", "std of the rescaled process at p"),
                                  ("std_difference", "1", "sigma(dt) - sigma(dt/refine), same realisations"),
                                  ("std_difference_se", "1", "paired bootstrap SE of std_difference")):
-            data[key] = (("correlation_length",), np.array([r[key] for r in rows], dtype=float),
+            data[key] = (("correlation_length",), np.array([getattr(r, key) for r in rows], dtype=float),
                          {"units": units, "long_name": name})
-        attrs = {"study": "white-limit", "summary_json": _json_text(s)}
+        attrs = {"study": "white-limit", "summary_json": json.dumps(s.to_json(), allow_nan=True)}
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
     def save(self, out: str | Path) -> dict[str, Path]:
         """Write ``white_limit_<preset>.json`` and ``.nc`` into ``out`` (atomic writes)."""
         d = Path(out)
-        stem = f"white_limit_{self.summary['config']['preset']}"
-        paths = {"json": write_json_atomic(d / f"{stem}.json", self.summary),
+        stem = f"white_limit_{self.summary.config.preset}"
+        paths = {"json": write_json_atomic(d / f"{stem}.json", self.summary.to_json()),
                  "netcdf": write_netcdf_atomic(d / f"{stem}.nc", self.dataset())}
         return paths
-
-
-def _json_text(obj: Any) -> str:
-    import json
-
-    return json.dumps(obj, allow_nan=True)
 
 
 def _pooled_std(x: npt.NDArray[np.float64]) -> float:
@@ -202,12 +306,12 @@ def ensemble_statistics(
     return out[0], out[1], diff, diff_se
 
 
-def power_law_fit(lengths: Sequence[float], sigma: Sequence[float], sigma_se: Sequence[float]) -> dict[str, Any]:
+def power_law_fit(lengths: Sequence[float], sigma: Sequence[float], sigma_se: Sequence[float]) -> PowerLawFit:
     """Weighted least squares of log σ on log ℓ (weights 1/(SE(σ)/σ)²): σ = A ℓ^β.
 
     ``beta_se`` is the SE from the weights; where the residuals scatter more than the SEs allow
     (χ²/dof > 1), ``beta_se_scaled`` multiplies it by √(χ²/dof) (the conservative SE, the one
-    reported as ``beta_se_reported``).  Also the local slopes between neighbouring ℓ.
+    reported as ``beta_se_reported``).  Also the local slopes between neighbouring ℓ; ``lengths_m``: the ℓ given.
     """
     x = np.log(np.asarray(lengths, dtype=float))
     y = np.log(np.asarray(sigma, dtype=float))
@@ -215,7 +319,8 @@ def power_law_fit(lengths: Sequence[float], sigma: Sequence[float], sigma_se: Se
     ok = np.isfinite(x) & np.isfinite(y) & np.isfinite(sy) & (sy > 0)
     x, y, sy = x[ok], y[ok], sy[ok]
     if x.size < 2:
-        return {"beta": None, "beta_se": None, "note": "fewer than two usable points"}
+        return PowerLawFit(beta=None, beta_se=None, note="fewer than two usable points",
+                           lengths_m=[float(v) for v in lengths])
     w = 1.0 / sy**2
     xm = float(np.sum(w * x) / np.sum(w))
     ym = float(np.sum(w * y) / np.sum(w))
@@ -229,19 +334,20 @@ def power_law_fit(lengths: Sequence[float], sigma: Sequence[float], sigma_se: Se
     scaled = se * max(1.0, scale) if math.isfinite(scale) else se
     order = np.argsort(x)
     xs, ys, ss = x[order], y[order], sy[order]
-    local = [{"from_m": float(math.exp(xs[i])), "to_m": float(math.exp(xs[i + 1])),
-              "slope": float((ys[i + 1] - ys[i]) / (xs[i + 1] - xs[i])),
-              "slope_se": float(math.hypot(ss[i], ss[i + 1]) / abs(xs[i + 1] - xs[i]))}
+    local = [LocalSlope(from_m=float(math.exp(xs[i])), to_m=float(math.exp(xs[i + 1])),
+                        slope=float((ys[i + 1] - ys[i]) / (xs[i + 1] - xs[i])),
+                        slope_se=float(math.hypot(ss[i], ss[i + 1]) / abs(xs[i + 1] - xs[i])))
              for i in range(xs.size - 1)]
-    return {"beta": beta, "beta_se": se, "chi2": chi2, "dof": dof, "beta_se_scaled": scaled,
-            "beta_se_reported": scaled, "prefactor": math.exp(intercept), "z_beta_vs_0": beta / scaled,
-            "local_slopes": local, "model": "sigma(X_gh) = prefactor * l**beta, l in m"}
+    return PowerLawFit(beta=beta, beta_se=se, chi2=chi2, dof=dof, beta_se_scaled=scaled, beta_se_reported=scaled,
+                       prefactor=math.exp(intercept), z_beta_vs_0=beta / scaled, local_slopes=local,
+                       model="sigma(X_gh) = prefactor * l**beta, l in m", lengths_m=[float(v) for v in lengths])
 
 
 def _simulate_once(case: Any, process: Any, cfg: WhiteLimitConfig, tau_end: float, dt: float,
                    seed: np.random.SeedSequence) -> Any:
-    return simulate(case.params, model="contact", law=case.law, process=process, tau_end=tau_end, dt=dt,
-                    runs=cfg.runs, seed=seed, path_coordinate=cfg.path_coordinate, workers=cfg.workers)
+    return simulate(replace(case, process=process, tau_end=tau_end, dt=dt), model=Model.CONTACT, runs=cfg.runs,
+                    seed=seed, noise=NoiseOptions(path_coordinate=PathCoordinate(cfg.path_coordinate)),
+                    execution=ExecutionOptions(workers=cfg.workers))
 
 
 def _slip_short_fraction(res: Any) -> float:
@@ -250,98 +356,121 @@ def _slip_short_fraction(res: Any) -> float:
     return float(np.sum(d["n_short_slip_phases"]) / n) if n > 0 else math.nan
 
 
-def white_limit_study(cfg: WhiteLimitConfig, progress: Callable[[str], None] | None = None) -> WhiteLimitResult:
-    """Run the study (module docstring) and return its tables, fit and provenance."""
-    t_start = time.perf_counter()
+@dataclass(frozen=True)
+class _Setting:
+    """The case of a white-limit study: preset setup, normal force N [N], case, contact pressure [Pa],
+    τ_end, the preset's process, the least process length [m] and L [m]."""
+
+    setup: Any
+    force: float
+    case: Any
+    pressure_pa: float
+    tau_end: float
+    base: Any
+    least_length_m: float
+    length_scale: float
+
+
+def _setting(cfg: WhiteLimitConfig) -> _Setting:
+    """The :class:`_Setting` of ``cfg`` (defaults from the preset), its size checked (:func:`_check_size`)."""
     setup = case_setup(cfg.preset)
     pre = setup.preset
     force = cfg.normal_force_n if cfg.normal_force_n is not None else float(
-        pre.study_parameters["normal_force_study_forces_n"][1])
+        pre.study_parameters.normal_force_study_forces[1])
     case = setup.case(force, cfg.damping_ratio)
-    p_pa = force / pre.contact_area_m2
     tau_end = cfg.tau_end if cfg.tau_end is not None else setup.tau_end
-    base = pre.process
-    ell0 = band_correlation_length(base)
-    s0 = low_frequency_psd(base, p_pa)
-    gamma0 = case.params.gamma0
+    scale = case.params.length_scale
     lmin = (cfg.process_length_m if cfg.process_length_m is not None
-            else 2.0 * gamma0 * tau_end * case.params.length_scale)
-    _check_size(cfg, base, lmin, setup.dt, gamma0 * case.params.length_scale, tau_end)
-    rows: list[dict[str, Any]] = []
+            else 2.0 * case.params.gamma0 * tau_end * scale)
+    _check_size(cfg, pre.process, lmin, setup.dt, case.params.gamma0 * scale, tau_end)
+    return _Setting(setup=setup, force=force, case=case, pressure_pa=force / pre.contact_area, tau_end=tau_end,
+                    base=pre.process, least_length_m=lmin, length_scale=scale)
+
+
+def _runs_at(st: _Setting, cfg: WhiteLimitConfig, i: int, ell: float,
+             progress: Callable[[str], None] | None) -> tuple[Any, float, list[Any]]:
+    """The rescaled process at ``ell`` and the runs at Δτ and Δτ/refine on it (the same seed); the process
+    is doubled in length until no run's path exceeds it (:data:`MAX_EXTENSIONS`)."""
+    gamma0 = st.case.params.gamma0
+    length = st.least_length_m
+    for _ in range(MAX_EXTENSIONS + 1):
+        proc = rescaled_process(st.base, ell, length, cfg.level_factor)
+        dt = min(st.setup.dt, cfg.dt_max, proc.dx / (cfg.steps_per_cell * 2.0 * gamma0 * st.length_scale))
+        seed = child_seed(cfg.seed, i)
+        results = []
+        for step in (dt, dt / cfg.refine):
+            if progress is not None:
+                progress(f"l = {ell:.3g} m: {cfg.runs} runs at dt = {step:.3g} ({proc.n_points} process points)")
+            results.append(_simulate_once(st.case, proc, cfg, st.tau_end, step, seed))
+        worst = max(float(np.max(r.diagnostics["path"])) * st.length_scale for r in results)
+        if worst < proc.length:
+            return proc, dt, results
+        length = 2.0 * max(length, worst)
+    raise CaseError(f"the runs' path at l = {ell:.3g} m keeps exceeding the process length "
+                    f"({worst:.3g} m > {proc.length:.3g} m); give a longer --process-length")
+
+
+def _step_statistics(moments: dict[str, Any], res: Any, dt: float, proc: Any, length_scale: float
+                     ) -> StepStatistics:
+    """:class:`StepStatistics` of one time step from its moments (:func:`ensemble_statistics`) and run."""
+    path_m = float(np.max(res.diagnostics["path"])) * length_scale
+    return StepStatistics(
+        **moments, dt=dt, slip_shorter_than_grid_fraction=_slip_short_fraction(res),
+        max_path_over_length=path_m / proc.length, warnings=sorted({w.code for w in res.warnings}),
+        # slip→stick transitions per run, and passes of v_rel = 0 where static friction could not hold
+        sticks_per_run=float(np.mean(res.stick_count)),
+        passes_without_stick_per_run=float(np.mean(res.diagnostics["n_belt_speed_without_stick"])))
+
+
+def _length_row(st: _Setting, cfg: WhiteLimitConfig, i: int, ell: float, progress: Callable[[str], None] | None
+                ) -> tuple[LengthRow, list[npt.NDArray[np.float64]], list[npt.NDArray[np.float64]]]:
+    """The :class:`LengthRow` of ``ell`` and the X_gh in the stick window and τ_gh of both time steps."""
+    proc, dt, results = _runs_at(st, cfg, i, ell, progress)
+    pair = [np.where(window_mask(r.t_gh[0], st.tau_end, cfg.stick_window), r.x_gh[0], np.nan) for r in results]
+    coarse, fine, diff, diff_se = ensemble_statistics(pair[0], pair[1], child_generator(cfg.seed, BOOTSTRAP_KEY, i))
+    c = _step_statistics(coarse, results[0], dt, proc, st.length_scale)
+    f = _step_statistics(fine, results[1], dt / cfg.refine, proc, st.length_scale)
+    row = LengthRow(
+        correlation_length_m=ell, dx_m=proc.dx, process_length_m=proc.length, process_points=proc.n_points,
+        sigma_mu=proc.std(st.pressure_pa), low_frequency_psd_m=low_frequency_psd(proc, st.pressure_pa),
+        coarse=c, fine=f, std_difference=diff, std_difference_se=diff_se,
+        std_difference_z=diff / diff_se if diff_se > 0 else math.nan,
+        std_difference_over_se=diff / f.x_gh_std_se if f.x_gh_std_se > 0 else math.nan)
+    return row, pair, [r.t_gh[0] for r in results]
+
+
+def white_limit_study(cfg: WhiteLimitConfig, progress: Callable[[str], None] | None = None) -> WhiteLimitResult:
+    """Run the study (module docstring) and return its tables, fit and provenance."""
+    t_start = time.perf_counter()
+    st = _setting(cfg)
+    rows: list[LengthRow] = []
     xs: list[list[npt.NDArray[np.float64]]] = []
     ts: list[list[npt.NDArray[np.float64]]] = []
     for i, ell in enumerate(cfg.correlation_lengths_m):
-        length = lmin
-        for _ in range(MAX_EXTENSIONS + 1):
-            proc = rescaled_process(base, ell, length, cfg.level_factor)
-            dt = min(setup.dt, cfg.dt_max, proc.dx / (cfg.steps_per_cell * 2.0 * gamma0 * case.params.length_scale))
-            seed = child_seed(cfg.seed, i)
-            pair, t_pair = [], []
-            results = []
-            for step in (dt, dt / cfg.refine):
-                if progress is not None:
-                    progress(f"l = {ell:.3g} m: {cfg.runs} runs at dt = {step:.3g} ({proc.n_points} process points)")
-                res = _simulate_once(case, proc, cfg, tau_end, step, seed)
-                results.append(res)
-            worst = max(float(np.max(r.diagnostics["path"])) * case.params.length_scale for r in results)
-            if worst < proc.length:
-                break
-            length = 2.0 * max(length, worst)
-        else:
-            raise CaseError(f"the runs' path at l = {ell:.3g} m keeps exceeding the process length "
-                            f"({worst:.3g} m > {proc.length:.3g} m); give a longer --process-length")
-        for res in results:
-            win = window_mask(res.t_gh[0], tau_end, cfg.stick_window)
-            pair.append(np.where(win, res.x_gh[0], np.nan))
-            t_pair.append(res.t_gh[0])
-        coarse, fine, diff, diff_se = ensemble_statistics(pair[0], pair[1],
-                                                          child_generator(cfg.seed, BOOTSTRAP_KEY, i))
-        for stats, res, step in ((coarse, results[0], dt), (fine, results[1], dt / cfg.refine)):
-            stats["dt"] = step
-            stats["slip_shorter_than_grid_fraction"] = _slip_short_fraction(res)
-            path_m = float(np.max(res.diagnostics["path"])) * case.params.length_scale
-            stats["max_path_over_length"] = path_m / proc.length
-            stats["warnings"] = sorted({w.code for w in res.warnings})
-            # slip→stick transitions per run, and passes of v_rel = 0 where static friction could not hold
-            stats["sticks_per_run"] = float(np.mean(res.stick_count))
-            stats["passes_without_stick_per_run"] = float(np.mean(res.diagnostics["n_belt_speed_without_stick"]))
-        rows.append({
-            "correlation_length_m": ell, "dx_m": proc.dx, "process_length_m": proc.length,
-            "process_points": proc.n_points, "sigma_mu": proc.std(p_pa),
-            "low_frequency_psd_m": low_frequency_psd(proc, p_pa),
-            "coarse": coarse, "fine": fine, "std_difference": diff, "std_difference_se": diff_se,
-            "std_difference_z": diff / diff_se if diff_se > 0 else math.nan,
-            "std_difference_over_se": diff / fine["x_gh_std_se"] if fine["x_gh_std_se"] > 0 else math.nan,
-        })
+        row, pair, t_pair = _length_row(st, cfg, i, ell, progress)
+        rows.append(row)
         xs.append(pair)
         ts.append(t_pair)
-    fine_sigma = [r["fine"]["x_gh_std"] for r in rows]
-    fine_se = [r["fine"]["x_gh_std_se"] for r in rows]
     use = [j for j, v in enumerate(cfg.correlation_lengths_m)
            if cfg.fit_min_length_m is None or v >= cfg.fit_min_length_m * (1 - 1e-9)]
-    fit = power_law_fit([cfg.correlation_lengths_m[j] for j in use], [fine_sigma[j] for j in use],
-                        [fine_se[j] for j in use])
-    fit["lengths_m"] = [cfg.correlation_lengths_m[j] for j in use]
-    summary: dict[str, Any] = {
-        "study": "white-limit",
-        "config": asdict(cfg),
-        "preset": pre.name, "normal_force_n": force, "pressure_pa": p_pa, "damping_ratio": cfg.damping_ratio,
-        "tau_end": tau_end, "gamma0": gamma0, "n": case.params.n,
-        "preset_correlation_length_m": ell0, "preset_low_frequency_psd_m": s0,
-        "low_frequency_psd_m": s0 * cfg.level_factor, "white_path_level_m": s0 * cfg.level_factor / 2.0,
-        "rule": "zeta_l(x) = sqrt(l0/l) * zeta0(x l0/l): S(f_1) fixed, integral correlation length "
-                "l = S0/(4 sigma^2); dt = min(preset dt, dx/(steps_per_cell * 2 gamma0)); statistics of X_gh "
-                "in the stick window tau > stick_window*tau_end over all runs; SEs by bootstrap over runs",
-        "table": rows,
-        "fit": fit,
-        "verdict": _verdict(fit, rows),
-        "seed": cfg.seed,
-        "versions": package_versions(),
-        "units": {"correlation_length_m": "m", "dx_m": "m", "process_length_m": "m",
-                  "low_frequency_psd_m": "m (one-sided PSD, method §0)", "x_gh": "1 (X = y/L, L = 1 m, i.e. metres)",
-                  "dt": "1 (tau = omega0 t)", "normal_force_n": "N", "pressure_pa": "Pa"},
-        "elapsed_s": time.perf_counter() - t_start,
-    }
+    fit = power_law_fit([cfg.correlation_lengths_m[j] for j in use], [rows[j].fine.x_gh_std for j in use],
+                        [rows[j].fine.x_gh_std_se for j in use])
+    s0 = low_frequency_psd(st.base, st.pressure_pa)
+    summary = WhiteLimitSummary(
+        study="white-limit", config=cfg, preset=st.setup.preset.name, normal_force_n=st.force,
+        pressure_pa=st.pressure_pa, damping_ratio=cfg.damping_ratio, tau_end=st.tau_end,
+        gamma0=st.case.params.gamma0, n=st.case.params.n,
+        preset_correlation_length_m=band_correlation_length(st.base), preset_low_frequency_psd_m=s0,
+        low_frequency_psd_m=s0 * cfg.level_factor, white_path_level_m=s0 * cfg.level_factor / 2.0,
+        rule="zeta_l(x) = sqrt(l0/l) * zeta0(x l0/l): S(f_1) fixed, integral correlation length "
+             "l = S0/(4 sigma^2); dt = min(preset dt, dx/(steps_per_cell * 2 gamma0)); statistics of X_gh "
+             "in the stick window tau > stick_window*tau_end over all runs; SEs by bootstrap over runs",
+        table=rows, fit=fit, verdict=_verdict(fit, rows), seed=cfg.seed, versions=package_versions(),
+        units={"correlation_length_m": "m", "dx_m": "m", "process_length_m": "m",
+               "low_frequency_psd_m": "m (one-sided PSD, method §0)", "x_gh": "1 (X = y/L, L = 1 m, i.e. metres)",
+               "dt": "1 (tau = omega0 t)", "normal_force_n": "N", "pressure_pa": "Pa"},
+        elapsed_s=time.perf_counter() - t_start,
+    )
     return WhiteLimitResult(summary=summary, x_gh=xs, t_gh=ts)
 
 
@@ -360,20 +489,20 @@ def _check_size(cfg: WhiteLimitConfig, base: Any, lmin: float, preset_dt: float,
         )
 
 
-def _verdict(fit: dict[str, Any], rows: list[dict[str, Any]]) -> str:
-    beta, se = fit.get("beta"), fit.get("beta_se_reported")
+def _verdict(fit: PowerLawFit, rows: list[LengthRow]) -> str:
+    beta, se = fit.beta, fit.beta_se_reported
     if beta is None or se is None:
         return "no fit"
-    fitted = set(fit.get("lengths_m", []))
-    over = [abs(r["std_difference_over_se"]) for r in rows
-            if math.isfinite(r["std_difference_over_se"]) and r["correlation_length_m"] in fitted]
+    fitted = set(fit.lengths_m)
+    over = [abs(r.std_difference_over_se) for r in rows
+            if math.isfinite(r.std_difference_over_se) and r.correlation_length_m in fitted]
     worst_dt = max(over) if over else math.nan
     dt_note = (f"time step converged over the fitted l: |sigma(dt) - sigma(dt/refine)| <= {worst_dt:.1f} SE(sigma)"
                if worst_dt <= DT_TOLERANCE_SE else
                f"time step NOT converged at some fitted l: |sigma(dt) - sigma(dt/refine)| up to {worst_dt:.1f} "
                "SE(sigma)")
-    rest = [r["correlation_length_m"] for r in rows if r["correlation_length_m"] not in fitted
-            and abs(r["std_difference_over_se"]) > DT_TOLERANCE_SE]
+    rest = [r.correlation_length_m for r in rows if r.correlation_length_m not in fitted
+            and abs(r.std_difference_over_se) > DT_TOLERANCE_SE]
     if rest:
         dt_note += f"; outside the fit NOT converged at l = {', '.join(f'{v:.3g}' for v in rest)} m"
     if abs(beta) > 3.0 * se:
@@ -391,28 +520,29 @@ def white_limit_figure(results: Sequence[WhiteLimitResult], path: str | Path) ->
     fig, ax = new_subplots(1, 1, figsize=(5.6, 4.0), layout="constrained")
     for k, res in enumerate(results):
         s = res.summary
-        ell = np.array([r["correlation_length_m"] for r in s["table"]])
-        sig = np.array([r["fine"]["x_gh_std"] for r in s["table"]])
-        se = np.array([r["fine"]["x_gh_std_se"] for r in s["table"]])
+        ell = np.array([r.correlation_length_m for r in s.table])
+        sig = np.array([r.fine.x_gh_std for r in s.table])
+        se = np.array([r.fine.x_gh_std_se for r in s.table])
         col = f"C{k}"
-        label = f"{s['preset']} {s['normal_force_n']:g} N"
-        fit = s["fit"]
-        used = np.isin(ell, fit.get("lengths_m", list(ell)))
+        label = f"{s.preset} {s.normal_force_n:g} N"
+        fit = s.fit
+        used = np.isin(ell, fit.lengths_m)
         ax.errorbar(ell[used], sig[used], yerr=se[used], fmt="o", color=col, capsize=3, label=label)
         if not np.all(used):
             ax.errorbar(ell[~used], sig[~used], yerr=se[~used], fmt="o", mfc="none", color=col, capsize=3,
-                        label=f"{s['preset']}: not in the fit")
-        if fit.get("beta") is not None:
-            grid = np.geomspace(min(fit["lengths_m"]), max(fit["lengths_m"]), 50)
-            ax.plot(grid, fit["prefactor"] * grid ** fit["beta"], "-", color=col, lw=1,
-                    label=f"fit β = {fit['beta']:.3f} ± {fit['beta_se_reported']:.3f}")
-        ax.axvline(s["preset_correlation_length_m"], color=col, ls=":", lw=0.8)
+                        label=f"{s.preset}: not in the fit")
+        if fit.beta is not None and fit.prefactor is not None and fit.beta_se_reported is not None:
+            grid = np.geomspace(min(fit.lengths_m), max(fit.lengths_m), 50)
+            ax.plot(grid, fit.prefactor * grid ** fit.beta, "-", color=col, lw=1,
+                    label=f"fit β = {fit.beta:.3f} ± {fit.beta_se_reported:.3f}")
+        ax.axvline(s.preset_correlation_length_m, color=col, ls=":", lw=0.8)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("correlation length ℓ [m] (dotted: the preset's)")
     ax.set_ylabel("σ(X_gh) [-]")
-    head = results[0].summary if results else {}
-    ax.set_title(f"contact model, S0 = {head.get('low_frequency_psd_m', math.nan):.2g} m fixed, "
-                 f"{head.get('config', {}).get('path_coordinate', '')} path, ℓ → 0", fontsize=10)
+    if results:
+        head = results[0].summary
+        ax.set_title(f"contact model, S0 = {head.low_frequency_psd_m:.2g} m fixed, {head.config.path_coordinate} "
+                     "path, ℓ → 0", fontsize=10)
     ax.legend(fontsize=8)
     return save_figure(fig, path)

@@ -1,37 +1,11 @@
 """Reading measured height maps (method §1, thesis 3.2 / 3.3).
 
-Instrument files (``.x3p``, ``.sur``, ``.opd``, ``.datx``, ``.plu``, ``.mnt``, ``.al3d``,
-``.frt``, … — every format SurfaceTopography knows) are read through
-:func:`SurfaceTopography.open_topography`, a maintained reader; nothing here parses an
-instrument format by hand.  Plain matrices (``.npy``, ``.txt``, ``.csv``) carry no physical
-size and no height unit, so both must be given explicitly.
-
-Conventions of the returned :class:`Surface`:
-
-* heights in metres, as a plain ``float64`` array ``z[i, j]`` at ``x = i Δx``, ``y = j Δy``
-  (the layout of SurfaceTopography's ``heights()``; a plain matrix is read the same way,
-  axis 0 is x);
-* ``physical_size_m = (ℓx, ℓy)`` with ``Δx = ℓx / nx`` (SurfaceTopography's convention);
-* never a NaN: undefined (unmeasured) points are *reported* on reading and either filled by
-  harmonic interpolation (``fill_undefined=True``, SurfaceTopography's
-  ``interpolate_undefined_data``) or refused with a :class:`SurfaceError`.
-
-Integrity (issue 11: corrupted files must not pass silently):
-
-* **Checksums** where the format carries one: an ``.x3p`` (ISO 5436-2) is a zip archive whose
-  entries carry CRC-32s, whose ``main.xml`` records the MD5 of the binary point data
-  (``MD5ChecksumPointData``) and whose ``md5checksum.hex`` holds the MD5 of ``main.xml``.
-  SurfaceTopography does not verify them, so :func:`verify_checksums` does, before reading;
-  a mismatch is refused with a :class:`SurfaceError` that names the file.
-* **Plausibility** for all other files (:func:`plausibility_warnings`): an *isolated spike* is
-  a point of the plane-detrended map that lies more than ``SPIKE_SQ`` (20) × Sq outside the
-  height range of the 3×3-median-filtered map (the median removes single points and pairs, so
-  that range is the range of the surface without them; Sq is the RMS of the plane-detrended
-  map as read).  Measured features — dust, pits, dropouts of a few pixels — stay within it on
-  all seven shared instrument files (largest excess 14 Sq, mnt-1), while a flipped exponent or
-  high mantissa byte puts a value hundreds to 10³⁰ Sq away.  A spike is a *warning* (code
-  ``implausible-spike``) stored in ``Surface.info["warnings"]``, naming the file, the number
-  and the worst excess; the command line prints it on stderr and in the JSON ``warnings``.
+Instrument files (every format SurfaceTopography knows) are read through
+:func:`SurfaceTopography.open_topography`; plain matrices (``.npy``, ``.txt``, ``.csv``) need their
+physical size and height unit given.  A :class:`Surface` holds heights in metres, ``z[i, j]`` at
+``x = i Δx``, ``y = j Δy`` with ``Δx = ℓx / nx``, and never a NaN: undefined points are reported and
+filled by harmonic interpolation or refused.  Checksums (x3p) and a plausibility check guard against
+corrupted files (docs/surface_contact.md, "Reading").
 """
 
 from __future__ import annotations
@@ -321,7 +295,7 @@ def verify_checksums(path: str | Path) -> str:
 def plausibility_warnings(
     heights_m: npt.ArrayLike, *, name: str = "the height map", spike_sq: float = SPIKE_SQ
 ) -> list[dict[str, Any]]:
-    """Plausibility check of a height map [m]: isolated spikes (module doc), as warnings.
+    """Plausibility check of a height map [m]: isolated spikes, as warnings (docs/surface_contact.md).
 
     A point is a spike when its plane-detrended height lies more than ``spike_sq`` × Sq above
     the maximum or below the minimum of the 3×3-median-filtered, plane-detrended map (Sq: RMS

@@ -1,49 +1,10 @@
-"""Metrological preparation steps and checks (ISO 25178-2 / ISO 16610 vocabulary).
+"""Metrological preparation steps and checks (ISO 25178-2 / ISO 16610 vocabulary; method §1.1).
 
-The building blocks of :func:`stochfric.surface.preprocess.prepare`; each returns what it did so
-that the preparation record can say it.  The rules and their numbers (docs/surface_contact.md,
-"Preparation"):
-
-* **Undefined points** — the harmonic fill of io.py has no interior maximum (maximum principle),
-  so a filled area carries no summit: the summit density is biased low by the filled fraction.
-  Filling is refused above ``MAX_UNDEFINED_DEFAULT`` = 5 % unless the user raises the limit.
-* **Outliers** (ISO 25178-2 "outliers"/spikes): residual ``r = z − median₅ₓ₅(z)``; robust scale
-  of the residual ``σ_r = 1.4826·MAD(r)``; robust height scale ``S = 1.4826·MAD`` of the
-  plane-levelled map.  A point is an outlier when ``|r| > max(k·σ_r, m·S)`` with
-  ``k = OUTLIER_K`` = 6 and ``m = OUTLIER_SQ`` = 5.  The 5×5 median has a breakdown of 12 of
-  25 points, so clusters of up to 12 points in a window are seen as isolated; larger features
-  are resolved by the instrument and kept.  ``k·σ_r``: beyond what the map's own local
-  residuals produce (a Gaussian residual exceeds 6 σ once in 5·10⁸ points); ``m·S``: a point
-  5 Sq away from its own neighbourhood — no Gaussian height field of 10⁶ points reaches that
-  (P(|z| > 5 Sq) = 5.7·10⁻⁷), while real maps have heavy-tailed curvature at the pixel scale
-  (the smooth maps al3d-1 and x3p-2 have residuals up to 26 σ_r that are legitimate
-  asperities but stay below 0.4 Sq).  Outliers are replaced by harmonic interpolation.
-* **Form** — polynomial of degree 1…3, or the Gaussian L-filter of ISO 16610-61 (and the
-  robust Gaussian filter of ISO 16610-71) with nesting index λc.  Rule ``auto``: start with the
-  plane; take the highest degree d ≤ 3 whose extra terms remove more than ``AUTO_VARIANCE_GAIN``
-  = 25 % of the variance left by degree d − 1 (Sq drops by more than 13.4 %; each step is judged
-  on its own, so an odd cubic form without quadratic part is still found).  A rough random
-  field with ``N`` correlation areas on the map loses only about ``p/N`` of its variance to
-  ``p`` extra smooth terms (3 for the quadratic, 4 for the cubic), so 25 % is beyond chance for
-  every map of at least 16 correlation areas; a curved form loses far more (sur-2: 55 %).  The
-  rule is conservative on purpose: too little form removal stays visible in Sq and the chosen
-  degree, too much silently deletes long-wave roughness that carries the contact.
-* **Quantised heights** — tie fraction ``p`` of horizontally and vertically adjacent pairs of
-  the heights *as read* (form removal breaks ties by the form's slope, an artefact) and the
-  height quantum ``q`` (smallest positive neighbour step).  The thesis summit rule makes 8
-  strict comparisons, so with ``p`` of the pairs tied about ``1 − (1 − p)⁸`` of the summit
-  candidates meet a tie; above ``TIE_WARN`` = 2 % (≈ 15 %) a ``quantised-heights`` warning.
-  Treatment ``dither`` adds uniform noise in ``[−q/2, q/2)`` (the recorded value is the
-  rounding of a true height in that interval), which restores strict order without changing
-  anything above the quantum.
-* **Not a rough surface** — (a) a *step* or two-level map: Otsu's two-class split of the
-  form-removed heights; separation ``d = |μ₂ − μ₁| / σ_within``.  Unimodal distributions give
-  ``d`` ≤ 4.2 (Gaussian 2.65, uniform 3.46, exponential 3.37, lognormal σ=1 4.2), two levels of
-  Gaussian roughness ``d ≈ step/sd``.  Refused when ``d > STEP_SEPARATION`` = 5 and both classes
-  hold at least ``STEP_MIN_CLASS`` = 5 % of the points (smaller classes are features such as
-  pores or scratches).  (b) a *part outline*: the undefined points connected to the map border
-  cover more than ``OUTLINE_BORDER_FRACTION`` = 5 % of the map — the measuring field extends
-  past the part, the filled surround is no surface.
+The building blocks of :func:`stochfric.surface.preprocess.prepare` — the undefined-point limit,
+outlier removal, form removal (polynomial, the ``auto`` rule, the Gaussian L-filters of ISO
+16610-61/-71), the quantisation check and dither, the rough-surface verdict (step, part outline) —
+each returning what it did so that the preparation record can say it.  The rules' numbers are the
+constants below (docs/surface_contact.md, "Preparation").
 """
 
 from __future__ import annotations
@@ -80,15 +41,33 @@ __all__ = [
 
 FloatArray = npt.NDArray[np.float64]
 
+#: Largest fraction of undefined points filled: the harmonic fill has no interior maximum (maximum
+#: principle), so a filled area carries no summit and biases the summit density by its fraction.
 MAX_UNDEFINED_DEFAULT = 0.05
+#: Side of the median window of the outlier test: its breakdown is 12 of 25 points, so clusters of up
+#: to 12 points are seen as isolated; larger features are resolved by the instrument and kept.
 OUTLIER_WINDOW = 5
+#: k of ``k σ_r``: beyond the map's own local residuals (a Gaussian residual exceeds 6 σ once in 5·10⁸).
 OUTLIER_K = 6.0
+#: m of ``m S``: 5 Sq from its own neighbourhood, which no Gaussian height field of 10⁶ points reaches
+#: (P(|z| > 5 Sq) = 5.7·10⁻⁷), while the heavy-tailed pixel-scale curvature of real maps stays below it.
 OUTLIER_SQ = 5.0
+#: Most outlier positions recorded.
 OUTLIER_POSITIONS_CAP = 100
+#: The ``auto`` form rule raises the degree while its extra terms remove more than this share of the
+#: remaining variance (each degree judged on its own, so an odd cubic form without quadratic part is
+#: found): a rough field of N correlation areas loses about p/N to p extra smooth terms.
 AUTO_VARIANCE_GAIN = 0.25
+#: Tie fraction of neighbouring height pairs above which heights are quantised: the thesis's summit
+#: rule makes 8 strict comparisons, so about 1 − (1 − p)⁸ ≈ 15 % of the candidates meet a tie.
 TIE_WARN = 0.02
+#: Otsu separation |μ₂ − μ₁| / σ_within above which a map is a step (unimodal distributions give ≤ 4.2,
+#: two levels of Gaussian roughness ≈ step/sd) ...
 STEP_SEPARATION = 5.0
+#: ... when both classes hold at least this fraction (smaller ones are features: pores, scratches).
 STEP_MIN_CLASS = 0.05
+#: Fraction of the map in undefined points connected to its border above which the map is a part
+#: outline (the measuring field extends past the part).
 OUTLINE_BORDER_FRACTION = 0.05
 #: ISO 16610-61 Gaussian weighting function s(x) = exp(−π (x/(α λc))²)/(α λc), α = √(ln 2/π).
 GAUSS_ALPHA = math.sqrt(math.log(2.0) / math.pi)
@@ -184,7 +163,8 @@ def gaussian_lfilter(
 def outlier_mask(
     heights: npt.ArrayLike, *, k: float = OUTLIER_K, m_sq: float = OUTLIER_SQ, window: int = OUTLIER_WINDOW
 ) -> tuple[npt.NDArray[np.bool_], dict[str, float]]:
-    """Isolated spikes and pits: ``|z − median_window(z)| > max(k σ_r, m_sq S)`` (module doc)."""
+    """Isolated spikes and pits: ``|z − median_window(z)| > max(k σ_r, m_sq S)`` with the robust
+    scales σ_r = 1.4826·MAD of the residual and S = 1.4826·MAD of the plane-levelled map."""
     z = np.asarray(heights, dtype=np.float64)
     r = z - ndimage.median_filter(z, size=window, mode="reflect")
     sigma_r = _mad_scale(r)

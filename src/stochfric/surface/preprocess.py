@@ -1,40 +1,11 @@
-"""Preparing a measured surface for the contact analysis (method §1.1–1.2, thesis 3.2.1),
-in the vocabulary of ISO 25178-2 / ISO 16610 (rules and numbers: :mod:`stochfric.surface.prepare_checks`
+"""Preparing a measured surface for the contact analysis (method §1.1–1.2, thesis 3.2.1).
+
+In the vocabulary of ISO 25178-2 / ISO 16610 and in this order, each step chosen by the user or by
+a stated rule and recorded (:func:`prepare_with_report`): 1 undefined points, 2 quantisation check,
+3 outlier removal, 4 form removal, 5 rough-surface check, 6 quantisation treatment, 7 median filter
+(thesis r = 5 / 6, edges mirrored), 8 coarse discretisation (thesis k = 10).  Steps 1–7 give the
+*fine* surface, step 8 the *coarse* one (rules and numbers: :mod:`stochfric.surface.prepare_checks`
 and docs/surface_contact.md, "Preparation").
-
-Steps, in this order, each chosen by the user or by a stated rule and recorded in the
-preparation report (``fine.info["preparation"]``, :func:`prepare_with_report`):
-
-1. **undefined points** — the fraction filled on reading is reported; above ``max_undefined``
-   (default 5 %) the map is refused (a harmonic fill carries no summit).
-2. **quantisation check** on the heights as read (tie fraction, height quantum), before any
-   step breaks the ties.
-3. **outlier removal** (default on) — isolated spikes/pits, ``|z − median₅ₓ₅ z| > max(6 σ_r,
-   5 S)``, replaced by harmonic interpolation; count, fraction and positions reported.
-4. **form removal** (``detrend``) — ``"none"``, ``"mean"``, a least-squares polynomial
-   ``"plane"`` (SurfaceTopography's ``"height"``), ``"quadratic"`` (``"curvature"``),
-   ``"poly3"`` (full third order), the rule ``"auto"`` (default: the highest degree ≤ 3 whose
-   extra terms remove more than 25 % of the variance left by the degree below), or the Gaussian
-   L-filter of ISO 16610-61 ``"gaussian"`` / robust ISO 16610-71 ``"robust-gaussian"`` with
-   nesting index ``cutoff_m`` (λc; a plane is removed first).
-5. **rough-surface check** on the form-removed map — a step / two-level map (Otsu) or a part
-   outline (undefined surround) is refused.
-6. **quantisation treatment** — ``"warn"`` (default) or ``"dither"`` (uniform noise of one
-   quantum).
-7. **median filter** of radius ``r``: window of ``(2r+1) × (2r+1)`` points (the thesis uses
-   Matlab ``median2`` with r = 5 for the brake pad, r = 6 for the sheet); at the edges the data
-   are mirrored (``scipy.ndimage.median_filter(mode="reflect")``), so no artificial zeros
-   enter. ``r = 0`` switches it off.
-8. **coarse discretisation** — keep every k-th point in both directions (thesis k = 10): the
-   finest asperities are flattened plastically at first contact, the next scale deforms
-   elastically.  The kept point ``i·k`` stands for a cell of ``k`` fine points, so the coarse
-   spacing is exactly ``kΔ`` and the coarse physical size ``⌈n/k⌉·kΔ`` (equal to the measured
-   size when ``k`` divides ``n``, at most ``(k−1)Δ`` larger otherwise).
-
-Outliers go before the form (a spike of 50 Sq would otherwise weigh in the fit and in the
-``auto`` rule's Sq), the rough-surface check after it (a step is judged on the form-removed
-heights), the median filter and coarsening last as in the thesis.  The *fine* surface of the
-thesis's figures is the result of steps 1–7, the *coarse* one of step 8.
 """
 
 from __future__ import annotations
@@ -278,34 +249,54 @@ def prepare_with_report(
         rough surface, a step that leaves too few points.
     """
     prep = preparation if preparation is not None else Preparation()
-    nx, ny = surface.nb_grid_pts
     name = _name(surface)
-    if min(nx, ny) < MIN_GRID_POINTS:
-        raise SurfaceError(
-            f"the surface has only {nx}×{ny} points; at least {MIN_GRID_POINTS} per direction are needed"
-        )
-    if 2 * prep.median_radius + 1 > min(nx, ny):  # before any work: a window larger than the map
-        raise SurfaceError(
-            f"--median-radius {prep.median_radius} gives a {2 * prep.median_radius + 1}-point window, larger than "
-            f"the {nx}×{ny} map; use a radius of at most {(min(nx, ny) - 1) // 2} (the thesis uses 5 and 6)"
-        )
-    n = nx * ny
-    new_warnings: list[dict[str, Any]] = []
+    _check_grid(surface, prep)
     report: dict[str, Any] = {
         "order": ["undefined", "quantisation check", "outliers", "form", "rough-surface check",
                   "quantisation treatment", "median filter", "coarsening"],
         "settings": prep.settings(),
     }  # fmt: skip
+    report["undefined"] = _undefined_points(surface, prep, name)
+    read = np.array(surface.heights_m, dtype=np.float64)
+    report["quantisation"] = _quantisation_check(read, prep)
+    cleaned, report["outliers"], warnings = _remove_outliers(read, surface, prep, name)
+    h, report["form"] = _remove_form(cleaned, read, surface, prep, name)
+    report["rough_surface"] = _rough_surface_check(h, cleaned, report["undefined"]["border_fraction"], prep, name)
+    h, quantised = _treat_quantisation(h, report["quantisation"], prep, name)
+    h = median_filter(h, prep.median_radius)
+    report["median_radius"] = prep.median_radius
+    report["step"] = prep.step
+    info = dict(surface.info)
+    info["warnings"] = [dict(w) for w in surface.info.get("warnings", [])] + warnings + quantised
+    info["preparation"] = report
+    fine = Surface(
+        heights_m=h,
+        physical_size_m=surface.physical_size_m,
+        source=surface.source,
+        n_undefined_filled=surface.n_undefined_filled,
+        info=info,
+    )
+    return fine, coarsen(fine, prep.step), report
 
-    # 1. undefined points
-    und_fraction = float(surface.info.get("undefined_fraction", surface.n_undefined_filled / n))
+
+def _check_grid(surface: Surface, prep: Preparation) -> None:
+    """Refuse, before any work, a grid too small for the summit rule or for the median window."""
+    nx, ny = surface.nb_grid_pts
+    if min(nx, ny) < MIN_GRID_POINTS:
+        raise SurfaceError(
+            f"the surface has only {nx}×{ny} points; at least {MIN_GRID_POINTS} per direction are needed"
+        )
+    if 2 * prep.median_radius + 1 > min(nx, ny):
+        raise SurfaceError(
+            f"--median-radius {prep.median_radius} gives a {2 * prep.median_radius + 1}-point window, larger than "
+            f"the {nx}×{ny} map; use a radius of at most {(min(nx, ny) - 1) // 2} (the thesis uses 5 and 6)"
+        )
+
+
+def _undefined_points(surface: Surface, prep: Preparation, name: str) -> dict[str, Any]:
+    """Step 1: the undefined points filled on reading; a part outline or more than ``max_undefined`` is refused."""
+    und_fraction = float(surface.info.get("undefined_fraction", surface.n_undefined_filled / surface.heights_m.size))
     border_fraction = float(surface.info.get("undefined_border_fraction", 0.0))
-    report["undefined"] = {
-        "count": int(surface.n_undefined_filled),
-        "fraction": und_fraction,
-        "border_fraction": border_fraction,
-        "limit": prep.max_undefined,
-    }
     if prep.rough_check and border_fraction > pc.OUTLINE_BORDER_FRACTION:
         # a part outline is the more basic reason than the undefined fraction it causes
         raise SurfaceError(
@@ -319,57 +310,69 @@ def prepare_with_report(
             f"{100 * prep.max_undefined:.3g} % (--max-undefined): the harmonic fill has no summit, so it "
             "would bias the summit density by that fraction; crop the measurement or raise the limit"
         )
+    return {
+        "count": int(surface.n_undefined_filled),
+        "fraction": und_fraction,
+        "border_fraction": border_fraction,
+        "limit": prep.max_undefined,
+    }
 
-    # 2. quantisation, on the heights as read
-    h = np.array(surface.heights_m, dtype=np.float64)
-    ties = pc.tie_statistics(h)
-    q = ties["quantum"]
-    report["quantisation"] = {
+
+def _quantisation_check(read: FloatArray, prep: Preparation) -> dict[str, Any]:
+    """Step 2: tie fraction and height quantum of the heights as read (before any step breaks the ties)."""
+    ties = pc.tie_statistics(read)
+    return {
         "tie_fraction": ties["tie_fraction"],
         "tie_fraction_x": ties["tie_fraction_x"],
         "tie_fraction_y": ties["tie_fraction_y"],
-        "quantum_m": q,
+        "quantum_m": ties["quantum"],
         "warn_above": pc.TIE_WARN,
         "quantised": ties["tie_fraction"] > pc.TIE_WARN,
         "treatment": prep.quantised,
         "applied": False,
     }
 
-    # 3. outliers
-    sq_read = _rms(pc.polynomial_residual(h, 1))
+
+def _remove_outliers(
+    h: FloatArray, surface: Surface, prep: Preparation, name: str
+) -> tuple[FloatArray, dict[str, Any], list[dict[str, Any]]]:
+    """Step 3: isolated spikes / pits (|z − median₅ₓ₅ z| > max(k σ_r, m S)) replaced by harmonic
+    interpolation; the heights, the step's record and its warning."""
+    n = h.size
     out: dict[str, Any] = {"enabled": prep.outliers, "count": 0, "fraction": 0.0, "positions": [],
                            "window": pc.OUTLIER_WINDOW, "k": prep.outlier_k, "m_sq": prep.outlier_sq}  # fmt: skip
-    if prep.outliers:
-        mask, scales = pc.outlier_mask(h, k=prep.outlier_k, m_sq=prep.outlier_sq)
-        count = int(np.count_nonzero(mask))
-        ii, jj = np.nonzero(mask)
-        out.update(
-            count=count,
-            fraction=count / n,
-            positions=[[int(a), int(b)] for a, b in zip(ii[: pc.OUTLIER_POSITIONS_CAP],
-                                                         jj[: pc.OUTLIER_POSITIONS_CAP], strict=True)],
-            positions_cap=pc.OUTLIER_POSITIONS_CAP,
-            threshold_m=scales["threshold"],
-            sigma_r_m=scales["sigma_r"],
-            s_robust_m=scales["s_robust"],
-        )  # fmt: skip
-        if 0 < count < n:
-            h = _fill_harmonic(np.ma.MaskedArray(h, mask=mask), surface.physical_size_m)
-            new_warnings.append({
-                "code": "outliers-replaced", "count": count, "fraction": count / n,
-                "message": (f"{name}: {count} isolated spike/pit point(s) ({100 * count / n:.3g} % of the map) "
-                            f"more than {out['threshold_m']:.3g} m from their 5x5 median replaced by harmonic "
-                            "interpolation (--no-outliers keeps them)"),
-            })  # fmt: skip
-    report["outliers"] = out
+    if not prep.outliers:
+        return h, out, []
+    mask, scales = pc.outlier_mask(h, k=prep.outlier_k, m_sq=prep.outlier_sq)
+    count = int(np.count_nonzero(mask))
+    ii, jj = np.nonzero(mask)
+    cap = pc.OUTLIER_POSITIONS_CAP
+    out.update(
+        count=count, fraction=count / n, positions=[[int(a), int(b)] for a, b in zip(ii[:cap], jj[:cap], strict=True)],
+        positions_cap=cap, threshold_m=scales["threshold"], sigma_r_m=scales["sigma_r"],
+        s_robust_m=scales["s_robust"],
+    )  # fmt: skip
+    if not 0 < count < n:
+        return h, out, []
+    warning = {
+        "code": "outliers-replaced", "count": count, "fraction": count / n,
+        "message": (f"{name}: {count} isolated spike/pit point(s) ({100 * count / n:.3g} % of the map) "
+                    f"more than {out['threshold_m']:.3g} m from their 5x5 median replaced by harmonic "
+                    "interpolation (--no-outliers keeps them)"),
+    }  # fmt: skip
+    return _fill_harmonic(np.ma.MaskedArray(h, mask=mask), surface.physical_size_m), out, [warning]
 
-    # 4. form
-    h_before_form = h
+
+def _remove_form(
+    h: FloatArray, read: FloatArray, surface: Surface, prep: Preparation, name: str
+) -> tuple[FloatArray, dict[str, Any]]:
+    """Step 4: the form removed by ``prep.detrend`` (polynomial, the ``auto`` rule or an ISO 16610
+    L-filter); the heights and the step's record.  A map left flat is refused."""
     degree_auto, sq_deg = pc.auto_degree(h)
     form: dict[str, Any] = {
         "requested": prep.detrend,
         "sq_read_m": _rms(np.asarray(surface.heights_m)),
-        "sq_read_plane_m": sq_read,
+        "sq_read_plane_m": _rms(pc.polynomial_residual(read, 1)),
         "sq_by_degree_m": sq_deg,
         "auto_degree": degree_auto,
         "auto_rule": (f"degree 1, raised while the next degree removes more than "
@@ -394,58 +397,51 @@ def prepare_with_report(
         form.update(applied="mean" if degree == 0 else _BY_DEGREE[degree], degree=degree)
         h = pc.polynomial_residual(h, degree)
     form["sq_after_m"] = _rms(h)
-    report["form"] = form
-
     if not float(np.ptp(h)) > 0.0:
         raise SurfaceError(f"{name} is flat after the form removal (all heights equal): there is no roughness, "
                            "hence no summit, to analyse")
+    return h, form
 
-    # 5. rough-surface check
+
+def _rough_surface_check(
+    h: FloatArray, before_form: FloatArray, border_fraction: float, prep: Preparation, name: str
+) -> dict[str, Any]:
+    """Step 5: a step / two-level map (Otsu) or a part outline is refused (unless ``rough_check`` is off);
+    the verdict on the form-removed heights, or on the plane residual where that one finds a step."""
     verdict = pc.rough_surface_verdict(h, undefined_border_fraction=border_fraction)
     if verdict["rough"]:
         # a higher-order form (or an L-filter) can absorb part of a step: judge the plane residual too
-        plane_verdict = pc.rough_surface_verdict(pc.polynomial_residual(h_before_form, 1))
+        plane_verdict = pc.rough_surface_verdict(pc.polynomial_residual(before_form, 1))
         if not plane_verdict["rough"]:
             verdict = {**plane_verdict, "reason": f"{plane_verdict['reason']}, after a plane fit",
                        "undefined_border_fraction": border_fraction}
     verdict["checked"] = prep.rough_check
-    report["rough_surface"] = verdict
     if prep.rough_check and not verdict["rough"]:
         raise SurfaceError(
             f"{name} is not a rough surface ({verdict['reason']}); crop the map to one level or to the "
             "part, or pass --no-rough-check to analyse it anyway"
         )
+    return verdict
 
-    # 6. quantisation treatment
-    quant = report["quantisation"]
-    if quant["quantised"] and q is not None:
-        if prep.quantised == "dither":
-            h = pc.dither(h, q, seed=DITHER_SEED)
-            quant.update(applied=True, seed=DITHER_SEED)
-        else:
-            new_warnings.append({
-                "code": "quantised-heights", "tie_fraction": quant["tie_fraction"], "quantum_m": q,
-                "message": (f"{name}: {100 * quant['tie_fraction']:.3g} % of the neighbouring height pairs are "
-                            f"identical (height quantum {q:.3g} m, limit {100 * pc.TIE_WARN:g} %); flat tops fail "
-                            "the strict summit rule, so summits are missed - --quantised dither adds uniform "
-                            "noise of one quantum"),
-            })  # fmt: skip
 
-    # 7. median filter, 8. coarsening
-    h = median_filter(h, prep.median_radius)
-    report["median_radius"] = prep.median_radius
-    report["step"] = prep.step
-    info = dict(surface.info)
-    info["warnings"] = [dict(w) for w in surface.info.get("warnings", [])] + new_warnings
-    info["preparation"] = report
-    fine = Surface(
-        heights_m=h,
-        physical_size_m=surface.physical_size_m,
-        source=surface.source,
-        n_undefined_filled=surface.n_undefined_filled,
-        info=info,
-    )
-    return fine, coarsen(fine, prep.step), report
+def _treat_quantisation(
+    h: FloatArray, quant: dict[str, Any], prep: Preparation, name: str
+) -> tuple[FloatArray, list[dict[str, Any]]]:
+    """Step 6: quantised heights dithered by one quantum (``prep.quantised = "dither"``, recorded in
+    ``quant``) or warned about; the heights and the warning."""
+    q = quant["quantum_m"]
+    if not quant["quantised"] or q is None:
+        return h, []
+    if prep.quantised == "dither":
+        quant.update(applied=True, seed=DITHER_SEED)
+        return pc.dither(h, q, seed=DITHER_SEED), []
+    return h, [{
+        "code": "quantised-heights", "tie_fraction": quant["tie_fraction"], "quantum_m": q,
+        "message": (f"{name}: {100 * quant['tie_fraction']:.3g} % of the neighbouring height pairs are "
+                    f"identical (height quantum {q:.3g} m, limit {100 * pc.TIE_WARN:g} %); flat tops fail "
+                    "the strict summit rule, so summits are missed - --quantised dither adds uniform "
+                    "noise of one quantum"),
+    }]  # fmt: skip
 
 
 def prepare(surface: Surface, preparation: Preparation | None = None) -> tuple[Surface, Surface]:

@@ -1,57 +1,18 @@
-"""Non-Gaussian surrogates: image quilting with gradient-domain seam repair.
+"""Non-Gaussian surrogates: image quilting with gradient-domain seam repair (method §3, beyond the thesis).
 
-Random-phase and IAAFT surrogates (:mod:`stochfric.surface.synthesis`) are stationary Gaussian
-(or rank-remapped Gaussian) fields; measured maps are not at the pixel scale (the Laplacian's
-kurtosis is 15 to 63 000 on real files, 3 on a Gaussian field), and the Greenwood–Williamson
-contact reads exactly that local structure (summits, their curvature).  This module builds
-surrogates from pieces of the map itself:
-
-1. **Quilting** (Efros & Freeman 2001) of the short wavelengths.  The map is split (DCT,
-   power-complementary Butterworth of order :data:`SPLIT_ORDER` at ``SPLIT_PATCHES`` patch
-   sides); the high-pass part is tiled in raster order with square patches of ``patch`` points
-   overlapping by ``overlap`` points.  For every patch ``candidates`` source positions (uniform,
-   each 180°-rotated with probability ½ — that keeps the 2-D autocorrelation, a mirror flip does
-   not for an oblique lay) are drawn; a candidate whose source offset is within ``patch/2`` of
-   that of an already placed neighbour with the same orientation is excluded (the *trivial
-   continuation*, which would copy the map); the patch is drawn uniformly among the ``choose``
-   admissible candidates with the least overlap error (defaults: 4 of 4, i.e. random placement —
-   best matching prefers quiet patches and biases β̄ and σ_S, see the docs).  The new patch is
-   cut into the old one along the minimum-error boundary (dynamic programming, one vertical and
-   one horizontal cut).  Every output point remembers its source point.
-2. **Seam repair in the gradient domain.**  The target gradient of every output point is the
-   *source's* own forward difference (so at a seam each point keeps the slope and curvature
-   of the patch it came from), and the heights solve the screened Poisson equation
-   ``(κ² − ∇²) z = κ² z_quilt − div g`` with Neumann boundaries (discrete cosine transform):
-   wavelengths shorter than the screening length ``1/κ`` follow the source gradients (no height
-   steps at the seams, hence no spurious sharp summits), longer ones follow the hard quilt
-   (its variance, no random-walk drift).  With one patch equal to the map the map is returned
-   exactly.
-3. **Long wavelengths** (:func:`low_band`): the map's own DCT low-pass coefficients with random
-   signs are added — the low band has exactly the map's low-pass power spectrum (variance and
-   slopes).  A random-phase surrogate's low band (Tukey amplitudes, used before) carried 25 %
-   less variance than the map's own low-pass on mnt-1 and was steeper (σ_S −8 %, summit count
-   −4 % on sur-2).
-
-Rules (fixed, not tuned per file; docs/statistical_contact.md, "Non-Gaussian surrogates:
-quilting"): ``patch = clip(round(PATCH_SUMMIT_SPACINGS · d_s), MIN_PATCH, max_patch(nx, ny))``
-with ``d_s = √(nx·ny / n_summits)`` the mean summit spacing in points (thesis summit rule) and
-:func:`max_patch` the smaller of ``min(nx, ny) · MAX_PATCH_FRACTION`` and the largest side whose
-square stays below ``COPY_PIECE_LIMIT`` of the map; a map is quilted only where
-``round(MIN_PATCH_SUMMIT_SPACINGS · d_s)`` fits under that cap (:func:`quilt_applicable`);
-``overlap = round(patch · OVERLAP_FRACTION)``, screening length ``SCREENING_PATCHES · patch``.
-
-**Not a copy.**  :func:`copy_metrics` measures how much of the map a surrogate reproduces: the
-largest *verbatim piece* (4-connected region of constant source offset and orientation, from
-the source map) as a fraction of the map's area, and the largest normalised cross-correlation
-over all shifts with at least a quarter of the smaller map overlapping.  A surrogate is a copy
-when the piece exceeds :data:`COPY_PIECE_LIMIT` or the correlation exceeds :data:`COPY_NCC_LIMIT`.
+Surrogates made of pieces of the measured map keep the local, non-Gaussian structure (summits, their
+curvature) that the Greenwood–Williamson contact reads: the map's high-pass part is quilted (Efros &
+Freeman 2001) from randomly placed square patches, the seams are repaired by a screened Poisson
+equation on the source gradients, and the map's own DCT low-pass with random signs gives the long
+wavelengths (:func:`low_band`).  The patch rules are fixed constants; :func:`copy_metrics` says how
+much of the map a surrogate copies (docs/statistical_contact.md, "Non-Gaussian surrogates: quilting").
 """
 
 from __future__ import annotations
 
 import math
 from dataclasses import asdict, dataclass
-from typing import Any
+from typing import Any, NamedTuple
 
 import numba
 import numpy as np
@@ -189,7 +150,10 @@ def quilt_parameters(
     choose: int = CHOOSE,
     rotate: bool = True,
 ) -> QuiltParameters:
-    """The fixed rules of the module docstring applied to a map (summits by ``rule``)."""
+    """The fixed rules applied to a map (summits by ``rule``): ``patch = clip(round(patch_spacings · d_s),
+    MIN_PATCH, max_patch(nx, ny))`` with ``d_s = √(nx·ny / n_summits)`` the mean summit spacing in points,
+    ``overlap = round(patch · OVERLAP_FRACTION)``, screening length ``SCREENING_PATCHES · patch`` and split
+    wavelength ``SPLIT_PATCHES · patch`` [points]."""
     z = _heights(heights)
     nx, ny = z.shape
     upper = max_patch(nx, ny)
@@ -215,7 +179,7 @@ def quilt_parameters(
 
 
 def quilt_applicable(heights: npt.ArrayLike, *, rule: str = "thesis") -> tuple[bool, str]:
-    """Can this map be quilted by the rules of the module docstring?  ``(yes, reason)``.
+    """Can this map be quilted by the fixed rules (:func:`quilt_parameters`)?  ``(yes, reason)``.
 
     A quilt needs patches of at least ``MIN_PATCH_SUMMIT_SPACINGS`` summit spacings (so that
     seams touch few summits) under the cap :func:`max_patch` (at least ``1/MAX_PATCH_FRACTION``
@@ -271,14 +235,25 @@ def _cut_path(err: FloatArray) -> npt.NDArray[np.int64]:
     return path
 
 
+class _Source(NamedTuple):
+    """A candidate source patch: its first point ``(i, j)``, ``rotated`` (1: turned by 180°) and
+    ``last`` = patch − 1 (point ``(u, v)`` of a rotated patch is ``(i + last − u, j + last − v)``)."""
+
+    i: int
+    j: int
+    rotated: int
+    last: int
+
+
 @numba.njit(cache=True, nogil=True)
 def _block_error(
-    z: FloatArray, out: FloatArray, ci: int, cj: int, r: int, b1: int, x0: int, y0: int, rows: int, v_start: int,
-    v_stop: int, e: float, best_err: float,
+    z: FloatArray, out: FloatArray, src: _Source, x0: int, y0: int, rows: int, v_start: int, v_stop: int, e: float,
+    best_err: float,
 ) -> float:  # pragma: no cover - compiled
-    """``e`` plus the squared difference between the placed output and the candidate source patch
-    (``r = 1``: rotated 180°) over rows ``0..rows`` and columns ``v_start..v_stop`` of the patch;
-    stops early once it reaches ``best_err``."""
+    """``e`` plus the squared difference between the output placed at ``(x0, y0)`` and the candidate
+    source patch ``src`` over rows ``0..rows`` and columns ``v_start..v_stop`` of the patch; stops
+    early once it reaches ``best_err``."""
+    ci, cj, r, b1 = src
     for u in range(rows):
         for v in range(v_start, v_stop):
             h = z[ci + u, cj + v] if r == 0 else z[ci + b1 - u, cj + b1 - v]
@@ -287,6 +262,22 @@ def _block_error(
         if e >= best_err:
             break
     return e
+
+
+@numba.njit(cache=True, nogil=True)
+def _overlap_errors(
+    z: FloatArray, out: FloatArray, src: _Source, x0: int, y0: int, err: FloatArray, top: bool
+) -> None:  # pragma: no cover - compiled
+    """Squared differences between the output placed at ``(x0, y0)`` and the source patch ``src``
+    over the left overlap (``err[u, v]``, row u, column v) or, with ``top``, the top overlap
+    (``err[v, u]``): the seam runs along the first axis of ``err``."""
+    ci, cj, r, b1 = src
+    for s in range(err.shape[0]):
+        for t in range(err.shape[1]):
+            u, v = (t, s) if top else (s, t)
+            h = z[ci + u, cj + v] if r == 0 else z[ci + b1 - u, cj + b1 - v]
+            d = out[x0 + u, y0 + v] - h
+            err[s, t] = d * d
 
 
 @numba.njit(cache=True, nogil=True)
@@ -301,7 +292,12 @@ def _quilt_kernel(
     pick: npt.NDArray[np.int64],
     choose: int,
 ) -> tuple[FloatArray, IntArray, IntArray, npt.NDArray[np.int8]]:
-    """Raster-order quilt of ``n_px × n_py`` patches; ``cand[k, c] = (i, j, rotated)``."""
+    """Raster-order quilt of ``n_px × n_py`` patches; ``cand[k, c] = (i, j, rotated)``.
+
+    A candidate whose source offset lies within ``exclusion`` of an already placed neighbour's with
+    the same orientation is excluded (the trivial continuation, which would copy the map); the
+    patch is the ``pick[k] mod n``-th of the ``n`` admissible candidates ordered by overlap error,
+    cut into the placed ones along the minimum-error boundaries (one vertical, one horizontal cut)."""
     step = patch - overlap
     px = n_px * step + overlap
     py = n_py * step + overlap
@@ -347,11 +343,11 @@ def _quilt_kernel(
                 e = 0.0
                 # left overlap: all rows, first `overlap` columns; top overlap: first `overlap` rows,
                 # columns not counted already
+                src = _Source(ci, cj, r, b1)
                 if b > 0:
-                    e = _block_error(z, out, ci, cj, r, b1, x0, y0, patch, 0, overlap, e, best_err)
+                    e = _block_error(z, out, src, x0, y0, patch, 0, overlap, e, best_err)
                 if a > 0 and e < best_err:
-                    e = _block_error(z, out, ci, cj, r, b1, x0, y0, overlap, overlap if b > 0 else 0, patch, e,
-                                     best_err)
+                    e = _block_error(z, out, src, x0, y0, overlap, overlap if b > 0 else 0, patch, e, best_err)
                 errs[c] = e
                 if choose == 1 and e < best_err:
                     best_err = e
@@ -375,18 +371,10 @@ def _quilt_kernel(
             cut_v = np.zeros(patch, dtype=np.int64)
             cut_h = np.zeros(patch, dtype=np.int64)
             if b > 0:
-                for u in range(patch):
-                    for v in range(overlap):
-                        h = z[ci + u, cj + v] if r == 0 else z[ci + b1 - u, cj + b1 - v]
-                        d = out[x0 + u, y0 + v] - h
-                        err_v[u, v] = d * d
+                _overlap_errors(z, out, _Source(ci, cj, r, b1), x0, y0, err_v, False)
                 cut_v = _cut_path(err_v)
             if a > 0:
-                for v in range(patch):
-                    for u in range(overlap):
-                        h = z[ci + u, cj + v] if r == 0 else z[ci + b1 - u, cj + b1 - v]
-                        d = out[x0 + u, y0 + v] - h
-                        err_h[v, u] = d * d
+                _overlap_errors(z, out, _Source(ci, cj, r, b1), x0, y0, err_h, True)
                 cut_h = _cut_path(err_h)
             for u in range(patch):
                 for v in range(patch):

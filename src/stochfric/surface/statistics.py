@@ -1,12 +1,10 @@
 """Surface statistics, PDFs and the plasticity index (method §1.5–1.6, thesis 3.1.3).
 
-* Sq: root-mean-square height about the mean ``√(mean((z − z̄)²))`` [m];
-  skewness ``E[(z−z̄)³]/Sq³``; kurtosis ``E[(z−z̄)⁴]/Sq⁴`` (not the excess: 3 for a Gaussian).
-* σ_S: standard deviation of the summit heights (population, ``ddof = 0``) [m];
-  β̄: mean summit radius [m]; summit density: summits per nominal area [1/m²].
+* Sq: root-mean-square height about the mean [m]; skewness; kurtosis (not the excess: 3 for a Gaussian).
+* σ_S: standard deviation of the summit heights (population, ``ddof = 0``) [m]; β̄: mean summit
+  radius [m]; summit density: summits per nominal area [1/m²].
 * PDFs: normalised histograms (integral 1), as in thesis Fig. 3.10 / 3.27.
-* Plasticity index (3.7): ``γ = (E*/H) √(σ_S/β̄)``; ``γ < 0.6`` mostly elastic, ``γ > 1``
-  mostly plastic, in between elastic-plastic (thesis 3.1.3 after Greenwood–Williamson).
+* Plasticity index (3.7): ``γ = (E*/H) √(σ_S/β̄)``; < 0.6 mostly elastic, > 1 mostly plastic.
 """
 
 from __future__ import annotations

@@ -1,21 +1,10 @@
 """Summits (asperity tips) and their radii (method §1.3–1.4, thesis 3.1.1, eq. 3.1).
 
-Summit rules (strict inequalities, interior points only):
-
-* ``"thesis"`` (default, thesis 3.1.1): ``z(i,j)`` is higher than the *two* points on each
-  side along x and along y: ``z(i,j) > z(i±1,j), z(i±2,j), z(i,j±1), z(i,j±2)``
-  (8 comparisons; points within 2 of the border are not candidates).
-* ``"8-neighbour"``: the common rule — higher than all 8 nearest neighbours (including the
-  diagonals; points on the border are not candidates).
-
-Summit radius (3.1, sign misprint fixed): ``κ = ½(∂²z/∂x² + ∂²z/∂y²)`` by central
-differences on the grid, ``β = −1/κ``.  Both rules require ``z(i,j) > z(i±1,j)`` and
-``z(i,j) > z(i,j±1)``, so both second differences are strictly negative and ``κ < 0`` at
-every summit found.  The code still guards the general case: a candidate with ``κ >= 0``
-(flat or saddle-like) gets no radius, is *excluded* and *counted* in
-``Summits.n_excluded_flat``.  Plateaus (the maximum shared by two or more equal points, as in
-quantised or saturated data) never pass a strict rule; their tops are counted in
-``Summits.n_plateau`` so that a user sees how much was lost.
+Rules (strict inequalities, interior points only): ``"thesis"`` (default) — ``z(i,j)`` higher than
+the two points on each side along x and along y (8 comparisons); ``"8-neighbour"`` — higher than
+all 8 nearest neighbours.  Radius (3.1, sign misprint fixed): ``β = −1/κ`` with
+``κ = ½(∂²z/∂x² + ∂²z/∂y²)`` by central differences; a candidate with ``κ ≥ 0`` is excluded and
+counted, and plateau tops (equal maxima) are counted (docs/surface_contact.md, "Summits and radii").
 """
 
 from __future__ import annotations

@@ -1,34 +1,10 @@
 """Stochastically similar surfaces (method §3, thesis 3.1.2, eq. 3.2–3.6).
 
-Three generators, all pure functions of a height map and a random ``rng`` (a
-:class:`numpy.random.Generator` or a seed, normalised by :func:`stochfric.random.as_generator`):
-
-* :func:`random_phase_surface` — the thesis's random-phase surrogate (3.4–3.5): keep the
-  amplitude matrix ``|Z|`` of the 2-D DFT, replace the phases by random ones.  The phases are
-  those of the real-input FFT of a white Gaussian field: uniform on [−π, π), independent for
-  every conjugate pair ``(m, n) ↔ (−m, −n)``, Hermitian-symmetric by construction and 0 or π at
-  the self-conjugate frequencies (those coefficients are real).  The result is therefore real
-  and has exactly the amplitude spectrum, hence exactly the variance, of the original; the DC
-  coefficient (the mean) is kept as it is.  Anisotropy is kept because ``|Z(m, n)|`` is kept
-  element by element.
-* :func:`longer_surface` — the thesis's longer surfaces (3.6): the amplitude matrix is
-  interpolated onto a ``factor``-times finer frequency grid in y (linearly in the frequency,
-  periodically in the DFT index, so the interpolated matrix stays point-symmetric), rescaled
-  by ``√(M L)/√(M N)`` (3.6) and, beyond the thesis, rescaled once more so that the height
-  variance equals the original's **exactly** (linear interpolation of amplitudes changes
-  Σ|Z|² by a few per cent).  The DC coefficient does not take part in the interpolation (the
-  mean would otherwise leak into the new long wavelengths between f = 0 and f = Δf); the mean
-  is kept.  The thesis notes that the interpolation adds wavelengths longer than the original
-  (between 0 and Δf); they do not change the contact results (§3.2.3).
-* :func:`iaaft_surface` — beyond the thesis (its outlook): the iterative amplitude-adjusted
-  Fourier transform (Schreiber & Schmitz 1996) alternates "impose the amplitude matrix, keep
-  the phases" and "rank-order remap onto the measured heights".  It ends with the remap, so
-  the height distribution is kept **exactly** (the sorted heights equal the original's; for a
-  longer surface each original height is repeated ``factor`` times); the amplitude spectrum is
-  kept approximately.  :func:`amplitude_error` measures the deviation
-  ``ε = ‖|Z_s| − |Z|‖₂ / ‖|Z|‖₂`` over all non-DC coefficients; the iteration stops when ε
-  changes by less than ``tol`` (relative) or after ``max_iter`` iterations, and the result
-  records ε.
+Three generators, pure functions of a height map and ``rng`` (a :class:`numpy.random.Generator` or a
+seed): :func:`random_phase_surface`, the thesis's random-phase surrogate (3.4–3.5, the amplitude
+matrix kept, hence the variance and the anisotropy); :func:`longer_surface`, the thesis's longer
+surfaces (3.6, variance kept exactly); :func:`iaaft_surface`, beyond the thesis, the height
+distribution kept exactly and the spectrum approximately (docs/statistical_contact.md §1).
 """
 
 from __future__ import annotations

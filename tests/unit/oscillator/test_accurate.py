@@ -44,16 +44,11 @@ def _prm(*, gamma0: float = G0, n: float = N, damping: float = 0.0, q: float = 0
 def run(x0: tuple[float, float], tau_end: float, *, mu_k: float = MU_K, proc: np.ndarray | None = None,
         proc_dx: float = 1.0, save_dt: float = 0.1, **kw: float) -> dict[str, Any]:
     noise = K.NOISE_NONE if proc is None else K.NOISE_PROCESS
-    procv = np.zeros(1) if proc is None else np.asarray(proc, float)
-    xgh = np.full(16, np.nan)
-    tgh = np.full(16, np.nan)
-    nsave = int(tau_end / save_dt) + 1
-    traj = np.full((nsave, 3), np.nan)
-    diag = np.zeros(K.N_DIAG)
-    m = run_accurate(_prm(proc_dx=proc_dx, **kw), SHAPE_CONSTANT, np.array([mu_k]), x0[0], x0[1], tau_end,
-                     1e-3, 0.1, 1e-11, 1e-13, noise, K.PATH_MASS, procv, procv.size, xgh, tgh, traj,
-                     save_dt, diag)
-    return {"m": m, "xgh": xgh[:m], "tgh": tgh[:m], "traj": traj, "n_no_stick": diag[K.D_N_NO_STICK],
+    one = run_accurate(_prm(proc_dx=proc_dx, **kw), SHAPE_CONSTANT, np.array([mu_k]), x0,
+                       A.AccurateSettings(tau_end, 1e-3, 0.1, 1e-11, 1e-13, save_dt), noise, K.PATH_MASS, proc,
+                       nsave=int(tau_end / save_dt) + 1)
+    m, diag = one.m, one.diag
+    return {"m": m, "xgh": one.x_gh[:m], "tgh": one.t_gh[:m], "traj": one.traj, "n_no_stick": diag[K.D_N_NO_STICK],
             "n_break": diag[K.D_N_BREAKAWAY], "stick": diag[K.D_STICK], "x1": diag[K.D_X1]}
 
 
@@ -154,9 +149,9 @@ def _dopri(h: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     y = np.array([0.3, -0.5, 0.0])
     k = np.zeros((7, 3))
     ynew = np.zeros(3)
-    A._rhs(0.0, y, 1.0, prm, SHAPE_CONSTANT, lawp, K.NOISE_NONE, K.PATH_MASS, np.zeros(1), 1, k[0])
-    A._dopri_step(0.0, y, h, k, 1.0, prm, SHAPE_CONSTANT, lawp, K.NOISE_NONE, K.PATH_MASS, np.zeros(1), 1,
-                  ynew, np.zeros(3))
+    seg = A.Segment(s=1.0, rate_x2=-1.0, rate_vr=0.0, cell=0.0, p0=0.0, p1=0.0, inv_dx=0.0)  # mass path, x2 < 0
+    A._f(y[0], y[1], y[2], 0.0, prm, lawp.reshape(1, -1), seg, SHAPE_CONSTANT, 0, k, 0)
+    A._step(0.0, y, h, k, prm, lawp.reshape(1, -1), seg, SHAPE_CONSTANT, 0, ynew)
     return y, ynew, k
 
 
@@ -190,9 +185,8 @@ def test_dormand_prince_step_has_local_order_five_and_dense_output_order_four() 
 def test_the_last_trajectory_sample_at_tau_end_is_written() -> None:
     """Sticking from (0, γ0) for the whole run: rows τ = 0, 0.1, 0.2, 0.3 with x1 = τ, x2 = 1.
     (simulate(..., integrator='accurate', tau_end=0.3, dt=0.1, save_every=1) allocates these 4 rows.)"""
-    traj = np.full((4, 3), np.nan)
-    xgh, tgh, diag = np.full(4, np.nan), np.full(4, np.nan), np.zeros(K.N_DIAG)
-    run_accurate(_prm(), SHAPE_CONSTANT, np.array([MU_K]), 0.0, G0, 0.3, 1e-3, 0.1, 1e-11, 1e-13,
-                 K.NOISE_NONE, K.PATH_MASS, np.zeros(1), 1, xgh, tgh, traj, 0.1, diag)
+    traj = run_accurate(_prm(), SHAPE_CONSTANT, np.array([MU_K]), (0.0, G0),
+                        A.AccurateSettings(0.3, 1e-3, 0.1, 1e-11, 1e-13, 0.1), K.NOISE_NONE, K.PATH_MASS,
+                        capacity=4, nsave=4).traj
     np.testing.assert_allclose(traj[:3], [[0.0, 0.0, 1.0], [0.1, 0.1, 1.0], [0.2, 0.2, 1.0]], atol=1e-15)
     np.testing.assert_allclose(traj[3], [0.3, 0.3, 1.0], atol=1e-12)

@@ -15,13 +15,14 @@ from typing import Any
 import numpy as np
 import pytest
 
-from stochfric.oscillator import philox as P
 from stochfric.oscillator.friction_laws import pressure_law
 from stochfric.oscillator.integrate import simulate, trajectory_seed
+from stochfric.oscillator.options import ExecutionOptions, IntegrationOptions, NoiseOptions, OutputOptions
 from stochfric.oscillator.parameters import PhysicalParameters
+from stochfric.oscillator.presets import brake, sheet
 from stochfric.process.model import ModelFunction, TabulatedProcessModel
-from stochfric.process.presets import brake, sheet
 from stochfric.process.spectral import generate_process, generate_process_batch
+from stochfric.random import philox as P
 
 
 class _PerTrajectory:
@@ -75,19 +76,19 @@ def test_simulate_contact_equals_the_per_trajectory_path(path: str, preset: Any,
     process = _tabulated() if tabulated else pre.process
     base = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
                               normal_force=2000.0, damping_ratio=5e-6,
-                              contact_area=pre.contact_area_m2).to_dimensionless()
+                              contact_area=pre.contact_area).to_dimensionless()
     sets = [base, base.with_normal_force(4000.0), base.replace(q=1e-4, eta=1.3)]  # a forced set too
 
     def law(p: Any) -> Any:
-        return pressure_law(pre.process.mean(p.pressure))
+        return pressure_law(pre.process.mean(p.pressure_pa))
 
-    kw: dict[str, Any] = dict(model="contact", law=law, runs=5, seed=23, tau_end=25.0,
-                              path_coordinate=path, save_trajectory=True, workers=1)
+    kw: dict[str, Any] = dict(model="contact", law=law, runs=5, seed=23, integration=IntegrationOptions(tau_end=25.0),
+                              noise=NoiseOptions(path_coordinate=path), output=OutputOptions(save_trajectory=True))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        a = simulate(sets, process=process, **kw)
-        b = simulate(sets, process=_PerTrajectory(process), **kw)
-        c = simulate(sets, process=process, **{**kw, "workers": 2, "batch_size": 2})
+        a = simulate(sets, process=process, **kw, execution=ExecutionOptions(workers=1))
+        b = simulate(sets, process=_PerTrajectory(process), **kw, execution=ExecutionOptions(workers=1))
+        c = simulate(sets, process=process, **kw, execution=ExecutionOptions(workers=2, batch_size=2))
     for r in (b, c):
         np.testing.assert_array_equal(a.x_gh, r.x_gh)
         np.testing.assert_array_equal(a.trajectory, r.trajectory)

@@ -28,7 +28,6 @@ from stochfric.oscillator.friction_laws import (
     law_II,
     law_III,
     pressure_law,
-    tabulated_law,
 )
 
 #: v [m/s] → (μ, dμ/dv [s/m]) of law III, exact to the printed digits
@@ -141,28 +140,6 @@ def test_law_III_with_parameters_that_turn_negative_is_refused() -> None:
         law_I(-0.1)
 
 
-def test_tabulated_law_interpolates_and_is_flat_beyond_its_ends() -> None:
-    t = tabulated_law("meas", [0.5, 1.0, 3.0], [0.5, 0.3, 0.4])
-    assert t.static == 0.5  # default: the first tabulated value
-    np.testing.assert_allclose(t.kinetic([0.0, 0.5, 0.75, 2.0, 3.0, 9.0]), [0.5, 0.5, 0.4, 0.35, 0.4, 0.4],
-                               rtol=1e-14)
-    assert t.derivative(0.75) == pytest.approx(-0.4, rel=1e-14)
-    assert t.derivative(2.0) == pytest.approx(0.05, rel=1e-14)
-    assert t.derivative(0.2) == 0.0 and t.derivative(5.0) == 0.0
-    assert tabulated_law("m", [0.0, 1.0], [0.3, 0.2], static=0.45).static == 0.45
-
-
-@pytest.mark.parametrize(("v", "mu", "fragment"), [
-    ([0.0, 1.0], [0.3], "equal length"),
-    ([0.0], [0.3], ">= 2"),
-    ([1.0, 0.5], [0.3, 0.2], "strictly increasing"),
-    ([-1.0, 0.5], [0.3, 0.2], ">= 0"),
-])
-def test_tabulated_law_refuses_bad_tables(v: list[float], mu: list[float], fragment: str) -> None:
-    with pytest.raises(ValueError, match=re.escape(fragment)):
-        tabulated_law("bad", v, mu)
-
-
 def test_registry_builds_laws_with_parameters_and_describes_them() -> None:
     assert get_law("pressure", mu_fit=0.28) == pressure_law(0.28)
     assert get_law("I", mu=0.3).static == 0.3
@@ -170,4 +147,4 @@ def test_registry_builds_laws_with_parameters_and_describes_them() -> None:
         get_law("Coulomb")
     d = law_III().to_dict()
     assert d["shape"] == "rational" and d["static"] == 0.4 and d["params"] == pytest.approx([0.3, 1.42, 0.1, 0.01])
-    assert tabulated_law("m", [0.0, 1.0], [0.3, 0.2]).to_dict()["shape"] == "tabulated"
+    assert law_I().to_dict()["shape"] == "constant"

@@ -25,7 +25,7 @@ import pytest
 
 from kernel_helpers import run_fixed_step  # tests/kernel_helpers.py (test helper)
 from stochfric.oscillator import kernels as K
-from stochfric.oscillator.friction_laws import SHAPE_CONSTANT, SHAPE_RATIONAL, SHAPE_TABULATED
+from stochfric.oscillator.friction_laws import SHAPE_CONSTANT, SHAPE_RATIONAL
 
 LAW_II = (SHAPE_CONSTANT, np.array([0.25, 0.0, 0.0, 0.0]), 0.4)  # μ_k = 0.25, μ_s = 0.4
 LAW_III = (SHAPE_RATIONAL, np.array([0.3, 1.42, 0.1, 0.01]), 0.4)  # (μ0 − μ1, 1.42, μ1, 0.01)
@@ -36,55 +36,45 @@ def mu_III(v: float) -> float:
     return (0.4 - 0.1) / (1.0 + 1.42 * abs(v)) + 0.1 + 0.01 * v * v
 
 
+#: The parameters ``run`` takes by name: their column of the parameter row and their default.
+PRM = {"gamma0": (K.P_GAMMA0, 1.0), "n": (K.P_N, 10.0), "damping": (K.P_D, 0.0), "q": (K.P_Q, 0.0),
+       "eta": (K.P_ETA, 0.0), "vscale": (K.P_VSCALE, 1.0), "sigma": (K.P_SIGMA, 0.0), "proc_dx": (K.P_PROC_DX, 1.0)}
+
+
 def run(
     x0: list[tuple[float, float]] | tuple[float, float],
     nsteps: int,
     dt: float,
     *,
     law: tuple[int, np.ndarray, float] = LAW_II,
-    gamma0: float = 1.0,
-    n: float = 10.0,
-    damping: float = 0.0,
-    q: float = 0.0,
-    eta: float = 0.0,
-    vscale: float = 1.0,
-    sigma: float = 0.0,
     noise: int = K.NOISE_NONE,
     scheme: int = K.SCHEME_EULER,
     path_mode: int = K.PATH_MASS,
     dw: np.ndarray | None = None,
     proc: np.ndarray | None = None,
-    proc_dx: float = 1.0,
+    **prm: float,
 ) -> dict[str, Any]:
-    """Run ``len(x0)`` trajectories with identical parameters through ``run_fixed_step_batch``."""
+    """Run ``len(x0)`` trajectories with identical parameters (``prm``: the names of :data:`PRM`, else
+    their defaults; x30 = 0, μ_s of the law) through ``run_fixed_step_batch``."""
+    assert set(prm) <= set(PRM), set(prm) - set(PRM)
     starts = [x0] if isinstance(x0[0], float | int) else list(x0)  # type: ignore[list-item]
     nt = len(starts)
-    prm = np.zeros((nt, K.N_PRM))
-    prm[:, K.P_GAMMA0] = gamma0
-    prm[:, K.P_N] = n
-    prm[:, K.P_D] = damping
-    prm[:, K.P_Q] = q
-    prm[:, K.P_ETA] = eta
-    prm[:, K.P_X30] = 0.0
-    prm[:, K.P_VSCALE] = vscale
-    prm[:, K.P_MUS] = law[2]
-    prm[:, K.P_SIGMA] = sigma
-    prm[:, K.P_PROC_DX] = proc_dx
+    row = np.zeros(K.N_PRM)
+    for name, (col, default) in PRM.items():
+        row[col] = prm.get(name, default)
+    row[K.P_MUS] = law[2]
     shapes = np.full(nt, law[0], dtype=np.int64)
     lawp = np.tile(law[1], (nt, 1))
     x0a = np.array(starts, dtype=np.float64).reshape(nt, 2)
     dwa = np.zeros((nt, max(nsteps, 1))) if dw is None else np.tile(np.asarray(dw, float), (nt, 1))
-    if proc is None:
-        proca = np.zeros((nt, 1))
-    else:
-        proca = np.tile(np.asarray(proc, float), (nt, 1))
+    proca = np.tile(np.zeros(1) if proc is None else np.asarray(proc, float), (nt, 1))
     nproc = np.full(nt, proca.shape[1], dtype=np.int64)
     xgh = np.full((nt, 8), np.nan)
     tgh = np.full((nt, 8), np.nan)
     counts = np.zeros(nt, dtype=np.int64)
     traj = np.zeros((nt, nsteps + 1, 3))
     diag = np.zeros((nt, K.N_DIAG))
-    K.run_fixed_step_batch(K.KernelRows(prm, shapes, lawp, x0a, proca, nproc),
+    K.run_fixed_step_batch(K.KernelRows(np.tile(row, (nt, 1)), shapes, lawp, x0a, proca, nproc),
                            K.KernelOutput(xgh, tgh, counts, traj, diag), K.FixedStepGrid(nsteps, dt, 1),
                            scheme, noise, path_mode,
                            K.WhiteInput(K.WHITE_GIVEN, dwa, np.zeros(1, dtype=np.uint64)))
@@ -215,13 +205,6 @@ def test_forced_breakaway_interpolates_the_moving_stick_bound() -> None:
     assert out["x2"][0] == pytest.approx(x2, abs=1e-13)
 
 
-def test_a_tabulated_law_is_read_by_the_kernel() -> None:
-    """A measured μ(|v|) table (0, 0.4), (1, 0.2), (2, 0.3): at |v_rel| = 1.5 m/s μ = 0.25."""
-    law = (SHAPE_TABULATED, np.array([3.0, 0.0, 1.0, 2.0, 0.4, 0.2, 0.3]), 0.4)
-    out = run((0.0, -0.5), 1, 0.01, law=law)
-    assert out["x2"][0] == pytest.approx(-0.5 + 0.01 * 10 * 0.25, abs=1e-14)
-
-
 # --- white noise: Euler–Maruyama and Milstein steps with a given increment ---------------------------
 
 
@@ -300,18 +283,14 @@ def test_single_trajectory_wrapper_equals_the_batch_kernel() -> None:
     """``run_fixed_step`` (one row) is the batch kernel: same X_gh, same final state."""
     prm = np.zeros(K.N_PRM)
     prm[K.P_GAMMA0], prm[K.P_N], prm[K.P_VSCALE], prm[K.P_MUS], prm[K.P_PROC_DX] = 1.0, 10.0, 1.0, 0.4, 1.0
-    xgh = np.full(8, np.nan)
-    tgh = np.full(8, np.nan)
-    diag = np.zeros(K.N_DIAG)
-    m = run_fixed_step(prm, SHAPE_CONSTANT, np.array([0.25]), 0.0, 1.0, 2000, 0.01, K.SCHEME_EULER,
-                         K.NOISE_NONE, K.PATH_MASS, np.zeros(1), np.zeros(1), 1, xgh, tgh,
-                         np.zeros((0, 3)), 1, diag)
+    one = run_fixed_step(prm, SHAPE_CONSTANT, np.array([0.25]), (0.0, 1.0), K.FixedStepGrid(2000, 0.01, 1),
+                         K.SCHEME_EULER, K.NOISE_NONE, K.PATH_MASS, np.zeros(1))
     out = run((0.0, 1.0), 2000, 0.01)
-    assert m == out["counts"][0] >= 2
-    np.testing.assert_array_equal(xgh, out["xgh"][0])
-    assert diag[K.D_X1] == out["x1"][0] and diag[K.D_X2] == out["x2"][0]
+    assert one.m == out["counts"][0] >= 2
+    np.testing.assert_array_equal(one.x_gh, out["xgh"][0])
+    assert one.diag[K.D_X1] == out["x1"][0] and one.diag[K.D_X2] == out["x2"][0]
     # law II cycle (undamped): X_gh → n(2μ_k − μ_s) = 1 with Euler's O(Δτ) error (−4.68 Δτ)
-    assert xgh[0] == pytest.approx(1.0, abs=0.1)
+    assert one.x_gh[0] == pytest.approx(1.0, abs=0.1)
 
 
 # --- the forcing terms of a lock-step group -----------------------------------------------------
@@ -324,11 +303,13 @@ def test_forcing_terms_are_q_cos_x3_at_both_ends_of_the_step() -> None:
     q = np.array([0.0, 2e-4, 2e-4, 5e-4, 0.0, 5e-4, 5e-4])
     x30 = np.array([0.0, 0.0, 0.0, 0.3, 0.0, 0.3, 0.0])
     eta = np.array([0.0, 1.3, 1.3, 0.7, 0.0, 0.7, 0.7])
-    forced = (q != 0.0).astype(float)
+    cs = np.zeros((K._NC, 7))
+    cs[K._C_FORCED], cs[K._C_QQ], cs[K._C_X30], cs[K._C_ETA] = (q != 0.0), q, x30, eta
+    stp = np.zeros((K._NW, 7))
+    now, nxt = stp[K._W_FQ_NOW], stp[K._W_FQ_NEXT]
     dt = 0.005
-    now, nxt = np.zeros(7), np.zeros(7)
     for k in range(0, 400):
-        K._forcing_terms(k, dt, 7, forced, q, x30, eta, now, nxt)
+        K._forcing_terms(k, dt, cs, stp)
         for j in range(7):
             if q[j] == 0.0:
                 assert now[j] == 0.0 and nxt[j] == 0.0

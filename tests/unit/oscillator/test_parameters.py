@@ -14,7 +14,6 @@ from stochfric.oscillator.friction_laws import (
     law_II,
     law_III,
     pressure_law,
-    tabulated_law,
 )
 from stochfric.oscillator.parameters import (
     OscillatorParameters,
@@ -35,7 +34,7 @@ def test_brake_dimensionless_values_match_method_section_6() -> None:
     assert d.eta == pytest.approx(1.2)
     assert d.damping_ratio == 0.15
     assert d.normal_force == pytest.approx(5600.0)
-    assert d.pressure == pytest.approx(5600.0 / 0.016)
+    assert d.pressure_pa == pytest.approx(5600.0 / 0.016)
     assert d.belt_speed == pytest.approx(1.0)
 
 
@@ -98,14 +97,8 @@ def test_pressure_law_eq_4_13() -> None:
         pressure_law(0.5)
 
 
-def test_registry_and_tabulated_law() -> None:
+def test_registry() -> None:
     assert set(FRICTION_LAWS) >= {"I", "II", "III", "pressure"}
     assert get_law("III") == law_III()
     with pytest.raises(ValueError, match="unknown friction law"):
         get_law("IV")
-    t = tabulated_law("meas", [0.0, 1.0, 2.0], [0.4, 0.3, 0.2])
-    assert t(0.5) == pytest.approx(0.35)
-    assert t(5.0) == pytest.approx(0.2)
-    assert t.derivative(0.5) == pytest.approx(-0.1)
-    with pytest.raises(ValueError, match="increasing"):
-        tabulated_law("bad", [0.0, 0.0], [0.4, 0.3])

@@ -8,9 +8,10 @@ from typing import Any
 import numpy as np
 import pytest
 
+from stochfric.oscillator.case import case_setup, law_for
 from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.options import IntegrationOptions, NoiseOptions
 from stochfric.oscillator.parameters import ParameterError
-from stochfric.studies.common import law_for, make_setup
 
 
 class FixedProcess:
@@ -31,10 +32,10 @@ class FixedProcess:
 
 
 def _run(values: np.ndarray, coordinate: str) -> np.ndarray:
-    st = make_setup("brake")
+    st = case_setup("brake")
     p = st.parameters(2720.0, 5e-6)
     res = simulate(p, model="contact", law=law_for(st.process, p), process=FixedProcess(st.process, values),
-                   path_coordinate=coordinate, tau_end=50.0)
+                   noise=NoiseOptions(path_coordinate=coordinate), integration=IntegrationOptions(tau_end=50.0))
     return res.x_gh[0, 0]
 
 
@@ -51,8 +52,9 @@ def test_position_mode_reads_only_where_the_mass_is() -> None:
 
 
 def test_position_mode_refuses_the_accurate_integrator() -> None:
-    st = make_setup("brake")
+    st = case_setup("brake")
     p = st.parameters(2720.0, 5e-6)
     with pytest.raises(ParameterError, match="'position'"):
-        simulate(p, model="contact", law=law_for(st.process, p), process=st.process, path_coordinate="position",
-                 integrator="accurate")
+        simulate(p, model="contact", law=law_for(st.process, p), process=st.process,
+                 noise=NoiseOptions(path_coordinate="position"),
+                 integration=IntegrationOptions(integrator="accurate"))

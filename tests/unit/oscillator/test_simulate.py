@@ -10,44 +10,45 @@ import pytest
 
 from stochfric.oscillator.friction_laws import law_III, pressure_law
 from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.options import ExecutionOptions, IntegrationOptions, NoiseOptions, OutputOptions
 from stochfric.oscillator.parameters import OscillatorParameters, ParameterError, PhysicalParameters
+from stochfric.oscillator.presets import brake
 from stochfric.oscillator.result import load_result
-from stochfric.process.presets import brake
 
 
 def _brake(force: float = 5600.0, damping: float = 5e-6) -> tuple[OscillatorParameters, object]:
     pre = brake()
     p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,
                            normal_force=force, damping_ratio=damping,
-                           contact_area=pre.contact_area_m2).to_dimensionless()
+                           contact_area=pre.contact_area).to_dimensionless()
     return p, pre
 
 
 def _law(p: OscillatorParameters) -> object:
-    assert p.pressure is not None
-    return pressure_law(brake().process.mean(p.pressure))
+    assert p.pressure_pa is not None
+    return pressure_law(brake().process.mean(p.pressure_pa))
 
 
 @pytest.mark.parametrize("model", ["white", "contact"])
 def test_same_seed_same_numbers_whatever_the_threads_and_batches(model: str) -> None:
     p, pre = _brake()
     sets = [p, p.with_normal_force(2720.0), p.with_normal_force(8000.0)]
-    kw = dict(model=model, law=_law, process=pre.process, runs=5, seed=7, tau_end=10.0)
-    a = simulate(sets, workers=1, batch_size=15, **kw)
-    b = simulate(sets, workers=2, batch_size=1, **kw)
-    c = simulate(sets, workers=2, batch_size=4, **kw)
+    kw = dict(model=model, law=_law, process=pre.process, runs=5, seed=7, integration=IntegrationOptions(tau_end=10.0))
+    a = simulate(sets, **kw, execution=ExecutionOptions(workers=1, batch_size=15))
+    b = simulate(sets, **kw, execution=ExecutionOptions(workers=2, batch_size=1))
+    c = simulate(sets, **kw, execution=ExecutionOptions(workers=2, batch_size=4))
     for r in (b, c):
         np.testing.assert_array_equal(a.x_gh, r.x_gh)
         np.testing.assert_array_equal(a.stick_count, r.stick_count)
     # a parameter set's runs do not depend on the other sets
     d = simulate(sets[1:2], **kw)
     assert not np.array_equal(d.x_gh[0], a.x_gh[1], equal_nan=True)  # spawn key (0, r) ≠ (1, r)
-    e = simulate(sets, common_random_numbers=True, **kw)
-    f = simulate(sets[1:2], common_random_numbers=True, **kw)
+    e = simulate(sets, **kw, noise=NoiseOptions(common_random_numbers=True))
+    f = simulate(sets[1:2], **kw, noise=NoiseOptions(common_random_numbers=True))
     np.testing.assert_array_equal(e.x_gh[1], f.x_gh[0])
     # different runs differ, a different seed differs
     assert not np.array_equal(a.x_gh[0, 0], a.x_gh[0, 1], equal_nan=True)
-    g = simulate(sets, workers=1, **{**kw, "seed": 8})
+    g = simulate(sets, **{**kw, "seed": 8}, execution=ExecutionOptions(workers=1))
     assert not np.array_equal(a.x_gh, g.x_gh, equal_nan=True)
 
 
@@ -69,9 +70,9 @@ def test_contact_model_with_a_zero_process_equals_the_deterministic_model() -> N
             return {"kind": "zero"}
 
     for integ in ("euler", "accurate"):
-        det = simulate(p, law=_law, integrator=integ, tau_end=20.0)
-        con = simulate(p, model="contact", law=_law, process=Zero(), integrator=integ,
-                       tau_end=20.0, runs=2, seed=1)
+        det = simulate(p, law=_law, integration=IntegrationOptions(integrator=integ, tau_end=20.0))
+        con = simulate(p, model="contact", law=_law, process=Zero(), runs=2, seed=1,
+                       integration=IntegrationOptions(integrator=integ, tau_end=20.0))
         for r in range(2):
             # Euler: bit-identical; accurate: the process's grid points are extra restart
             # events, so the step sequence differs (agreement to its tolerance)
@@ -81,24 +82,26 @@ def test_contact_model_with_a_zero_process_equals_the_deterministic_model() -> N
 
 def test_contact_accurate_is_step_independent() -> None:
     p, pre = _brake()
-    a = simulate(p, model="contact", law=_law, process=pre.process, integrator="accurate",
-                 tau_end=20.0, dt=0.01, runs=2, seed=3)
-    b = simulate(p, model="contact", law=_law, process=pre.process, integrator="accurate",
-                 tau_end=20.0, dt=0.001, runs=2, seed=3, rtol=1e-12, atol=1e-15, max_step=0.05)
+    a = simulate(p, model="contact", law=_law, process=pre.process, runs=2, seed=3,
+                 integration=IntegrationOptions(integrator="accurate", tau_end=20.0, dt=0.01))
+    b = simulate(p, model="contact", law=_law, process=pre.process, runs=2, seed=3,
+                 integration=IntegrationOptions(integrator="accurate", tau_end=20.0, dt=0.001, rtol=1e-12,
+                                                atol=1e-15, max_step=0.05))
     assert np.array_equal(a.stick_count, b.stick_count)
     scale = np.nanmax(np.abs(a.x_gh))  # cycle amplitude ≈ 2e-3
     np.testing.assert_allclose(a.x_gh, b.x_gh, atol=1e-8 * scale / 1e-3)
     # Euler converges to it
-    e = simulate(p, model="contact", law=_law, process=pre.process, dt=0.0005, tau_end=20.0,
-                 runs=2, seed=3)
+    e = simulate(p, model="contact", law=_law, process=pre.process, runs=2, seed=3,
+                 integration=IntegrationOptions(dt=0.0005, tau_end=20.0))
     assert np.nanmax(np.abs(e.x_gh - a.x_gh)) < 0.05 * scale
 
 
 def test_path_coordinate_is_recorded_and_matters() -> None:
     p, pre = _brake()
-    m = simulate(p, model="contact", law=_law, process=pre.process, runs=2, seed=1, tau_end=20.0)
-    r = simulate(p, model="contact", law=_law, process=pre.process, runs=2, seed=1, tau_end=20.0,
-                 path_coordinate="relative")
+    m = simulate(p, model="contact", law=_law, process=pre.process, runs=2, seed=1,
+                 integration=IntegrationOptions(tau_end=20.0))
+    r = simulate(p, model="contact", law=_law, process=pre.process, runs=2, seed=1,
+                 noise=NoiseOptions(path_coordinate="relative"), integration=IntegrationOptions(tau_end=20.0))
     assert m.path_coordinate == "mass" and r.path_coordinate == "relative"
     assert m.to_dataset().attrs["path_coordinate"] == "mass"
     assert not np.array_equal(m.x_gh, r.x_gh, equal_nan=True)
@@ -126,11 +129,11 @@ def test_process_never_repeats_and_short_slip_warning(monkeypatch: pytest.Monkey
     wide = simulate(p, model="contact", law=_law, process=short, runs=3, seed=1)
     np.testing.assert_array_equal(wide.x_gh, res.x_gh)
     np.testing.assert_array_equal(wide.stick_count, res.stick_count)
-    acc = simulate(p, model="contact", law=_law, process=short, runs=2, seed=1, integrator="accurate",
-                   tau_end=20.0)
+    acc = simulate(p, model="contact", law=_law, process=short, runs=2, seed=1,
+                   integration=IntegrationOptions(integrator="accurate", tau_end=20.0))
     monkeypatch.setattr(integrate_module, "FIRST_SEGMENTS", 1)
-    acc1 = simulate(p, model="contact", law=_law, process=short, runs=2, seed=1, integrator="accurate",
-                    tau_end=20.0)
+    acc1 = simulate(p, model="contact", law=_law, process=short, runs=2, seed=1,
+                    integration=IntegrationOptions(integrator="accurate", tau_end=20.0))
     np.testing.assert_array_equal(acc.x_gh, acc1.x_gh)
     assert np.max(acc1.diagnostics["process_segments"]) > 1
     coarse = replace(pre.process, dx=0.05 / 5)  # 1 cm grid: slip paths (≈ 5 mm) are shorter
@@ -145,13 +148,15 @@ def test_process_never_repeats_and_short_slip_warning(monkeypatch: pytest.Monkey
     ("kwargs", "fragment"),
     [
         ({"model": "white"}, "needs the intensity"),
-        ({"model": "white", "sigma_zeta": 0.1, "integrator": "accurate"}, "SDE"),
-        ({"integrator": "milstein"}, "strong order-1"),
+        ({"model": "white", "noise": NoiseOptions(sigma_zeta=0.1),
+          "integration": IntegrationOptions(integrator="accurate")}, "SDE"),  # type: ignore[arg-type]
+        ({"integration": IntegrationOptions(integrator="milstein")}, "strong order-1"),  # type: ignore[arg-type]
         ({"model": "contact"}, "friction-process model"),
-        ({"dt": 0.5}, "steps per period"),
-        ({"dt": -1.0}, "positive"),
+        ({"model": "fluid"}, "unknown model"),
+        ({"integration": IntegrationOptions(dt=0.5)}, "steps per period"),
+        ({"integration": IntegrationOptions(dt=-1.0)}, "positive"),
         ({"runs": 0}, "positive integer"),
-        ({"path_coordinate": "belt"}, "path coordinate"),
+        ({"noise": NoiseOptions(path_coordinate="belt")}, "path coordinate"),  # type: ignore[arg-type]
         ({"x0": (float("nan"), 0.0)}, "finite"),
     ],
 )
@@ -168,8 +173,8 @@ def test_white_noise_needs_pressure_for_the_sigma_rule() -> None:
 
 def test_result_round_trip_through_netcdf(tmp_path) -> None:
     p, pre = _brake()
-    res = simulate([p, p.with_normal_force(8000.0)], model="white", law=_law,
-                   process=pre.process, runs=3, seed=11, tau_end=10.0, save_trajectory=True)
+    res = simulate([p, p.with_normal_force(8000.0)], model="white", law=_law, process=pre.process, runs=3, seed=11,
+                   integration=IntegrationOptions(tau_end=10.0), output=OutputOptions(save_trajectory=True))
     path = res.to_netcdf(tmp_path / "sub" / "sim.nc")
     ds = load_result(path)
     np.testing.assert_array_equal(ds["x_gh"].values, res.x_gh)
@@ -188,34 +193,37 @@ def test_result_round_trip_through_netcdf(tmp_path) -> None:
 
 
 def test_event_buffer_overflow_is_reported() -> None:
-    r = simulate(OscillatorParameters(gamma0=1.0, n=10.0), law=law_III(), max_events=2)
+    r = simulate(OscillatorParameters(gamma0=1.0, n=10.0), law=law_III(), output=OutputOptions(max_events=2))
     assert any("max_events" in w.message for w in r.warnings)
     assert r.stick_count[0, 0] == 6 and np.isfinite(r.x_gh[0, 0]).sum() == 2
 
 
-@pytest.mark.parametrize("neighbour", ["forced", "tabulated"])
+@pytest.mark.parametrize("neighbour", ["forced", "constant-law"])
 @pytest.mark.parametrize(("model", "integrator"), [("deterministic", "euler"), ("white", "euler"),
                                                    ("white", "milstein"), ("contact", "euler")])
 def test_fast_passes_give_identical_numbers(model: str, integrator: str, neighbour: str) -> None:
-    """The batch kernel's fast passes share the arithmetic of the full step: an unforced lane gives
-    the same bits alone (SIMD pass, no forcing terms), in a group with forced lanes (SIMD pass with
-    the forcing terms q cos x3 of kernels._forcing_terms) and in a group with a tabulated law (scalar
-    pass).  (Contact: the SIMD pass reads μ̂ from per-lane segment caches, the scalar pass gathers.)"""
-    from stochfric.oscillator.friction_laws import tabulated_law
+    """The batch kernel's fast pass shares the arithmetic of the full step: an unforced lane gives
+    the same bits alone (no forcing terms), in a group with forced lanes (with the forcing terms
+    q cos x3 of kernels._forcing_terms) and in a group with a constant law (law II in the rational
+    form p0/(1 + 0·v) + 0 + 0·v²).  (Contact: the fast pass reads μ̂ from per-lane segment caches, the
+    full step gathers.)"""
+    from stochfric.oscillator.friction_laws import law_II
     from stochfric.oscillator.kernels import LOCKSTEP
 
     p, pre = _brake(2720.0)
     runs = LOCKSTEP // 2
     other = p.replace(q=1e-4, eta=1.3) if neighbour == "forced" else p.replace(eta=0.5)  # a marker
-    table = tabulated_law("measured", [0.0, 0.5, 2.0], [0.45, 0.35, 0.3], static=0.5)
+    constant = law_II()
 
     def law(q: OscillatorParameters) -> object:
-        return table if (neighbour == "tabulated" and q.eta == 0.5) else _law(q)
+        return constant if (neighbour == "constant-law" and q.eta == 0.5) else _law(q)
 
-    kw = dict(model=model, law=law, process=pre.process, integrator=integrator, runs=runs, seed=9,
-              tau_end=20.0, workers=1, save_trajectory=True)
-    alone = simulate([p], **kw)
-    mixed = simulate([p, other], batch_size=2 * runs, **kw)  # shares its lock-step group with `other`
+    kw = dict(model=model, law=law, process=pre.process, runs=runs, seed=9,
+              integration=IntegrationOptions(integrator=integrator, tau_end=20.0),
+              output=OutputOptions(save_trajectory=True))
+    alone = simulate([p], **kw, execution=ExecutionOptions(workers=1))
+    # shares its lock-step group with `other`
+    mixed = simulate([p, other], **kw, execution=ExecutionOptions(workers=1, batch_size=2 * runs))
     np.testing.assert_array_equal(alone.x_gh[0], mixed.x_gh[0])
     np.testing.assert_array_equal(alone.trajectory[0], mixed.trajectory[0])
     assert alone.stick_count.sum() > 0
@@ -229,10 +237,11 @@ def test_forced_ensembles_do_not_depend_on_the_grouping(model: str) -> None:
     trajectories share lock-step groups (default batches) or run one per batch."""
     p, pre = _brake(4000.0)
     sets = [p.replace(q=1e-4, eta=eta) for eta in (0.3, 0.9, 0.9, 1.7)] + [p]
-    kw = dict(model=model, law=_law, process=pre.process, runs=7, seed=5, tau_end=30.0, dt=0.003,
-              save_trajectory=True, save_every=25)
-    a = simulate(sets, workers=1, **kw)
-    b = simulate(sets, workers=2, batch_size=1, **kw)
+    kw = dict(model=model, law=_law, process=pre.process, runs=7, seed=5,
+              integration=IntegrationOptions(tau_end=30.0, dt=0.003),
+              output=OutputOptions(save_trajectory=True, save_every=25))
+    a = simulate(sets, **kw, execution=ExecutionOptions(workers=1))
+    b = simulate(sets, **kw, execution=ExecutionOptions(workers=2, batch_size=1))
     np.testing.assert_array_equal(a.x_gh, b.x_gh)
     np.testing.assert_array_equal(a.trajectory, b.trajectory)
     assert a.stick_count.sum() > 0

@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from stochfric.oscillator.options import IntegrationOptions
 from stochfric.process.model import (
     BandLimitedProcessModel,
     FrictionProcessModel,
@@ -165,7 +166,7 @@ def test_every_process_model_drives_the_contact_oscillator(kind: str) -> None:
     from stochfric.oscillator.friction_laws import pressure_law
     from stochfric.oscillator.integrate import simulate
     from stochfric.oscillator.parameters import PhysicalParameters
-    from stochfric.process.presets import brake, psd_level_process
+    from stochfric.oscillator.presets import brake
     from stochfric.process.statistics import AnalysisConfig, analyse
     from stochfric.surface.io import default_surface_path, read_surface
     from stochfric.surface.preprocess import prepare
@@ -175,7 +176,7 @@ def test_every_process_model_drives_the_contact_oscillator(kind: str) -> None:
     if kind == "band_limited":
         model: FrictionProcessModel = pre.process
     elif kind == "psd_level":
-        model = psd_level_process(pre)
+        model = pre.process_with_level("psd_level")
     else:
         fine, _ = prepare(read_surface(default_surface_path()))
         cfg = AnalysisConfig(realizations=3, long_surfaces=3, length_factor=3, window_shift_points=37, seed=1,
@@ -185,9 +186,9 @@ def test_every_process_model_drives_the_contact_oscillator(kind: str) -> None:
         model = dataclasses.replace(model, length=0.05, dx=0.05 / round(0.05 / model.dx))  # type: ignore[arg-type]
     params = PhysicalParameters(
         mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed, normal_force=5600.0,
-        damping_ratio=5e-6, contact_area=pre.contact_area_m2,
+        damping_ratio=5e-6, contact_area=pre.contact_area,
     ).to_dimensionless()
-    p = params.pressure
+    p = params.pressure_pa
     assert p is not None and 0.0 < model.mean(p) < 1.0
     x = model.generate(p, 3)
     n = round(model.length / model.dx)
@@ -199,5 +200,6 @@ def test_every_process_model_drives_the_contact_oscillator(kind: str) -> None:
     # the thesis's μ0 = 0.4 is below E[μ] of the shipped surface (0.62 at 0.35 MPa): the static value
     # of the pressure law (4.13) must exceed the drop E[μ](p)
     law = pressure_law(model.mean(p), mu0=max(0.4, model.mean(p) + 0.2))
-    res = simulate(params, law=law, model="contact", process=model, runs=2, tau_end=10.0, dt=0.005, seed=1)
+    res = simulate(params, law=law, model="contact", process=model, runs=2, seed=1,
+                   integration=IntegrationOptions(tau_end=10.0, dt=0.005))
     assert np.all(res.stick_count >= 1)

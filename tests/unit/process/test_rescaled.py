@@ -7,8 +7,8 @@ import dataclasses
 import numpy as np
 import pytest
 
+from stochfric.oscillator.presets import brake, sheet
 from stochfric.process.band_limited import BandLimitedProcessModel
-from stochfric.process.presets import brake, sheet
 from stochfric.process.rescaled import (
     FftBandLimitedProcessModel,
     band_correlation_length,

@@ -10,7 +10,9 @@ import numpy as np
 import pytest
 
 from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.options import IntegrationOptions
 from stochfric.oscillator.parameters import PhysicalParameters
+from stochfric.oscillator.presets import brake
 from stochfric.process.model import (
     BandLimitedProcessModel,
     ModelFunction,
@@ -19,7 +21,6 @@ from stochfric.process.model import (
     low_frequency_level,
     process_model_from_dict,
 )
-from stochfric.process.presets import brake
 from stochfric.process.spectral import one_sided_psd
 
 DX = 1e-3
@@ -145,9 +146,9 @@ def test_model_plugs_into_simulate() -> None:
     m = _model()
     phys = PhysicalParameters(mass=2.0, stiffness=1e6, belt_speed=1.0, normal_force=5600.0, contact_area=0.016)
     params = phys.to_dimensionless()
-    assert params.pressure == pytest.approx(3.5e5)
-    res = simulate(params, model="contact", process=m, runs=2, seed=1, tau_end=5.0)
+    assert params.pressure_pa == pytest.approx(3.5e5)
+    res = simulate(params, model="contact", process=m, runs=2, seed=1, integration=IntegrationOptions(tau_end=5.0))
     assert res.process is not None and res.process["kind"] == "tabulated"
     white = simulate(params, model="white", process=_model(sigma_zeta_rule="spectral_level"), runs=1, seed=1,
-                     tau_end=2.0)
+                     integration=IntegrationOptions(tau_end=2.0))
     assert white.sigma_zeta[0] == pytest.approx(_model(sigma_zeta_rule="spectral_level").sigma_zeta(3.5e5))

@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import re
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Any, NoReturn
 
 import matplotlib.image as mpimg
@@ -35,9 +36,22 @@ from stochfric.report.html import (
     reading_html,
     rich_text,
 )
-from stochfric.studies.base import StudyResult
+from stochfric.studies.base import STUDY_SCHEMA, StudyResult
+from stochfric.studies.damping import DampingSummary, DMaxRisk, PhaseSummary, SampleExtreme
+from stochfric.studies.forcing import ForcingSummary
+from stochfric.studies.lyapunov import LyapunovSummary, Significance
+from stochfric.studies.normal_force import NormalForceSummary
+from stochfric.studies.stats import RatioEstimate
+from stochfric.studies.summary import WarningCount
 
 PNG = b"\x89PNG\r\n\x1a\n"
+
+
+def _head(study: str, models: list[str], **over: Any) -> dict[str, Any]:
+    """The common summary fields of a hand-built study summary."""
+    return {"schema": STUDY_SCHEMA, "study": study, "preset": "brake", "process_source": "preset", "runs": 2,
+            "seed": 1, "tau_end": 50.0, "dt": 0.005, "models": models, "path_coordinate": "mass",
+            "white_intensity": "sigma_mu", "white_increment": "ito", "process_level": "sigma_mu", **over}
 
 
 def _lyapunov_result() -> StudyResult:
@@ -57,14 +71,26 @@ def _lyapunov_result() -> StudyResult:
                "seed_entropy": "20131234", "seed_rule": "task k uses SeedSequence(seed, spawn_key=(k,))",
                "versions_json": json.dumps({"stochfric": "0.1.0"})},
     )
-    summary: dict[str, Any] = {
-        "preset": "brake", "models": models, "perturbation": 1e-6, "tau_end": 200.0,
-        "status_counts": {"deterministic": {"ok": 4, "merged": 1, "too-few-transitions": 0, "nonlinear": 1},
-                   "white": {"ok": 5, "merged": 1, "too-few-transitions": 0, "nonlinear": 0}},
-        "significance": {"deterministic": {"positive": 2, "negative": 0, "defined": 4},
-                         "white": {"positive": 1, "negative": 1, "defined": 5}},
-        "warnings": [{"code": "slip-shorter-than-grid", "count": 3}, {"code": "no-such-code", "count": 1}],
-    }
+    counts = {"deterministic": {"ok": 4, "merged": 1, "too-few-transitions": 0, "nonlinear": 1},
+              "white": {"ok": 5, "merged": 1, "too-few-transitions": 0, "nonlinear": 0}}
+    summary = LyapunovSummary(
+        **_head("lyapunov", models, tau_end=200.0,
+                warnings=[WarningCount("slip-shorter-than-grid", 3), WarningCount("no-such-code", 1)]),
+        normal_force_n=forces.tolist(), forcing_q=[5e-5], eta=eta.tolist(), damping_ratio=5e-6,
+        sigma_zeta=[0.07, 0.08], sigma_zeta_effective=[0.07, 0.08], perturbation=1e-6, linearity_tolerance=0.1,
+        integrator="accurate", sde_integrator="euler-maruyama", integrator_mode="converged",
+        lyapunov={m: lam[i].tolist() for i, m in enumerate(models)},
+        lyapunov_se={m: np.zeros_like(lam[i]).tolist() for i, m in enumerate(models)},
+        status={m: status[i].tolist() for i, m in enumerate(models)},
+        lyapunov_is_lower_bound={m: np.zeros(lam[i].shape, bool).tolist() for i, m in enumerate(models)},
+        diverging_growth=100.0, n_transitions={m: np.zeros(lam[i].shape, int).tolist() for i, m in enumerate(models)},
+        status_counts=counts,
+        significance={"deterministic": Significance(defined=4, positive=2, negative=0),
+                      "white": Significance(defined=5, positive=1, negative=1)},
+        positive_fraction={"deterministic": 0.5, "white": 0.2},
+        separation_index_443={m: lam[i].tolist() for i, m in enumerate(models)},
+        separation_index_status={m: status[i].tolist() for i, m in enumerate(models)},
+    )
     return StudyResult(kind="lyapunov", dataset=ds, summary=summary)
 
 
@@ -101,7 +127,8 @@ def test_the_lyapunov_table_and_headline_show_the_given_numbers(page: tuple[Path
     assert "<td>white</td><td>5</td><td>—</td><td>1</td><td>0</td><td>0</td><td>1</td><td>1</td>" in rows
     reading = text[text.index("<h2>Reading</h2>"):text.index("<h2 id='s0'>")]
     assert ("brake, Lyapunov exponent on the stick line: cells with λ &gt; 0 by more than 2 SE: "
-            "deterministic 2, white 1.") in reading
+            "deterministic 2 (white noise: not defined as Δτ → 0).") in reading
+    assert "White noise: no sign is read" in text and "white q = " not in text
     assert "perturbation δ = 1e-06, τ<sub>end</sub> = 200" in text
     assert "<a href='#s0'>lyapunov</a>" in reading
 
@@ -128,16 +155,21 @@ def test_provenance_is_shown_without_the_process_internals(page: tuple[Path, str
 
 
 def _damping_summary(det: list[float | None], white: list[tuple[float | None, float | None, float | None]],
-                     resolved: bool = True) -> dict[str, Any]:
+                     resolved: bool = True) -> DampingSummary:
     """Three forces; ``white``: D_max(10 %) per force as (value, low, high)."""
     grid = [0.05, 0.1, 0.15, 0.2, 0.25]
-    return {"preset": "brake", "normal_force_n": [1000.0, 2000.0, 3000.0], "damping_ratio": grid, "runs": 100,
-            "d_hopf": [0.02, 0.04, 0.06], "d_max_deterministic": det,
-            "phase": {"normal_force_n": 2000.0, "damping_ratio": [0.05, 0.15], "has_cycle_fraction": {"white": [1, 0]}},
-            "risk_levels": [0.1], "risk_levels_runs_to_resolve": [36],
-            "d_max_risk": {"white": [[{"risk_level": 0.1, "value": v, "interval": [lo, hi], "resolved": resolved,
-                                       "high_open": hi is not None and hi >= 0.25}] for v, lo, hi in white]},
-            "d_max_sample_extreme": {"white": [{"value": hi, "interval": [hi, None]} for _, _, hi in white]}}
+    return DampingSummary(
+        **_head("damping", ["deterministic", "white"], runs=100),
+        normal_force_n=[1000.0, 2000.0, 3000.0], damping_ratio=grid, d_hopf=[0.02, 0.04, 0.06],
+        sigma_zeta=[0.07] * 3, sigma_zeta_effective=[0.07] * 3, stick_window=(25.0, 50.0), confidence=0.95,
+        p_detect=0.1, risk_levels=[0.1], risk_levels_runs_to_resolve=[36], stick_probability_interval="clopper-pearson",
+        d_max_deterministic=det,
+        phase=PhaseSummary(normal_force_n=2000.0, damping_ratio=[0.05, 0.15], damping_rule="auto",
+                           runs={"white": 2}, save_every=10, has_cycle_fraction={"white": [1.0, 0.0]}),
+        d_max_risk={"white": [[DMaxRisk(risk_level=0.1, value=v, interval=(lo, hi), resolved=resolved,
+                                        high_open=hi is not None and hi >= 0.25)] for v, lo, hi in white]},
+        d_max_sample_extreme={"white": [SampleExtreme(value=hi, interval=(hi, None)) for _, _, hi in white]},
+        stick_probability={}, stick_count_mean={}, stick_count_mean_se={}, x_gh_mean_se={}, x_gh_std_se={})
 
 
 def test_damping_headline_says_where_the_deterministic_limit_is_exceeded_at_the_risk_level() -> None:
@@ -187,8 +219,12 @@ def test_dmax_text_and_rich_text() -> None:
 
 
 def test_forcing_reading_pairs_each_q_with_its_median_and_interval() -> None:
-    summary = {"forcing_q": [5e-5, 5e-4], "sigma_ratio_median": {"5e-05": 1.2, "0.0005": 1.05},
-               "sigma_ratio_median_ci": {"5e-05": {"low": 1.1, "high": 1.3}}}
+    summary = ForcingSummary(
+        **_head("forcing", ["white", "contact"]), normal_force_n=4000.0, damping_ratio=5e-6, forcing_q=[5e-5, 5e-4],
+        forcing_amplitude_n=[50.0, 500.0], eta=[1.0], integrator="accurate", sde_integrator="euler-maruyama",
+        integrator_mode="converged", sigma_zeta=0.07, sigma_zeta_effective=0.07, x_gh_mean={}, x_gh_std={},
+        x_gh_mean_se={}, x_gh_std_se={}, sigma_ratio_median={"5e-05": 1.2, "0.0005": 1.05},
+        sigma_ratio_median_ci={"5e-05": RatioEstimate(value=1.2, se_delta=0.05, low=1.1, high=1.3, confidence=0.95)})
     table, txt = forcing_reading(summary)
     assert "<tr><td>5e-05</td><td>1.2</td><td>1.1 … 1.3</td></tr>" in table
     assert "<tr><td>0.0005</td><td>1.05</td><td>—</td></tr>" in table
@@ -197,9 +233,13 @@ def test_forcing_reading_pairs_each_q_with_its_median_and_interval() -> None:
 
 
 def test_normal_force_headline_names_the_forces_with_stick_slip() -> None:
-    summary = {"preset": "sheet", "normal_force_n": [400.0, 880.0], "damping_ratio": [5e-6, 0.17],
-               "models": ["deterministic", "contact"],  # tables [normal_force_n][damping_ratio]
-               "n_events": {"deterministic": [[12, 0], [9, 3]], "contact": [[10, None], [8, 0]]}}
+    summary = NormalForceSummary(
+        **_head("normal-force", ["deterministic", "contact"], preset="sheet"), normal_force_n=[400.0, 880.0],
+        damping_ratio=[5e-6, 0.17], sigma_zeta=[0.07, 0.08], sigma_zeta_effective=[0.07, 0.08],
+        stick_window=(25.0, 50.0), x_gh_mean={}, x_gh_std={}, vark={}, x_gh_mean_se={}, x_gh_std_se={}, vark_se={},
+        x_gh_mean_se_iid={}, x_gh_std_se_iid={}, vark_se_iid={},
+        # tables [normal_force_n][damping_ratio]
+        n_events={"deterministic": [[12.0, 0.0], [9.0, 3.0]], "contact": [[10.0, float("nan")], [8.0, 0.0]]})
     assert normal_force_headline(summary) == (
         "sheet, N = 400, 880 N: at D = 5e-06 stick-slip at every force in every model; at D = 0.17 stick-slip "
         "deterministic 880 N; contact nowhere.")
@@ -208,16 +248,17 @@ def test_normal_force_headline_names_the_forces_with_stick_slip() -> None:
 def test_reproduction_modes_are_labelled_as_such() -> None:
     """docs/oscillator.md: the printed-(4.31) intensity and the position read mode are reproduction modes
     only, and must say so wherever they are used."""
-    default = model_choices_text({"path_coordinate": "mass", "white_intensity": "sigma_mu",
-                                  "sigma_zeta": [0.0742, 0.08], "normal_force_n": [5600.0, 8000.0]})
+    default = model_choices_text(SimpleNamespace(
+        path_coordinate="mass", white_intensity="sigma_mu", white_increment="ito", process_level="sigma_mu",
+        white_model=None, sigma_zeta=[0.0742, 0.08], sigma_zeta_effective=[0.0742, 0.08],
+        normal_force_n=[5600.0, 8000.0]))
     assert "REPRODUCTION MODE" not in default
     assert "σ_ζ of the white model = 0.0742 (N = 5600 N), 0.08 (N = 8000 N)." in default
-    repro = model_choices_text({"path_coordinate": "position", "white_intensity": "thesis",
-                                "white_increment": "thesis", "sigma_zeta": 0.0742,
-                                "sigma_zeta_effective": [0.2624], "process_level": "psd_level"})
+    repro = model_choices_text(SimpleNamespace(
+        path_coordinate="position", white_intensity="thesis", white_increment="thesis", sigma_zeta=0.0742,
+        sigma_zeta_effective=[0.2624], process_level="psd_level", white_model=None, normal_force_n=4000.0))
     assert repro.count("REPRODUCTION MODE") == 3
     assert "effective σ_ζ,eff = 0.2624" in repro
-    assert model_choices_text({}) == ""
 
 
 # --- the phase portrait of one simulation result -----------------------------------------------------

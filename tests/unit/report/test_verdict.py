@@ -6,23 +6,31 @@ from __future__ import annotations
 from types import SimpleNamespace
 
 from stochfric.report.html import verdict_section
+from stochfric.studies.base import STUDY_SCHEMA
+from stochfric.studies.damping import DampingSummary, DMaxRisk
 
 
 def _entry(value: float | None, lo: float | None, hi: float | None, *, high_open: bool = False,
-           resolved: bool = True) -> list[dict[str, object]]:
-    return [{"risk_level": 0.1, "value": value, "interval": [lo, hi], "high_open": high_open, "resolved": resolved}]
+           resolved: bool = True) -> list[DMaxRisk]:
+    return [DMaxRisk(risk_level=0.1, value=value, interval=(lo, hi), high_open=high_open, resolved=resolved)]
 
 
 def test_verdict_table_says_holds_not_safe_and_not_resolved() -> None:
-    summary = {
-        "preset": "brake", "runs": 100, "normal_force_n": [1800.0, 5600.0, 8000.0],
-        "damping_ratio": [0.05, 0.1, 0.15, 0.2, 0.25], "d_max_deterministic": [0.1, 0.15, 0.2],
-        "d_hopf": [0.03, 0.09, 0.13], "risk_levels": [0.1], "risk_levels_runs_to_resolve": [36],
-        "d_max_risk": {
+    summary = DampingSummary(
+        schema=STUDY_SCHEMA, study="damping", preset="brake", process_source="preset", runs=100, seed=1,
+        tau_end=50.0, dt=0.005, models=["deterministic", "white", "contact"], path_coordinate="mass",
+        white_intensity="sigma_mu", white_increment="ito", process_level="sigma_mu",
+        normal_force_n=[1800.0, 5600.0, 8000.0], damping_ratio=[0.05, 0.1, 0.15, 0.2, 0.25],
+        d_max_deterministic=[0.1, 0.15, 0.2], d_hopf=[0.03, 0.09, 0.13], sigma_zeta=[0.07] * 3,
+        sigma_zeta_effective=[0.07] * 3, stick_window=(25.0, 50.0), confidence=0.95, p_detect=0.1,
+        risk_levels=[0.1], risk_levels_runs_to_resolve=[36], stick_probability_interval="clopper-pearson",
+        d_max_risk={
             "white": [_entry(0.1, 0.05, 0.1), _entry(0.15, 0.15, 0.15), _entry(0.2, 0.2, 0.25)],
             "contact": [_entry(0.1, 0.1, 0.1), _entry(0.2, 0.2, 0.25), _entry(0.2, 0.2, 0.2)],
         },
-    }
+        d_max_sample_extreme={}, stick_probability={}, stick_count_mean={}, stick_count_mean_se={},
+        x_gh_mean_se={}, x_gh_std_se={},
+    )
     html = verdict_section([SimpleNamespace(kind="damping", summary=summary)])
     assert html.startswith("<h2>Verdict</h2>") and "<h3>brake</h3>" in html
     rows = html.split("<tr>")[2:]

@@ -11,13 +11,13 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from stochfric.oscillator.case import CaseError, case_setup, with_white_intensity
 from stochfric.report.study_figures import damping_figures
-from stochfric.studies.common import StudyError, make_setup, with_white_intensity
 from stochfric.studies.config import DampingConfig, ForcingConfig
 from stochfric.studies.damping import auto_phase_damping, damping_study, default_phase_force
 from stochfric.studies.forcing import forcing_study
 
-SMALL = DampingConfig(normal_force_n=(4000.0, 5600.0), damping_ratio="0.05:0.25:9", runs=3, seed=3, tau_end=30.0)
+SMALL = DampingConfig(normal_forces=(4000.0, 5600.0), damping_ratios="0.05:0.25:9", runs=3, seed=3, tau_end=30.0)
 
 
 @pytest.fixture(scope="module")
@@ -90,7 +90,7 @@ def test_phase_figure(small: xr.Dataset, tmp_path: Path) -> None:
 
 
 def test_phase_given_damping_and_force() -> None:
-    cfg = DampingConfig(**{**SMALL.model_dump(), "phase_force_n": 3000.0, "phase_damping": "0.2,0.07",
+    cfg = DampingConfig(**{**SMALL.model_dump(), "phase_normal_force": 3000.0, "phase_damping_ratios": "0.2,0.07",
                            "phase_runs": 2})
     res = damping_study(cfg)
     ds = res.to_dataset()
@@ -101,15 +101,15 @@ def test_phase_given_damping_and_force() -> None:
 
 
 def test_white_intensity_rule_changes_sigma_zeta_only() -> None:
-    base = DampingConfig(normal_force_n=(5600.0,), damping_ratio="0.1:0.2:5", runs=3, seed=1, tau_end=30.0,
+    base = DampingConfig(normal_forces=(5600.0,), damping_ratios="0.1:0.2:5", runs=3, seed=1, tau_end=30.0,
                          phase_runs=1)
     a = damping_study(base)
-    b = damping_study(base.model_copy(update={"white_intensity": "spectral_level"}))
+    b = damping_study(DampingConfig(**{**base.model_dump(), "white_intensity": "spectral_level"}))
     sa = float(a.dataset["sigma_zeta"].sel(model="white").values[0])
     sb = float(b.dataset["sigma_zeta"].sel(model="white").values[0])
     assert sa == pytest.approx(0.0742, abs=5e-4)  # σ_μ(0.35 MPa), thesis rule
     assert sb == pytest.approx(3.53e-6, rel=1e-2)  # low-frequency spectral level S0/2
-    assert a.summary["sigma_zeta"] == [sa] and b.summary["sigma_zeta"] == [sb]
+    assert a.summary.sigma_zeta == [sa] and b.summary.sigma_zeta == [sb]
     assert a.dataset.attrs["white_intensity"] == "sigma_mu" and b.dataset.attrs["white_intensity"] == "spectral_level"
     assert json.loads(b.dataset.attrs["config_json"])["white_intensity"] == "spectral_level"
     for m in ("deterministic", "contact"):
@@ -121,17 +121,17 @@ def test_white_intensity_rule_changes_sigma_zeta_only() -> None:
 
 
 def test_rule_applies_to_process_file_and_other_studies(tmp_path: Path) -> None:
-    from stochfric.process.presets import get_preset
+    from stochfric.oscillator.presets import get_preset
 
     path = tmp_path / "model.json"
     get_preset("sheet").process.save(path)
-    s = make_setup("sheet", path, white_intensity="spectral_level")
+    s = case_setup("sheet", path, white_intensity="spectral_level")
     assert s.process.sigma_zeta_rule == "spectral_level"
     assert s.process_source.startswith("file:")
-    assert make_setup("sheet", path).process.sigma_zeta_rule == "sigma_mu"
+    assert case_setup("sheet", path).process.sigma_zeta_rule == "sigma_mu"
     p = get_preset("brake").process
     assert with_white_intensity(p, "sigma_mu") is p
-    with pytest.raises(StudyError, match="sigma_mu"):
+    with pytest.raises(CaseError, match="sigma_mu"):
         with_white_intensity(p, "pink")
     f = forcing_study(ForcingConfig(eta=(1.0,), runs=2, tau_end=20.0, white_intensity="spectral_level",
                                     path_coordinate="relative"))

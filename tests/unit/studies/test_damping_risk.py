@@ -13,7 +13,7 @@ from stochfric.studies.damping import damping_study
 
 
 def _study(runs: int) -> dict[str, Any]:
-    cfg = DampingConfig.model_validate({"normal_force_n": (5600.0,), "damping_ratio": "0.1:0.3:41", "runs": runs,
+    cfg = DampingConfig.model_validate({"normal_forces": (5600.0,), "damping_ratios": "0.1:0.3:41", "runs": runs,
                                         "seed": 0, "phase_runs": 0})
     return damping_study(cfg).to_json_dict()
 
@@ -45,7 +45,7 @@ def test_more_runs_give_intervals_inside_or_overlapping_those_of_fewer(studies: 
 
 
 def test_fields_units_and_labels() -> None:
-    cfg = DampingConfig.model_validate({"normal_force_n": (5600.0,), "damping_ratio": "0.12:0.2:5", "runs": 5,
+    cfg = DampingConfig.model_validate({"normal_forces": (5600.0,), "damping_ratios": "0.12:0.2:5", "runs": 5,
                                         "seed": 0, "phase_runs": 0, "risk_levels": (0.2, 0.05, 0.01)})
     res = damping_study(cfg)
     ds = res.dataset

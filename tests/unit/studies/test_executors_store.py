@@ -9,7 +9,6 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from stochfric.studies.common import TaskSpec
 from stochfric.studies.config import DampingConfig, LyapunovConfig
 from stochfric.studies.damping import damping_study, damping_tasks
 from stochfric.studies.executors import (
@@ -24,8 +23,9 @@ from stochfric.studies.executors import (
 )
 from stochfric.studies.lyapunov import lyapunov_study
 from stochfric.studies.store import CheckpointStore, config_hash
+from stochfric.studies.tasks import TaskSpec
 
-SMALL = DampingConfig(normal_force_n=(4000.0, 6000.0), damping_ratio=(0.1, 0.14, 0.18), runs=3, seed=5, tau_end=12.0)
+SMALL = DampingConfig(normal_forces=(4000.0, 6000.0), damping_ratios=(0.1, 0.14, 0.18), runs=3, seed=5, tau_end=12.0)
 
 
 def _arrays(ds: xr.Dataset) -> dict[str, np.ndarray]:
@@ -131,7 +131,7 @@ def test_make_executor() -> None:
 
 
 def test_lyapunov_identical_across_executors() -> None:
-    cfg = LyapunovConfig(normal_force_n=(4000.0,), forcing_q=(5e-4,), eta=(1.2, 2.0), runs=2, tau_end=40.0, seed=1)
+    cfg = LyapunovConfig(normal_forces=(4000.0,), forcing_q=(5e-4,), eta=(1.2, 2.0), runs=2, tau_end=40.0, seed=1)
     a = lyapunov_study(cfg).to_dataset()
     b = lyapunov_study(cfg, executor=ProcessExecutor(workers=2)).to_dataset()
     np.testing.assert_array_equal(a["w"].values, b["w"].values)
@@ -265,8 +265,8 @@ dir = "{tmp_path / 'out'}"
 report = false
 [[study]]
 kind = "damping"
-normal_force_n = [4000, 6000]
-damping_ratio = [0.1, 0.18]
+normal_forces = [4000, 6000]
+damping_ratios = [0.1, 0.18]
 runs = 2
 tau_end = 10
 phase_runs = 0

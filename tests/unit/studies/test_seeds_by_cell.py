@@ -43,16 +43,16 @@ def _same_cells(small: dict, big: dict) -> None:
 
 
 def test_damping_cell_alone_equals_cell_in_a_bigger_grid() -> None:
-    alone = DampingStudy(DampingConfig(**COMMON, models=("contact",), normal_force_n=(5600.0,),
-                                       damping_ratio=(0.1,)))
-    grid = DampingStudy(DampingConfig(**COMMON, models=("white", "contact"), normal_force_n=(2800.0, 5600.0),
-                                      damping_ratio=(0.05, 0.1, 0.15)))
+    alone = DampingStudy(DampingConfig(**COMMON, models=("contact",), normal_forces=(5600.0,),
+                                       damping_ratios=(0.1,)))
+    grid = DampingStudy(DampingConfig(**COMMON, models=("white", "contact"), normal_forces=(2800.0, 5600.0),
+                                      damping_ratios=(0.05, 0.1, 0.15)))
     _same_cells(_tasks_by_cell(alone), _tasks_by_cell(grid))
     # without common random numbers too
-    alone = DampingStudy(DampingConfig(**COMMON, models=("white",), normal_force_n=(5600.0,),
-                                       damping_ratio=(0.15,), common_random_numbers=False))
-    grid = DampingStudy(DampingConfig(**COMMON, models=("white",), normal_force_n=(5600.0,),
-                                      damping_ratio=(0.05, 0.15), common_random_numbers=False))
+    alone = DampingStudy(DampingConfig(**COMMON, models=("white",), normal_forces=(5600.0,),
+                                       damping_ratios=(0.15,), common_random_numbers=False))
+    grid = DampingStudy(DampingConfig(**COMMON, models=("white",), normal_forces=(5600.0,),
+                                      damping_ratios=(0.05, 0.15), common_random_numbers=False))
     _same_cells(_tasks_by_cell(alone), _tasks_by_cell(grid))
 
 
@@ -61,14 +61,14 @@ def test_forcing_lyapunov_and_normal_force_cells_alone_equal_cells_in_bigger_gri
         (ForcingStudy(ForcingConfig(**COMMON, models=("contact",), forcing_q=(5e-4,), eta=(1.2,))),
          ForcingStudy(ForcingConfig(**COMMON, models=("white", "contact"), forcing_q=(5e-5, 5e-4),
                                     eta=(0.4, 1.2, 2.0)))),
-        (LyapunovStudy(LyapunovConfig(**COMMON, models=("white",), forcing_q=(5e-4,), normal_force_n=(4000.0,),
+        (LyapunovStudy(LyapunovConfig(**COMMON, models=("white",), forcing_q=(5e-4,), normal_forces=(4000.0,),
                                       eta=(1.2,))),
          LyapunovStudy(LyapunovConfig(**COMMON, models=("white",), forcing_q=(5e-4,),
-                                      normal_force_n=(2000.0, 4000.0), eta=(0.6, 1.2)))),
-        (NormalForceStudy(NormalForceConfig(**COMMON, models=("contact",), normal_force_n=(2720.0,),
-                                            damping_ratio=(5e-6,), phase_runs=0)),
-         NormalForceStudy(NormalForceConfig(**COMMON, models=("contact",), normal_force_n=(720.0, 2720.0),
-                                            damping_ratio=(5e-6, 0.15), phase_runs=0))),
+                                      normal_forces=(2000.0, 4000.0), eta=(0.6, 1.2)))),
+        (NormalForceStudy(NormalForceConfig(**COMMON, models=("contact",), normal_forces=(2720.0,),
+                                            damping_ratios=(5e-6,), phase_runs=0)),
+         NormalForceStudy(NormalForceConfig(**COMMON, models=("contact",), normal_forces=(720.0, 2720.0),
+                                            damping_ratios=(5e-6, 0.15), phase_runs=0))),
     ]
     for alone, grid in pairs:
         _same_cells(_tasks_by_cell(alone), _tasks_by_cell(grid))
@@ -76,10 +76,10 @@ def test_forcing_lyapunov_and_normal_force_cells_alone_equal_cells_in_bigger_gri
 
 def test_a_finished_study_keeps_the_cell_numbers_of_a_smaller_one() -> None:
     """End to end through ``run`` and the dataset: the cell (contact, N = 5600 N, D = 0.1)."""
-    small = DampingStudy(DampingConfig(**COMMON, models=("contact",), normal_force_n=(5600.0,),
-                                       damping_ratio=(0.1, 0.2), phase_damping=(0.1,))).run()
-    big = DampingStudy(DampingConfig(**COMMON, models=("deterministic", "contact"), normal_force_n=(1800.0, 5600.0),
-                                     damping_ratio=(0.05, 0.1, 0.2), phase_damping=(0.1,))).run()
+    small = DampingStudy(DampingConfig(**COMMON, models=("contact",), normal_forces=(5600.0,),
+                                       damping_ratios=(0.1, 0.2), phase_damping_ratios=(0.1,))).run()
+    big = DampingStudy(DampingConfig(**COMMON, models=("deterministic", "contact"), normal_forces=(1800.0, 5600.0),
+                                     damping_ratios=(0.05, 0.1, 0.2), phase_damping_ratios=(0.1,))).run()
     sel = {"model": "contact", "normal_force_n": 5600.0, "damping_ratio": 0.1}
     a: xr.DataArray = small.dataset["x_gh"].sel(sel)
     b: xr.DataArray = big.dataset["x_gh"].sel(sel)

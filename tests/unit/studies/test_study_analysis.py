@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from stochfric.oscillator.parameters import OscillatorParameters
-from stochfric.studies.common import StudyError, parse_grid, window_mask
 from stochfric.studies.damping import d_max_deterministic, d_max_stochastic
+from stochfric.studies.errors import StudyError
+from stochfric.studies.grids import parse_grid, window_mask
 from stochfric.studies.lyapunov import lyapunov_exponent
 from stochfric.studies.stats import clopper_pearson, sample_summary, zero_count_upper_bound
 from stochfric.studies.tasks import cell_stream_key

@@ -7,8 +7,8 @@ from pathlib import Path
 import pytest
 from pydantic import ValidationError
 
-from stochfric.studies.common import StudyError
 from stochfric.studies.config import DampingConfig, LyapunovConfig
+from stochfric.studies.errors import StudyError
 from stochfric.studies.run_config import load_run_file, parse_run_file
 
 GOOD = """
@@ -25,8 +25,8 @@ dir = "out"
 
 [[study]]
 kind = "damping"
-normal_force_n = [1400]
-damping_ratio = "0.1:0.2:3"
+normal_forces = [1400]
+damping_ratios = "0.1:0.2:3"
 runs = 2
 
 [[study]]
@@ -43,7 +43,7 @@ def test_defaults_and_grids(tmp_path: Path) -> None:
     assert rf.execution.executor == "processes" and rf.execution.workers == 2
     d, ly = rf.study
     assert isinstance(d, DampingConfig) and isinstance(ly, LyapunovConfig)
-    assert d.preset == "sheet" and d.seed == 3 and d.damping_ratio == (0.1, 0.15, 0.2)
+    assert d.preset == "sheet" and d.seed == 3 and d.damping_ratios == (0.1, 0.15, 0.2)
     assert ly.preset == "brake" and ly.eta == (1.0, 1.2) and ly.perturbation == 1e-6
 
 
@@ -52,8 +52,8 @@ def test_defaults_and_grids(tmp_path: Path) -> None:
     [
         ("[[study]]\nkind = 'damping'\ndampng = 0.1\n", "study[0].dampng: Extra inputs are not permitted"),
         ("[[study]]\nkind = 'dumping'\n", "study[0]"),
-        ("[[study]]\nkind = 'damping'\ndamping_ratio = '0.3:0.1:x'\n", "START and STOP must be numbers"),
-        ("[[study]]\nkind = 'damping'\ndamping_ratio = [0.2, 0.1]\n", "increasing"),
+        ("[[study]]\nkind = 'damping'\ndamping_ratios = '0.3:0.1:x'\n", "START and STOP must be numbers"),
+        ("[[study]]\nkind = 'damping'\ndamping_ratios = [0.2, 0.1]\n", "increasing"),
         ("[[study]]\nkind = 'damping'\nruns = 0\n", "study[0].runs: Input should be greater than or equal to 1"),
         ("[[study]]\nkind = 'forcing'\npreset = 'car'\n", "study[0].preset"),
         ("[[study]]\nkind = 'damping'\nmodels = ['white', 'white']\n", "listed twice"),
@@ -65,9 +65,11 @@ def test_defaults_and_grids(tmp_path: Path) -> None:
          "study[0].white_intensity: Input should be 'sigma_mu', 'spectral_level' or 'thesis'"),
         ("[defaults]\npath_coordinate = 'global'\n[[study]]\nkind = 'forcing'\n",
          "study[0].path_coordinate: Input should be 'mass', 'relative' or 'position'"),
-        ("[[study]]\nkind = 'damping'\nphase_damping = [0.1, 1.1]\n", "study[0].phase_damping"),
+        ("[[study]]\nkind = 'damping'\nphase_damping_ratios = [0.1, 1.1]\n", "study[0].phase_damping_ratios"),
         ("[[study]]\nkind = 'damping'\nphase_runs = -1\n", "study[0].phase_runs"),
-        ("[[study]]\nkind = 'forcing'\nphase_force_n = 1000\n", "study[0].phase_force_n: Extra inputs"),
+        ("[[study]]\nkind = 'forcing'\nphase_normal_force = 1000\n", "study[0].phase_normal_force: Extra inputs"),
+        ("[[study]]\nkind = 'damping'\nintegrator = 'milstein'\n",
+         "study[0].integrator: Input should be 'euler' or 'accurate'"),
     ],
 )
 def test_errors_are_clear(tmp_path: Path, text: str, needle: str) -> None:
@@ -98,27 +100,27 @@ def test_config_is_frozen_and_hashable_dict() -> None:
     assert h["runs"] == 2 and h["kind"] == "damping"
 
 
-def test_a_toml_file_with_the_names_before_the_glossary_is_refused_naming_the_field(tmp_path: Path) -> None:
-    """No compatibility layer (issue 21 §1): an old field name is an unknown field, named in one line."""
+def test_a_toml_file_with_a_name_not_in_the_glossary_is_refused_naming_the_field(tmp_path: Path) -> None:
+    """No compatibility layer (issue 21): another field name is an unknown field, named in one line."""
     f = tmp_path / "old.toml"
     f.write_text("""
 [[study]]
 kind = "damping"
-normal_forces = [4000, 5600]
+normal_force_n = [4000, 5600]
 """)
-    with pytest.raises(StudyError, match=r"study\[0\]\.normal_forces: Extra inputs are not permitted"):
+    with pytest.raises(StudyError, match=r"study\[0\]\.normal_force_n: Extra inputs are not permitted"):
         load_run_file(f)
 
 
 def test_model_choices_in_toml() -> None:
     rf = parse_run_file({"defaults": {"white_intensity": "spectral_level", "path_coordinate": "relative"},
-                         "study": [{"kind": "damping", "phase_force_n": 1400, "phase_damping": "0.05:0.2:4",
+                         "study": [{"kind": "damping", "phase_normal_force": 1400, "phase_damping_ratios": "0.05:0.2:4",
                                     "phase_runs": 2, "save_every": 5},
                                    {"kind": "lyapunov", "white_intensity": "sigma_mu"}]})
     d, ly = rf.study
     assert isinstance(d, DampingConfig)
     assert d.white_intensity == "spectral_level" and d.path_coordinate == "relative"
-    assert d.phase_force_n == 1400.0 and d.phase_damping == (0.05, 0.1, 0.15, 0.2)
+    assert d.phase_normal_force == 1400.0 and d.phase_damping_ratios == (0.05, 0.1, 0.15, 0.2)
     assert d.phase_runs == 2 and d.save_every == 5
     assert ly.white_intensity == "sigma_mu" and ly.path_coordinate == "relative"
     assert DampingConfig().white_intensity == "sigma_mu" and DampingConfig().path_coordinate == "mass"

@@ -25,17 +25,17 @@ def test_power_law_fit_recovers_the_exponent_and_its_error() -> None:
         rel = 0.03
         sigma = 2e-5 * ell**-0.25 * (1 + rel * rng.standard_normal(ell.size))
         fit = power_law_fit(ell, sigma, rel * sigma)
-        betas.append(fit["beta"])
-        ses.append(fit["beta_se"])
+        betas.append(fit.beta)
+        ses.append(fit.beta_se)
     betas_a = np.asarray(betas)
     assert betas_a.mean() == pytest.approx(-0.25, abs=0.003)
     # the weighted SE is the scatter of β over repetitions
     assert np.mean(ses) == pytest.approx(betas_a.std(), rel=0.15)
     exact = power_law_fit(ell, 3.0 * ell**0.5, 0.01 * ell**0.5)
-    assert exact["beta"] == pytest.approx(0.5, abs=1e-12) and exact["prefactor"] == pytest.approx(3.0)
-    assert len(exact["local_slopes"]) == 6
-    assert all(s["slope"] == pytest.approx(0.5) for s in exact["local_slopes"])
-    assert power_law_fit([1e-3], [1.0], [0.1])["beta"] is None
+    assert exact.beta == pytest.approx(0.5, abs=1e-12) and exact.prefactor == pytest.approx(3.0)
+    assert exact.local_slopes is not None and len(exact.local_slopes) == 6
+    assert all(s.slope == pytest.approx(0.5) for s in exact.local_slopes)
+    assert power_law_fit([1e-3], [1.0], [0.1]).beta is None
 
 
 def test_ensemble_statistics_pairs_the_runs() -> None:
@@ -78,14 +78,16 @@ def test_a_small_study_runs_and_never_repeats_the_process() -> None:
                            runs=24, tau_end=20.0, seed=5, workers=1)
     res = white_limit_study(cfg)
     s = res.summary
-    assert [r["correlation_length_m"] for r in s["table"]] == [1e-3, 1e-4]
-    for row in s["table"]:
-        assert row["fine"]["dt"] == pytest.approx(row["coarse"]["dt"] / 4)
-        assert row["fine"]["max_path_over_length"] < 1.0
-        assert "process-exhausted" not in row["fine"]["warnings"]
-        assert row["fine"]["n_events"] > 24
-        assert row["low_frequency_psd_m"] == pytest.approx(s["low_frequency_psd_m"], rel=1e-9)
-    assert s["fit"]["beta"] is not None and s["units"]["correlation_length_m"] == "m"
-    assert s["seed"] == 5 and "numpy" in s["versions"]
+    assert [r.correlation_length_m for r in s.table] == [1e-3, 1e-4]
+    for row in s.table:
+        assert row.fine.dt == pytest.approx(row.coarse.dt / 4)
+        assert row.fine.max_path_over_length < 1.0
+        assert "process-exhausted" not in row.fine.warnings
+        assert row.fine.n_events > 24
+        assert row.low_frequency_psd_m == pytest.approx(s.low_frequency_psd_m, rel=1e-9)
+    assert s.fit.beta is not None and s.units["correlation_length_m"] == "m"
+    assert s.seed == 5 and "numpy" in s.versions
+    js = s.to_json()  # the record the files and --json carry
+    assert js["table"][0]["fine"]["dt"] == s.table[0].fine.dt and js["config"]["runs"] == 24
     ds = res.dataset()
     assert ds["x_gh_std"].shape == (2, 2) and ds["correlation_length"].attrs["units"] == "m"

@@ -18,7 +18,7 @@ closes", ``v = r f(r) + ∫_r^∞ f``.  One draw takes one 64-bit word ``w``:
   layer 0 → the tail by Marsaglia's method (``a = −ln U₁ / r``, ``b = −ln U₂`` until
   ``2b > a²``; return ``±(r + a)``); layer ``i ≥ 1`` → the wedge test
   ``f(x_i) + U (f(x_{i+1}) − f(x_i)) < f(x)``, taken as ``ln y < −x²/2`` with the package's own
-  logarithm (:func:`~stochfric.oscillator.philox.log_positive`), else a fresh draw.
+  logarithm (:func:`~stochfric.random.philox.log_positive`), else a fresh draw.
 
 The method is exact in distribution up to the 53-bit resolution of ``u`` and the < 1-ulp
 error of that logarithm (it moves a wedge decision only when ``y`` is within one ulp of
@@ -29,7 +29,7 @@ every machine — no C-library ``exp``/``log`` is involved.
 Stream layout (docs/performance.md, "White noise"): grid steps ``2p`` and ``2p + 1`` of the
 trajectory with ``key`` take the words ``w0 = c1·2³² + c0`` and ``w1 = c3·2³² + c2`` of the
 Philox4x32-10 block of counter ``(p mod 2³², p div 2³², 0, 0)`` — the block the Box–Muller
-stream (:func:`~stochfric.oscillator.philox.pair_normals`) reads.  A draw that leaves the fast
+stream (:func:`~stochfric.random.philox.pair_normals`) reads.  A draw that leaves the fast
 path continues with the blocks of counters ``(p mod 2³², p div 2³², a, 1 + h)``,
 ``a = 1, 2, …``, ``h`` = 0 for the even step and 1 for the odd one; each block gives two more
 words (``U₁, U₂`` of a tail try, or the wedge ``U`` and the next draw).  So every normal is a
@@ -42,7 +42,7 @@ integral by Laplace's continued fraction); :func:`compute_tables` regenerates th
 checks that the file is its output.  For 1024 layers ``r = 4.038849846109504``,
 ``v = 0.001226324646353088``.  The same code for 256 layers gives ``r = 3.654152885361008771…``,
 the published value 3.6541528853610088 (Marsaglia & Tsang 2000; numpy's ``ziggurat_nor_r``) to
-2.5e-17 (tested).  Run ``python -m stochfric.oscillator.ziggurat`` to rewrite the file.
+2.5e-17 (tested).  Run ``python -m stochfric.random.ziggurat`` to rewrite the file.
 """
 
 from __future__ import annotations
@@ -171,7 +171,7 @@ def pair_normals_ziggurat(key: np.uint64, pair: np.uint64) -> tuple[float, float
 def step_normals(key: np.uint64, nsteps: int, box_muller: bool = False) -> npt.NDArray[np.float64]:  # pragma: no cover
     """The normals ``R_0 … R_{nsteps−1}`` the kernels draw for the trajectory with ``key``: the
     default stream (ziggurat), or with ``box_muller`` the ``philox-boxmuller`` stream
-    (:func:`~stochfric.oscillator.philox.pair_normals`).  The same numbers; for tests and for
+    (:func:`~stochfric.random.philox.pair_normals`).  The same numbers; for tests and for
     giving the increments explicitly, ``ΔW_k = R_k √Δτ``."""
     out = np.empty(nsteps + 1)
     for p in range((nsteps + 1) // 2):
@@ -309,7 +309,7 @@ def write_tables(path: Path | None = None) -> Path:
     """Write :func:`compute_tables` to the package data (or ``path``) as JSON; returns the path."""
     r, v, x, fx = compute_tables()
     target = path or Path(__file__).parent.parent / "data" / TABLES_FILE
-    data = {"generator": "python -m stochfric.oscillator.ziggurat (compute_tables: 50-digit decimal, "
+    data = {"generator": "python -m stochfric.random.ziggurat (compute_tables: 50-digit decimal, "
                          "rounded once to float64)",
             "layers": ZIGGURAT_LAYERS, "r": r, "v": v, "x": x, "f": fx}
     target.write_text(json.dumps(data, indent=0) + "\n", encoding="utf-8")

@@ -1,5 +1,5 @@
 """Philox4x64-10, a test helper: the 64-bit member of the Philox family with the round structure
-of :func:`stochfric.oscillator.philox.philox4x32_10` (which the kernels use).  numpy ships no
+of :func:`stochfric.random.philox.philox4x32_10` (which the kernels use).  numpy ships no
 Philox4x32, but its ``Philox`` is 4x64-10, so this lets ``test_philox.py`` compare the round
 structure bit for bit with an independent implementation.  Not part of the package: the kernels
 never call it."""
@@ -10,7 +10,7 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from stochfric.oscillator.philox import _mulhi64
+from stochfric.random.philox import _mulhi64
 
 _M0_64 = np.uint64(0xD2E7470EE14C6C93)
 _M1_64 = np.uint64(0xCA5A826395121157)

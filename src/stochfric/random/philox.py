@@ -23,7 +23,7 @@ Stream layout used by the oscillator kernels (method §5.1, docs/performance.md)
 * grid steps ``2p`` and ``2p + 1`` share the block ``philox(ctr = (p mod 2³², p div 2³², 0, 0))``:
   its words ``w0 = c1·2³² + c0`` and ``w1 = c3·2³² + c2`` give the pair ``(R_{2p}, R_{2p+1})``
   by the Box–Muller transform (:func:`box_muller`; ``white_stream="philox-boxmuller"``) or,
-  in the default stream, by the ziggurat (:mod:`stochfric.oscillator.ziggurat`), whose rare
+  in the default stream, by the ziggurat (:mod:`stochfric.random.ziggurat`), whose rare
   slow-path draws use the counters ``(p mod 2³², p div 2³², a, 1 + h)``, ``a ≥ 1``.  Counter
   word 3 values ≥ 3 are free for further streams of the same trajectory.
 

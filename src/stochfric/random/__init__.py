@@ -7,6 +7,11 @@ realisations: :func:`spawn_generators` gives realisation *k* the *k*-th child of
 the root :class:`~numpy.random.SeedSequence` (NumPy NEP 19, SciPy SPEC 7), so
 the numbers of realisation *k* do not depend on how many workers ran, on the
 chunking, or on the machine.
+
+The compiled generators are submodules, imported only where used (they compile with numba):
+:mod:`.philox` (the counter-based Philox4x32-10 stream, Box–Muller normals, and numpy's
+SeedSequence and PCG64 in compiled code) and :mod:`.ziggurat` (the ziggurat normals of the
+default white-noise stream, with its tables in ``stochfric/data``).
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The counter-based generator of the white-noise kernels (stochfric.oscillator.philox).
+"""The counter-based generator of the white-noise kernels (stochfric.random.philox).
 
 Philox4x32-10 (the kernels') and Philox4x64-10 against the known-answer vectors of their
 published specification (Random123, ``tests/kat_vectors``), the 4x64 variant also bit for bit
@@ -14,15 +14,16 @@ import math
 
 import numpy as np
 import pytest
-from philox64 import philox4x64_10_array  # tests/unit/oscillator/philox64.py (test helper)
+from philox64 import philox4x64_10_array  # tests/unit/random/philox64.py (test helper)
 
 from kernel_helpers import run_fixed_step  # tests/kernel_helpers.py (test helper)
 from stochfric.oscillator import kernels as K
-from stochfric.oscillator import philox as P
-from stochfric.oscillator import ziggurat as Z
 from stochfric.oscillator.friction_laws import law_III
 from stochfric.oscillator.integrate import simulate, trajectory_seed
+from stochfric.oscillator.options import IntegrationOptions, NoiseOptions, OutputOptions
 from stochfric.oscillator.parameters import OscillatorParameters, ParameterError
+from stochfric.random import philox as P
+from stochfric.random import ziggurat as Z
 
 #: Random123 tests/kat_vectors, the three "philox4x32 10" lines: counter[4], key[2], result[4].
 KAT_PHILOX4X32_10 = [
@@ -215,15 +216,16 @@ def test_simulate_white_streams() -> None:
     ziggurat; ``philox-boxmuller`` (old name ``philox``, with a DeprecationWarning) the same blocks
     by Box–Muller; ``pcg64`` numpy's normals of the same seed, given as increments."""
     p = OscillatorParameters(gamma0=1.0, n=10.0)
-    kw = dict(model="white", law=law_III(), sigma_zeta=0.05, tau_end=5.0, runs=3, seed=4,
-              save_trajectory=True, save_every=1)
-    res = {name: simulate(p, white_stream=name, **kw) for name in ("philox-boxmuller", "pcg64")}
-    res["philox-ziggurat"] = simulate(p, **kw)
+    kw = dict(model="white", law=law_III(), runs=3, seed=4, integration=IntegrationOptions(tau_end=5.0),
+              output=OutputOptions(save_trajectory=True, save_every=1))
+    res = {name: simulate(p, **kw, noise=NoiseOptions(sigma_zeta=0.05, white_stream=name))
+           for name in ("philox-boxmuller", "pcg64")}
+    res["philox-ziggurat"] = simulate(p, **kw, noise=NoiseOptions(sigma_zeta=0.05))
     for name, r in res.items():
         assert r.settings["white_stream"] == name
     assert not np.array_equal(res["philox-ziggurat"].trajectory, res["philox-boxmuller"].trajectory)
     with pytest.raises(ParameterError, match="unknown white-noise stream 'philox'"):
-        simulate(p, white_stream="philox", **kw)
+        simulate(p, **kw, noise=NoiseOptions(sigma_zeta=0.05, white_stream="philox"))
     dt, nsteps = 0.005, 1000
     root = np.random.SeedSequence(4)
 
@@ -238,11 +240,9 @@ def test_simulate_white_streams() -> None:
     for name, draw in draws.items():
         for r in range(3):
             dw = draw(r) * math.sqrt(dt)
-            traj = np.zeros((nsteps + 1, 3))
-            diag = np.zeros(K.N_DIAG)
-            run_fixed_step(_prm(0.05)[0], law_III().shape, law_III().param_array, 0.0, 1.0, nsteps,
-                           dt, K.SCHEME_EULER, K.NOISE_WHITE, K.PATH_MASS, dw, np.zeros(1), 1,
-                           np.zeros(32), np.zeros(32), traj, 1, diag)
-            np.testing.assert_array_equal(res[name].trajectory[0, r], traj)
+            one = run_fixed_step(_prm(0.05)[0], law_III().shape, law_III().param_array, (0.0, 1.0),
+                                 K.FixedStepGrid(nsteps, dt, 1), K.SCHEME_EULER, K.NOISE_WHITE, K.PATH_MASS, dw,
+                                 capacity=32, nsave=nsteps + 1)
+            np.testing.assert_array_equal(res[name].trajectory[0, r], one.traj)
     with pytest.raises(Exception, match="white-noise stream"):
-        simulate(p, white_stream="mt19937", **kw)
+        simulate(p, **kw, noise=NoiseOptions(sigma_zeta=0.05, white_stream="mt19937"))

@@ -1,4 +1,4 @@
-"""The ziggurat normals of the default white-noise stream (stochfric.oscillator.ziggurat).
+"""The ziggurat normals of the default white-noise stream (stochfric.random.ziggurat).
 
 Tables: the committed file is exactly :func:`compute_tables`' output; the 256-layer root equals
 the published value (Marsaglia & Tsang 2000, numpy's ``ziggurat_nor_r``); every layer has the
@@ -17,8 +17,8 @@ import numpy as np
 import pytest
 from scipy import special
 
-from stochfric.oscillator import philox as P
-from stochfric.oscillator import ziggurat as Z
+from stochfric.random import philox as P
+from stochfric.random import ziggurat as Z
 
 X = np.array(Z._X_TABLE)
 F = np.array(Z._F_TABLE)

@@ -1,0 +1,11 @@
+"""The error of the studies layer."""
+
+from __future__ import annotations
+
+__all__ = ["StudyError"]
+
+
+class StudyError(ValueError):
+    """A study is configured or run wrongly (its config, file, grid, executor or saved result); the
+    message says what to change.  Errors of the case a study is built on are
+    :class:`~stochfric.oscillator.case.CaseError`."""
