@@ -505,6 +505,9 @@ CONTACT_TARGET_NS = 6.0
 _BEFORE_SNIPPET = r"""
 import inspect, json, sys, time, warnings
 warnings.simplefilter("ignore")
+from stochfric import vector_width
+if "choice" in inspect.signature(vector_width.configure).parameters:
+    vector_width.configure()  # the same SIMD width as a revision that configured it at import
 from stochfric.oscillator.friction_laws import pressure_law
 from stochfric.oscillator.integrate import simulate
 from stochfric.oscillator.parameters import PhysicalParameters

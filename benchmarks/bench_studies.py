@@ -28,7 +28,8 @@ THESIS_MAP = DampingConfig(normal_forces=(1800.0, 2800.0, 3800.0, 4800.0, 5600.0
 def bench_damping_map() -> dict[str, float]:
     """Wall time of the thesis damping map, serial (all threads) and with 2 processes."""
     out = {}
-    damping_study(THESIS_MAP.model_copy(update={"normal_force_n": (5600.0,), "runs": 2}))  # compile/warm up
+    warm = DampingConfig.model_validate({**THESIS_MAP.model_dump(), "normal_forces": (5600.0,), "runs": 2})
+    damping_study(warm)  # compile/warm up
     for name, ex in (("serial", SerialExecutor()), ("processes_2", ProcessExecutor(workers=2))):
         t = time.perf_counter()
         damping_study(THESIS_MAP, executor=ex)

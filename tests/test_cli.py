@@ -97,7 +97,7 @@ def test_simulate_with_a_process_model_file(tmp_path) -> None:
             "--contact-area", "1e-3", "--model", "contact", "--runs", "2", "--seed", "4",
             "--tau-end", "10", "--json"]
     a = _json(["simulate", "--process", str(path), *args])
-    b = _json(["simulate", "--preset", "sheet", "--normal-force", "880", "--damping", "0",
+    b = _json(["simulate", "--preset", "sheet", "--normal-force", "880", "--damping-ratio", "0",
                "--model", "contact", "--runs", "2", "--seed", "4", "--tau-end", "10", "--json"])
     assert a["process"]["name"] == "sheet"
     assert a["x_gh"] == b["x_gh"]  # the same model from a file gives the same numbers

@@ -30,7 +30,7 @@ from stochfric.io_utils import OutputPathError, check_output_path, write_text_at
 reproduce_mod = importlib.import_module("stochfric.studies.reproduce")  # the package re-exports a function
 runner = CliRunner()
 SIM = ["simulate", "--gamma0", "1", "--n", "10", "--tau-end", "5"]
-STUDY = ["study", "damping", "--damping", "0.1:0.2:2", "--normal-force", "5600", "--runs", "2",
+STUDY = ["study", "damping", "--damping-ratio", "0.1:0.2:2", "--normal-force", "5600", "--runs", "2",
          "--models", "deterministic", "--tau-end", "10"]
 
 

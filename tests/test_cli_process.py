@@ -82,10 +82,12 @@ def test_iaaft_surrogates(app: typer.Typer) -> None:
     tiny = ["--realizations", "3", "--long-surfaces", "3", "--length-factor", "2"]
     res = CliRunner().invoke(
         app, ["friction-process", "--material", "brake-pad", *tiny, "--surrogate", "iaaft", "--seed", "1",
-              "--window-shift-um", "20", "--approach-um", "0.1:0.5:5", "--json"],
+              "--window-shift-um", "20", "--approach-um", "0.1:0.5:5", "--sigma-zeta-rule", "spectral_level", "--json"],
     )
     assert res.exit_code == 0, res.output
-    assert json.loads(res.stdout)["config"]["surrogate"] == "iaaft"
+    data = json.loads(res.stdout)
+    assert data["config"]["surrogate"] == "iaaft"
+    assert data["config"]["sigma_zeta_rule"] == data["model"]["sigma_zeta_rule"] == "spectral_level"
 
 
 @pytest.mark.parametrize(

@@ -20,7 +20,7 @@ CASES = [
     (["surface", "--median-radius", "100000"], "larger than the 200×296 map"),
     (["contact", "--material", "brake-pad", "--approach-um", "0.1:0.8:50000000"], "at most 10000"),
     (["friction-process", "--material", "brake-pad", "--realizations", "100000000"], "fewer --realizations"),
-    (["study", "damping", "--preset", "brake", "--normal-force", "5600", "--damping", "0.05:0.25:100000000"],
+    (["study", "damping", "--preset", "brake", "--normal-force", "5600", "--damping-ratio", "0.05:0.25:100000000"],
      "at most 10000 per axis"),
 ]
 
@@ -101,7 +101,7 @@ def test_random_bytes_in_an_instrument_suffix_are_called_possibly_invalid(tmp_pa
 def test_an_absurd_normal_force_gets_a_coded_hopf_warning() -> None:
     import json
 
-    res = CliRunner().invoke(app, ["study", "damping", "--preset", "brake", "--normal-force", "1e12", "--damping",
+    res = CliRunner().invoke(app, ["study", "damping", "--preset", "brake", "--normal-force", "1e12", "--damping-ratio",
                                    "0.05:0.25:3", "--runs", "1", "--models", "deterministic", "--json"])
     assert res.exit_code == 0, res.output
     data = json.loads(res.stdout[res.stdout.index("{"):])

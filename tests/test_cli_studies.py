@@ -34,8 +34,8 @@ def _json(app: typer.Typer, args: list[str]) -> dict:
 
 
 def test_damping_json_contract(app: typer.Typer) -> None:
-    d = _json(app, ["study", "damping", "--preset", "brake", "--normal-force", "5600", "--damping", "0.05:0.25:41",
-                    "--runs", "10", "--json"])
+    d = _json(app, ["study", "damping", "--preset", "brake", "--normal-force", "5600",
+                    "--damping-ratio", "0.05:0.25:41", "--runs", "10", "--json"])
     for key in ("normal_force_n", "damping_ratio", "d_max_deterministic", "d_max_sample_extreme", "d_hopf",
                 "risk_levels", "d_max_risk", "stick_probability", "m_diff", "seed", "versions"):
         assert key in d, key
@@ -76,20 +76,20 @@ def test_other_studies_json(app: typer.Typer, tmp_path: Path) -> None:
 
 
 def test_human_output_and_report(app: typer.Typer, tmp_path: Path) -> None:
-    r = runner.invoke(app, ["study", "damping", "--normal-force", "4000,6000", "--damping", "0.1:0.2:3", "--runs", "2",
-                            "--report", str(tmp_path / "rep"), "--checkpoint", str(tmp_path / "ck")])
+    r = runner.invoke(app, ["study", "damping", "--normal-force", "4000,6000", "--damping-ratio", "0.1:0.2:3",
+                            "--runs", "2", "--report", str(tmp_path / "rep"), "--checkpoint", str(tmp_path / "ck")])
     assert r.exit_code == 0, r.output
     assert "D_max^d" in r.output and "D_H" in r.output
     assert (tmp_path / "rep" / "index.html").exists()
-    r2 = runner.invoke(app, ["study", "damping", "--normal-force", "4000,6000", "--damping", "0.1:0.2:3", "--runs",
-                             "2", "--checkpoint", str(tmp_path / "ck"), "--json"])
+    r2 = runner.invoke(app, ["study", "damping", "--normal-force", "4000,6000", "--damping-ratio", "0.1:0.2:3",
+                             "--runs", "2", "--checkpoint", str(tmp_path / "ck"), "--json"])
     assert json.loads(r2.stdout)["tasks"] == {"computed": 0, "loaded_from_checkpoint": 9}  # 6 grid + 3 phase
 
 
 @pytest.mark.parametrize(
     ("args", "needle"),
     [
-        (["study", "damping", "--damping", "0.3:0.1:x"], "START and STOP"),
+        (["study", "damping", "--damping-ratio", "0.3:0.1:x"], "START and STOP"),
         (["study", "damping", "--runs", "0"], "--runs"),
         (["study", "damping", "--models", "white,pink"], "--models"),
         (["study", "forcing", "--preset", "car"], "preset"),
@@ -121,7 +121,7 @@ def test_errors_exit_2(app: typer.Typer, args: list[str], needle: str) -> None:
 
 
 def test_white_intensity_and_path_coordinate(app: typer.Typer, tmp_path: Path) -> None:
-    base = ["study", "damping", "--normal-force", "5600", "--damping", "0.1:0.2:5", "--runs", "3", "--json"]
+    base = ["study", "damping", "--normal-force", "5600", "--damping-ratio", "0.1:0.2:5", "--runs", "3", "--json"]
     thesis = _json(app, base)
     level = _json(app, [*base, "--white-intensity", "spectral_level", "--out", str(tmp_path)])
     assert thesis["white_intensity"] == "sigma_mu" and level["white_intensity"] == "spectral_level"
@@ -150,13 +150,14 @@ def test_white_intensity_and_path_coordinate(app: typer.Typer, tmp_path: Path) -
 
 
 def test_phase_options(app: typer.Typer) -> None:
-    d = _json(app, ["study", "damping", "--preset", "sheet", "--normal-force", "1000,2000", "--damping", "0.1:0.2:3",
-                    "--runs", "2", "--phase-damping", "0.12,0.05", "--phase-runs", "2", "--json"])
+    d = _json(app, ["study", "damping", "--preset", "sheet", "--normal-force", "1000,2000",
+                    "--damping-ratio", "0.1:0.2:3", "--runs", "2", "--phase-damping", "0.12,0.05", "--phase-runs", "2",
+                    "--json"])
     # the sheet's damping-study force 1400 N is not on the grid: the middle force is used
     assert d["phase"]["normal_force_n"] == 1000.0
     assert d["phase"]["damping_ratio"] == [0.05, 0.12] and d["phase"]["damping_rule"] == "given"
     assert d["phase"]["runs"] == {"deterministic": 1, "white": 2, "contact": 2}
-    d = _json(app, ["study", "damping", "--normal-force", "5600", "--damping", "0.1,0.2", "--runs", "2",
+    d = _json(app, ["study", "damping", "--normal-force", "5600", "--damping-ratio", "0.1,0.2", "--runs", "2",
                     "--phase-force", "3000", "--phase-runs", "0", "--json"])
     assert "phase" not in d and d["tasks"]["computed"] == 3
 
@@ -166,8 +167,8 @@ def test_process_file(app: typer.Typer, tmp_path: Path) -> None:
 
     path = tmp_path / "model.json"
     get_preset("brake").process.save(path)
-    a = _json(app, ["study", "damping", "--damping", "0.1,0.15", "--runs", "2", "--json"])
-    b = _json(app, ["study", "damping", "--damping", "0.1,0.15", "--runs", "2", "--process", str(path), "--json"])
+    a = _json(app, ["study", "damping", "--damping-ratio", "0.1,0.15", "--runs", "2", "--json"])
+    b = _json(app, ["study", "damping", "--damping-ratio", "0.1,0.15", "--runs", "2", "--process", str(path), "--json"])
     assert b["process_source"].startswith("file:")
     assert a["stick_probability"] == b["stick_probability"]
 

@@ -27,7 +27,7 @@ runner = CliRunner()
         (["--steps-per-cell", "0"], "steps per grid cell"),
         (["--level-factor", "0"], "level_factor"),
         (["--dt-max", "-1"], "dt_max"),
-        (["--normal-force", "-5"], "normal_force_n"),
+        (["--normal-force", "-5"], "normal_force "),
         (["--process-length", "inf"], "process_length_m"),
         (["--plot"], "--out"),
         (["--workers", "0"], "--workers"),

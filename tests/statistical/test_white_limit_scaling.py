@@ -15,7 +15,7 @@ from stochfric.studies.white_limit import WhiteLimitConfig, white_limit_study
 
 
 def _beta(**kw):  # type: ignore[no-untyped-def]
-    s = white_limit_study(WhiteLimitConfig(preset="brake", normal_force_n=2720.0, **kw)).summary
+    s = white_limit_study(WhiteLimitConfig(preset="brake", normal_force=2720.0, **kw)).summary
     return s.fit.beta, s.fit.beta_se_reported, s
 
 

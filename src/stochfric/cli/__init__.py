@@ -11,24 +11,24 @@ prints one line instead of an import traceback.  ``app`` is imported on first us
 
 from __future__ import annotations
 
-import os
 import sys
 from typing import Any
 
-from ..vector_width import ENV, configure
+from ..vector_width import configure
 
 __all__ = ["app", "main"]
 
 
 def main() -> None:
-    """Console-script entry point (``stochfric``).  With ``STOCHFRIC_VECTOR_WIDTH`` set it first applies
-    that SIMD width (:func:`stochfric.vector_width.configure`); a bad value ends in one line, status 2."""
-    if os.environ.get(ENV):
-        try:
-            configure()
-        except ValueError as exc:
-            sys.stderr.write(f"error: {exc}\n")
-            raise SystemExit(2) from None
+    """Console-script entry point (``stochfric``).  The command line is an application: it first applies the
+    SIMD width of ``STOCHFRIC_VECTOR_WIDTH`` (default ``auto``: full width only on the CPUs where it was
+    measured faster; :func:`stochfric.vector_width.configure`) to its own process; a bad value ends in one
+    line, status 2.  Importing the library changes no setting."""
+    try:
+        configure()
+    except ValueError as exc:
+        sys.stderr.write(f"error: {exc}\n")
+        raise SystemExit(2) from None
     try:
         from .application import main as run
     except KeyboardInterrupt:

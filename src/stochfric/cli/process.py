@@ -172,7 +172,7 @@ def friction_process_command(
             window_shift_points=_window_shift_points(scans[0], window_shift_um, length_factor),
             surrogate=surrogate.value, amplitude=amplitude.value, summit_rule=surf.summit_rule,
             max_area_fraction=max_area_fraction, pressure_rule=pressure_rule.value, variance_rule=variance_rule.value,
-            sigma_zeta_rule=sigma_zeta_rule.value, window_tiles=window_tiles, seed=seed,
+            sigma_zeta_rule=sigma_zeta_rule, window_tiles=window_tiles, seed=seed,
         )  # fmt: skip
         if not as_json:
             _announce_cost(scans[0], cfg)

@@ -20,7 +20,7 @@ from rich.table import Table
 
 from ..io_utils import check_output_path, require_memory, write_netcdf_atomic, write_text_atomic
 from ..oscillator import integrate
-from ..oscillator.case import CaseError, DimensionlessInput, FrictionInput, PhysicalInput, build_case
+from ..oscillator.case import Case, CaseError, DimensionlessInput, FrictionInput, PhysicalInput, build_case
 from ..oscillator.options import (
     ExecutionOptions,
     IntegrationOptions,
@@ -34,9 +34,10 @@ from ..oscillator.options import (
 )
 from ..oscillator.parameters import ParameterError
 from ..oscillator.presets import PresetName
+from ..oscillator.result import SimulationResult
 from ..process.presets import ProcessLevel
 from ..report.figures import plot_phase_portrait
-from .options import LawChoice, fail, in_flags, write_failed
+from .options import GROUP, LawChoice, fail, in_flags, option_group, write_failed
 
 err_console = Console(stderr=True)
 
@@ -79,17 +80,57 @@ def _check_step_count(tau_end: float, dt: float, runs: int) -> None:
         )
 
 
-def _progress_bar(enabled: bool) -> tuple[Progress | None, Any]:
+def _progress_bar(enabled: bool) -> Progress | None:
+    """A progress bar of the runs on stderr (removed when done), or ``None`` when not ``enabled``."""
     if not enabled:
-        return None, None
+        return None
     prog = Progress(
         TextColumn("[progress.description]{task.description}"), BarColumn(),
         TextColumn("{task.completed}/{task.total}"), TimeRemainingColumn(),
         console=err_console, transient=True,
     )
-    return prog, None
+    return prog
 
 
+def physical_options(
+    normal_force: Annotated[
+        float | None, typer.Option(help="Normal force N [newtons] (needs stiffness).")
+    ] = None,
+    damping_coefficient: Annotated[
+        float | None, typer.Option(help="Damper constant d_k [N s/m].")
+    ] = None,
+    forcing_amplitude: Annotated[
+        float | None, typer.Option(help="Forcing amplitude Q [newtons].")
+    ] = None,
+    mass: Annotated[float | None, typer.Option(help="Mass m [kg].")] = None,
+    stiffness: Annotated[float | None, typer.Option(help="Stiffness c [N/m].")] = None,
+    belt_speed: Annotated[float | None, typer.Option(help="Belt speed v0 [m/s].")] = None,
+    contact_area: Annotated[
+        float | None, typer.Option(help="Nominal contact area A [m²] for p = N/A.")
+    ] = None,
+) -> PhysicalInput:
+    """The SI options of ``simulate`` (thesis eq. 4.5), as given (``None``: the preset's or not given)."""
+    return PhysicalInput(mass=mass, stiffness=stiffness, belt_speed=belt_speed, contact_area=contact_area,
+                         normal_force=normal_force, damping_coefficient=damping_coefficient,
+                         forcing_amplitude=forcing_amplitude)
+
+
+def dimensionless_options(
+    damping_ratio: Annotated[float | None, typer.Option(help="Damping ratio D [-].")] = None,
+    gamma0: Annotated[float | None, typer.Option(help="Dimensionless belt speed γ0.")] = None,
+    n: Annotated[float | None, typer.Option("--n", help="Dimensionless normal force N/(cL).")] = None,
+    q: Annotated[float | None, typer.Option("--q", help="Dimensionless forcing Q/(cL).")] = None,
+    eta: Annotated[float | None, typer.Option(help="Forcing frequency ratio η = Ω/ω0 [-].")] = None,
+    omega0: Annotated[
+        float | None, typer.Option(help="ω0 [rad/s] for dimensionless input (default 1).")
+    ] = None,
+) -> DimensionlessInput:
+    """The dimensionless options of ``simulate`` (eq. 4.6/4.7), as given (``None``: not given)."""
+    return DimensionlessInput(gamma0=gamma0, n=n, damping_ratio=damping_ratio, q=q, eta=eta, omega0=omega0)
+
+
+@option_group("dimensionless", dimensionless_options)
+@option_group("physical", physical_options)
 def simulate(
     preset: Annotated[
         PresetName | None,
@@ -111,29 +152,8 @@ def simulate(
         typer.Option("--mu0", help="Static coefficient μ0 of the pressure law (4.13) [-]; thesis 0.4. It must "
                      "exceed E[μ](p) of the process model (the drop to the kinetic value)."),
     ] = 0.4,
-    normal_force: Annotated[
-        float | None, typer.Option(help="Normal force N [newtons] (needs stiffness).")
-    ] = None,
-    damping: Annotated[float | None, typer.Option("--damping-ratio", "--damping", help="Damping ratio D [-].")] = None,
-    damping_coefficient: Annotated[
-        float | None, typer.Option(help="Damper constant d_k [N s/m].")
-    ] = None,
-    forcing_amplitude: Annotated[
-        float | None, typer.Option(help="Forcing amplitude Q [newtons].")
-    ] = None,
-    gamma0: Annotated[float | None, typer.Option(help="Dimensionless belt speed γ0.")] = None,
-    n: Annotated[float | None, typer.Option("--n", help="Dimensionless normal force N/(cL).")] = None,
-    q: Annotated[float | None, typer.Option("--q", help="Dimensionless forcing Q/(cL).")] = None,
-    eta: Annotated[float | None, typer.Option(help="Forcing frequency ratio η = Ω/ω0 [-].")] = None,
-    omega0: Annotated[
-        float | None, typer.Option(help="ω0 [rad/s] for dimensionless input (default 1).")
-    ] = None,
-    mass: Annotated[float | None, typer.Option(help="Mass m [kg].")] = None,
-    stiffness: Annotated[float | None, typer.Option(help="Stiffness c [N/m].")] = None,
-    belt_speed: Annotated[float | None, typer.Option(help="Belt speed v0 [m/s].")] = None,
-    contact_area: Annotated[
-        float | None, typer.Option(help="Nominal contact area A [m²] for p = N/A.")
-    ] = None,
+    physical: PhysicalInput = GROUP,
+    dimensionless: DimensionlessInput = GROUP,
     x0: Annotated[
         tuple[float, float] | None,
         typer.Option(help="Initial state X1 X2 (default: sticking at (0, γ0))."),
@@ -185,62 +205,86 @@ def simulate(
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
 ) -> None:
     """Run the friction oscillator (deterministic, white-noise or contact-process friction)."""
+    save_traj = plot is not None or out is not None
     try:
-        if out is not None:
-            check_output_path(out, option="--out")
-        if plot is not None:
-            check_output_path(plot, option="--plot", kind="file", suffixes=PLOT_SUFFIXES)
+        _check_outputs(out, plot)
         case = build_case(
-            preset, model=model, tau_end=tau_end, dt=dt,
-            physical=PhysicalInput(mass=mass, stiffness=stiffness, belt_speed=belt_speed, contact_area=contact_area,
-                                   normal_force=normal_force, damping_coefficient=damping_coefficient,
-                                   forcing_amplitude=forcing_amplitude),
-            dimensionless=DimensionlessInput(gamma0=gamma0, n=n, damping_ratio=damping, q=q, eta=eta, omega0=omega0),
+            preset, model=model, tau_end=tau_end, dt=dt, physical=physical, dimensionless=dimensionless,
             friction=FrictionInput(friction_law=friction_law.value if friction_law else None, mu0=mu0,
                                    process_file=process_file, process_length=process_length,
                                    process_level=process_level, white_intensity=white_intensity,
                                    sigma_zeta=sigma_zeta),
         )
-        pre, process = case.preset, case.process
-        te, step = case.tau_end, case.dt
-        _check_step_count(te, step, runs)
-        if te > 0 and step > 0:
-            save_traj = plot is not None or out is not None
-            need = _simulation_memory_bytes(
-                runs, te, step, save_every=save_every, trajectories=save_traj, model=model,
-                process_points=round(process.length / process.dx) if process is not None else 0, workers=workers)
-            require_memory(need, what=f"simulate with --runs {runs} --tau-end {te:g} --dt {step:g}", advice=(
-                "use fewer --runs or a shorter --tau-end (run several smaller jobs with different --seed)"
-                + (", or a larger --save-every, or drop --out/--plot (no trajectories are kept without them)"
-                   if save_traj else "")))
-        prog, _ = _progress_bar(not json_out and runs >= 200 and sys.stderr.isatty())
-        task = None
-        cb = None
-        if prog is not None:
-            prog.start()
-            task = prog.add_task("trajectories", total=runs)
-
-            def cb(done: int, total: int) -> None:
-                prog.update(task, completed=done)
-
-        try:
-            result = integrate.simulate(
-                case, model=model, x0=(float(x0[0]), float(x0[1])) if x0 else None, runs=runs, seed=seed,
-                noise=NoiseOptions(path_coordinate=path_coordinate, white_stream=white_stream),
-                integration=IntegrationOptions(integrator=integrator),
-                output=OutputOptions(save_trajectory=plot is not None or out is not None, save_every=save_every),
-                execution=ExecutionOptions(workers=workers, progress=cb),
-            )
-        finally:
-            if prog is not None:
-                prog.stop()
+        _check_resources(case, model, runs, save_every=save_every, trajectories=save_traj, workers=workers)
+        result = _run_with_progress(
+            case, model=model, x0=(float(x0[0]), float(x0[1])) if x0 else None, runs=runs, seed=seed,
+            noise=NoiseOptions(path_coordinate=path_coordinate, white_stream=white_stream),
+            integration=IntegrationOptions(integrator=integrator),
+            output=OutputOptions(save_trajectory=save_traj, save_every=save_every),
+            workers=workers, show_progress=not json_out)
     except CaseError as exc:
         raise fail(in_flags(str(exc))) from None
     except (ParameterError, ValueError) as exc:
         raise fail(str(exc)) from None
+    summary = _write_outputs(result, case, model, out, plot)
+    if json_out:
+        typer.echo(json.dumps(summary))
+        return
+    _print_summary(result, summary, out, plot)
 
+
+def _check_outputs(out: Path | None, plot: Path | None) -> None:
+    """Refuse, before any work, an ``--out`` directory or ``--plot`` file that could not be written."""
+    if out is not None:
+        check_output_path(out, option="--out")
+    if plot is not None:
+        check_output_path(plot, option="--plot", kind="file", suffixes=PLOT_SUFFIXES)
+
+
+def _check_resources(case: Case, model: Model, runs: int, *, save_every: int, trajectories: bool,
+                     workers: int | None) -> None:
+    """Refuse, before any work, a step count no run could finish (:func:`_check_step_count`) and a
+    simulation that would not fit in memory (:func:`_simulation_memory_bytes`)."""
+    te, step, process = case.tau_end, case.dt, case.process
+    _check_step_count(te, step, runs)
+    need = _simulation_memory_bytes(
+        runs, te, step, save_every=save_every, trajectories=trajectories, model=model,
+        process_points=round(process.length / process.dx) if process is not None else 0, workers=workers)
+    require_memory(need, what=f"simulate with --runs {runs} --tau-end {te:g} --dt {step:g}", advice=(
+        "use fewer --runs or a shorter --tau-end (run several smaller jobs with different --seed)"
+        + (", or a larger --save-every, or drop --out/--plot (no trajectories are kept without them)"
+           if trajectories else "")))
+
+
+def _run_with_progress(case: Case, *, model: Model, x0: tuple[float, float] | None, runs: int, seed: int | None,
+                       noise: NoiseOptions, integration: IntegrationOptions, output: OutputOptions,
+                       workers: int | None, show_progress: bool) -> SimulationResult:
+    """:func:`stochfric.oscillator.integrate.simulate` of ``case``, with a progress bar on a terminal's
+    stderr for 200 runs or more (``show_progress``)."""
+    prog = _progress_bar(show_progress and runs >= 200 and sys.stderr.isatty())
+    cb = None
+    if prog is not None:
+        prog.start()
+        task = prog.add_task("trajectories", total=runs)
+
+        def cb(done: int, total: int) -> None:
+            prog.update(task, completed=done)
+
+    try:
+        return integrate.simulate(case, model=model, x0=x0, runs=runs, seed=seed, noise=noise,
+                                  integration=integration, output=output,
+                                  execution=ExecutionOptions(workers=workers, progress=cb))
+    finally:
+        if prog is not None:
+            prog.stop()
+
+
+def _write_outputs(result: SimulationResult, case: Case, model: Model, out: Path | None,
+                   plot: Path | None) -> dict[str, Any]:
+    """The JSON summary of ``result`` (with the preset and the case's modes), written with the NetCDF
+    record into ``out`` and the phase portrait into ``plot`` where given."""
     summary = result.to_json_dict()
-    summary["preset"] = pre.name if pre else None
+    summary["preset"] = case.preset.name if case.preset else None
     modes = case.modes(model)
     summary.update(modes)
     try:
@@ -253,10 +297,7 @@ def simulate(
             plot_phase_portrait(result, plot)
     except OSError as exc:  # disk full, place removed meanwhile: the previous files stay intact
         raise write_failed(exc) from None
-    if json_out:
-        typer.echo(json.dumps(summary))
-        return
-    _print_summary(result, summary, out, plot)
+    return summary
 
 
 def _print_summary(result: Any, summary: dict[str, Any], out: Path | None, plot: Path | None) -> None:

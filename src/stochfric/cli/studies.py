@@ -39,7 +39,7 @@ from .white_limit import white_limit_command
 #: called through the module so that tests can replace ``plan`` / ``run_study`` / ``reproduce``
 reproduce_mod = importlib.import_module("..studies.reproduce", __package__)
 
-ForcedDampingOpt = Annotated[float | None, typer.Option("--damping-ratio", "--damping", help="D (default 5e-6).")]
+ForcedDampingOpt = Annotated[float | None, typer.Option("--damping-ratio", help="D (default 5e-6).")]
 ModelsOpt = Annotated[str | None, typer.Option("--models", help="Comma-separated: deterministic,white,contact.")]
 PresetOpt = Annotated[str, typer.Option("--preset", help="Thesis case: brake | sheet.")]
 ProcessOpt = Annotated[Path | None, typer.Option("--process", help="Friction-process model file (JSON).")]
@@ -195,10 +195,10 @@ def study_options(
     return d
 
 
-def forced_options(q: ForcingQOpt = None, eta: EtaOpt = None, damping: ForcedDampingOpt = None) -> dict[str, Any]:
+def forced_options(q: ForcingQOpt = None, eta: EtaOpt = None, damping_ratio: ForcedDampingOpt = None) -> dict[str, Any]:
     """The forcing grid of the forced-oscillator studies (forcing, Lyapunov); options left out take the
     study config's defaults."""
-    return {"forcing_q": q, "eta": eta, "damping_ratio": damping}
+    return {"forcing_q": q, "eta": eta, "damping_ratio": damping_ratio}
 
 
 @dataclass(frozen=True)
@@ -305,8 +305,8 @@ def _print_summary(res: StudyResult[Any], wall: float, files: list[str]) -> None
 def damping_command(
     common: dict[str, Any] = GROUP,
     normal_force: Annotated[str | None, typer.Option("--normal-force", help="N [N]: value, list or A:B:NUM.")] = None,
-    damping: Annotated[
-        str, typer.Option("--damping-ratio", "--damping", help="D grid START:STOP:NUM or list.")
+    damping_ratio: Annotated[
+        str, typer.Option("--damping-ratio", help="D grid START:STOP:NUM or list.")
     ] = "0.05:0.25:41",
     stick_window: WinOpt = 0.5,
     confidence: Annotated[float, typer.Option("--confidence", help="Clopper–Pearson level.")] = 0.95,
@@ -328,7 +328,7 @@ def damping_command(
     """Damping study: P(stick-slip | D), D_max(α) with interval, D_max^d, D_H, M_diff, M_quot, phase diagrams
     over D (method §6.2)."""
     _execute("damping", {**common, "stick_window": stick_window,
-                         "normal_forces": normal_force, "damping_ratios": damping, "confidence": confidence,
+                         "normal_forces": normal_force, "damping_ratios": damping_ratio, "confidence": confidence,
                          "p_detect": p_detect, "risk_levels": risk_levels, "x0": x0, "phase_normal_force": phase_force,
                          "phase_damping_ratios": phase_damping, "phase_runs": phase_runs}, run)
 
@@ -367,8 +367,8 @@ def lyapunov_command(
 def normal_force_command(
     common: dict[str, Any] = GROUP,
     normal_force: ForceListOpt = None,
-    damping: Annotated[
-        str | None, typer.Option("--damping-ratio", "--damping", help="D list (default 5e-6 and the damped D).")
+    damping_ratio: Annotated[
+        str | None, typer.Option("--damping-ratio", help="D list (default 5e-6 and the damped D).")
     ] = None,
     phase_runs: PhaseRunsOpt = 5,
     stick_window: WinOpt = 0.5,
@@ -376,7 +376,7 @@ def normal_force_command(
 ) -> None:
     """Normal-force study: phase diagrams, PDFs, E[X_gh] ± σ, VarK with SEs (method §6.1)."""
     _execute("normal-force", {**common, "stick_window": stick_window,
-                              "normal_forces": normal_force, "damping_ratios": damping,
+                              "normal_forces": normal_force, "damping_ratios": damping_ratio,
                               "phase_runs": phase_runs}, run)
 
 

@@ -409,7 +409,8 @@ def contact_command(
         str | None,
         typer.Option(
             "--approach-um",
-            help="START:STOP:NUM in µm (linspace); default σ_S/4 … 3σ_S in 12 steps.",
+            help="START:STOP:NUM in µm (linspace); default: from 20 touching summits to A_c/A_nom = 0.1 (or half the "
+            "summits touching), 12 steps.",
         ),
     ] = None,
     method: Annotated[
@@ -454,7 +455,8 @@ def contact_command(
         mat = load_material(material)
         approach = parse_approach_um(approach_um) if approach_um is not None else None
         _raw, fine, coarse, _fs, cs, record = surf.load(file)
-        record["approach"] = "given" if approach is not None else "default: sigma_S/4..3 sigma_S"
+        record["approach"] = ("given" if approach is not None
+                              else "default: contacts rule (20 summits .. A_c/A_nom = 0.1)")
         gw = asperity_contact(coarse, cs, mat, approach, preparation=record)
         results: list[ContactResult] = [gw]
         main = gw

@@ -9,20 +9,28 @@ import json
 import math
 from enum import StrEnum
 from pathlib import Path
-from typing import TYPE_CHECKING, Annotated, Any
+from typing import Annotated, Any
 
 import typer
 
 from ..io_utils import OutputPathError, check_output_path
+from ..oscillator.options import PathCoordinate
 from ..oscillator.presets import PresetName
+from ..studies.white_limit import (
+    PATH_COORDINATES,
+    WhiteLimitConfig,
+    WhiteLimitSummary,
+    white_limit_figure,
+    white_limit_study,
+)
 from .options import fail
-
-if TYPE_CHECKING:
-    from ..studies.white_limit import WhiteLimitSummary
 
 __all__ = ["white_limit_command"]
 
-WhitePathChoice = StrEnum("WhitePathChoice", "relative mass")
+#: The study's path coordinates (:data:`~stochfric.studies.white_limit.PATH_COORDINATES`) as a typer choice.
+WhitePathChoice = StrEnum("WhitePathChoice", [(p.name, p.value) for p in PATH_COORDINATES])  # type: ignore[misc]
+#: The config's default path coordinate as that choice.
+DEFAULT_PATH = WhitePathChoice(WhiteLimitConfig.path_coordinate)
 
 
 def _lengths(spec: str) -> tuple[float, ...]:
@@ -54,10 +62,10 @@ def white_limit_command(
     ] = "1e-3,1e-4,1e-5,1e-6",
     runs: Annotated[int, typer.Option("--runs", help="Monte Carlo runs per ℓ and time step.")] = 300,
     seed: Annotated[int, typer.Option("--seed", min=0, help="Root seed.")] = 19,
-    damping: Annotated[float, typer.Option("--damping-ratio", "--damping", help="D (default 5e-6).")] = 5e-6,
+    damping_ratio: Annotated[float, typer.Option("--damping-ratio", help="D (default 5e-6).")] = 5e-6,
     path_coordinate: Annotated[WhitePathChoice, typer.Option(
         "--path-coordinate", help="Where the process is read: relative (sliding distance, as the white model) "
-                                  "| mass (the thesis's |Δx1|).")] = WhitePathChoice.relative,
+                                  "| mass (the thesis's |Δx1|).")] = DEFAULT_PATH,
     tau_end: Annotated[float | None, typer.Option("--tau-end", help="τ_end (default: preset, 50).")] = None,
     process_length: Annotated[float | None, typer.Option(
         "--process-length", help="Least process length [m] (default 2 γ0 τ_end; doubled if a run's path exceeds it).")
@@ -76,8 +84,6 @@ def white_limit_command(
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON object.")] = False,
 ) -> None:
     """σ(X_gh), E[X_gh] of the contact model over the correlation length ℓ at fixed S0 (is white noise its limit?)."""
-    from ..studies.white_limit import WhiteLimitConfig, white_limit_figure, white_limit_study
-
     ells = _lengths(lengths)
     if plot and out is None:
         raise fail("--plot writes the figure into --out DIR: give --out")
@@ -90,8 +96,8 @@ def white_limit_command(
         raise fail(f"--workers must be >= 1, got {workers}")
     try:
         cfg = WhiteLimitConfig(
-            preset=preset.value, normal_force_n=normal_force, correlation_lengths_m=ells, runs=runs, seed=seed,
-            damping_ratio=damping, tau_end=tau_end, path_coordinate=path_coordinate.value,
+            preset=preset.value, normal_force=normal_force, correlation_lengths_m=ells, runs=runs, seed=seed,
+            damping_ratio=damping_ratio, tau_end=tau_end, path_coordinate=PathCoordinate(path_coordinate),
             process_length_m=process_length, steps_per_cell=steps_per_cell, dt_max=dt_max, refine=refine,
             level_factor=level_factor, fit_min_length_m=fit_min_length, workers=workers,
         )

@@ -38,9 +38,9 @@ __all__ = [
 FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
 
-#: Default approach range in units of σ_S: ``linspace(σ_S/4, 3σ_S, 12)`` (ratio 1:12 as the
-#: thesis's brake range 1…12 µm), stretched when the highest summit stands far above the rest
-#: (see :func:`default_approach_m`).
+#: Approach range of the ``"sigma"`` rule in units of σ_S: ``linspace(σ_S/4, 3σ_S, 12)`` (ratio 1:12 as
+#: the thesis's brake range 1…12 µm), stretched when the highest summit stands far above the rest
+#: (see :func:`default_approach_m`; the default rule is ``"contacts"``).
 DEFAULT_APPROACH_SIGMA = (0.25, 3.0)
 DEFAULT_APPROACH_NUM = 12
 

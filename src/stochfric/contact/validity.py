@@ -126,7 +126,7 @@ def contact_validity(
         ("area-fraction-above-one", frac, frac > 1.0, lambda idx: (
             f"{pre}A_c/A_nom > 1 {_u_text(u, idx)} (max {float(np.nanmax(frac[list(idx)])):.3g}): more "
             "contact than nominal area is impossible; the approach exceeds the surface's height range - "
-            "use smaller approaches (default range: sigma_S/4 ... 3 sigma_S)")),
+            "use smaller approaches (the default range ends at A_c/A_nom = 0.1)")),
         ("beyond-non-interaction", frac, (frac > max_area_fraction) & (frac <= 1.0), lambda idx: (
             f"{pre}A_c/A_nom > {max_area_fraction:g} {_u_text(u, idx)}: beyond the non-interaction range "
             "the asperities interact and the GW area departs from the elastic half-space solution "

@@ -485,40 +485,55 @@ def simulate(
         out=out,
     )
     _run_batches(runner, npar * runs, execution.workers, execution.batch_size, execution.progress)
+    return _result(runner, model_, integrator, white_increment, path_coordinate, tau_end=tau_end, integration=ig,
+                   save_trajectory=output.save_trajectory, warnings=warn_list)
 
+
+def _result(
+    runner: _BatchRunner, model: Model, integrator: Integrator, white_increment: WhiteIncrement,
+    path_coordinate: PathCoordinate, *, tau_end: float, integration: IntegrationOptions, save_trajectory: bool,
+    warnings: list[SimulationWarning],
+) -> SimulationResult:
+    """The :class:`SimulationResult` of the trajectories ``runner`` has run: its outputs shaped per
+    parameter set and run, the diagnostics, the warnings of the run (``warnings``, the time step's)
+    and of its outcome (:func:`_post_warnings`), and the settings that fix its numbers."""
+    plan, out, runs = runner.plan, runner.out, runner.runs
+    npar, nev, nsave = len(plan.params), out.x_gh.shape[1], out.traj.shape[1]
     diagnostics = {k: out.diag[:, j].reshape(npar, runs).copy() for k, j in DIAGNOSTICS.items()}
     diagnostics["process_segments"] = runner.segments.reshape(npar, runs).astype(float)
+    process = runner.process
     # returned in the result only (``result.warnings``, also in its JSON and NetCDF); callers show
     # them (the CLI prints each on stderr, the studies count them, the report explains them)
-    warn_list += _post_warnings(out.counts, nev, out.diag, model_, process, plist, runner.path_mode)
+    warn_list = warnings + _post_warnings(out.counts, nev, out.diag, model, process, plan.params, runner.path_mode)
+    ig = integration
     return SimulationResult(
-        params=plist,
+        params=plan.params,
         x_gh=out.x_gh.reshape(npar, runs, nev),
         t_gh=out.t_gh.reshape(npar, runs, nev),
         stick_count=out.counts.reshape(npar, runs),
         diagnostics=diagnostics,
-        trajectory=out.traj.reshape(npar, runs, nsave, 3) if output.save_trajectory else None,
-        model=str(model_),
+        trajectory=out.traj.reshape(npar, runs, nsave, 3) if save_trajectory else None,
+        model=str(model),
         integrator=str(integrator),
-        dt=dt,
+        dt=runner.dt,
         tau_end=tau_end,
         runs=runs,
-        seed_entropy=int(root.entropy),  # type: ignore[arg-type]
+        seed_entropy=int(runner.root.entropy),  # type: ignore[arg-type]
         versions=package_versions(),
         path_coordinate=str(path_coordinate),
         x0=plan.x0,
         laws=[lw.to_dict() for lw in plan.laws],
         sigma_zeta=plan.sigma,
-        process=process.to_dict() if (process is not None and model_ != Model.DETERMINISTIC) else None,
+        process=process.to_dict() if (process is not None and model != Model.DETERMINISTIC) else None,
         warnings=warn_list,
         settings={
-            "save_every": save_every, "max_events": nev,
-            "common_random_numbers": noise.common_random_numbers,
+            "save_every": runner.save_every, "max_events": nev,
+            "common_random_numbers": runner.common_random_numbers,
             "rtol": ig.rtol, "atol": ig.atol, "max_step": ig.max_step,
             "spawn_key_layout": "(*stream_key, run); contact process: (*stream_key, run, segment)",
-            "stream_keys": keys.tolist(),
+            "stream_keys": runner.stream_keys.tolist(),
             "white_increment": str(white_increment),
-            "white_stream": str(white_stream),
+            "white_stream": str(runner.white_stream),
             "sigma_zeta_effective": plan.sigma_eff,
         },
     )

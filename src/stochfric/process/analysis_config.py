@@ -17,6 +17,7 @@ from stochfric.contact.asperity import ContactError
 from stochfric.process.checks import WINDOW_TILES
 from stochfric.process.ensemble import SurrogateOptions
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
+from stochfric.process.model_base import SigmaZetaRule
 from stochfric.surface.quilting import quilt_applicable
 from stochfric.surface.statistics import curvature_gaussianity
 from stochfric.surface.summits import find_summits
@@ -42,6 +43,7 @@ class AnalysisConfig:
     ``"raw"``: the thesis's DFT of the map as it is, :func:`stochfric.surface.synthesis.amplitude_spectrum`);
     ``surrogate`` the surrogate method, ``"auto"`` by default as in ``stochfric friction-process``
     (:meth:`surrogate_for`; ``"phase"`` is the thesis's random phases);
+    ``sigma_zeta_rule`` the model's rule for the white-noise intensity σ_ζ(p) (:class:`SigmaZetaRule`);
     ``window_tiles`` the most tiles per side of the measured-window check
     (:func:`~stochfric.process.checks.window_tiles`).
     """
@@ -57,7 +59,7 @@ class AnalysisConfig:
     max_area_fraction: float = DEFAULT_MAX_AREA_FRACTION
     pressure_rule: str = "nearest"
     variance_rule: str = "sigma_mu"
-    sigma_zeta_rule: str = "sigma_mu"
+    sigma_zeta_rule: SigmaZetaRule = SigmaZetaRule.SIGMA_MU
     pdf_bins: int = 30
     check_realizations: int = 200
     window_tiles: int = WINDOW_TILES
@@ -80,6 +82,10 @@ class AnalysisConfig:
             raise ContactError(f"window_tiles must be >= 2 (at least 2 x 2 windows), got {self.window_tiles}")
         if not 0.0 < self.max_area_fraction <= 1.0:
             raise ContactError(f"max_area_fraction must lie in (0, 1], got {self.max_area_fraction!r}")
+        if self.sigma_zeta_rule not in tuple(SigmaZetaRule):
+            raise ContactError(f"sigma_zeta_rule must be one of {[str(r) for r in SigmaZetaRule]}, "
+                               f"got {self.sigma_zeta_rule!r}")
+        object.__setattr__(self, "sigma_zeta_rule", SigmaZetaRule(self.sigma_zeta_rule))
         self.surrogate_options  # noqa: B018 - validates surrogate and amplitude (ContactError)
 
     @property

@@ -391,7 +391,7 @@ def _process_model(
         table_psd=tuple(tuple(float(v) for v in spectra.psd[k]) for k in order),
         pressure_rule=cfg.pressure_rule,  # type: ignore[arg-type]
         variance_rule=cfg.variance_rule,  # type: ignore[arg-type]
-        sigma_zeta_rule=cfg.sigma_zeta_rule,  # type: ignore[arg-type]
+        sigma_zeta_rule=cfg.sigma_zeta_rule,
         psd_level=fits["psd_level"].model_function(),
         window_length_m=path.window_length_m,
     )

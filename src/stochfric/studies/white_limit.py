@@ -43,7 +43,8 @@ from .summary import OPTIONAL, to_json
 
 __all__ = ["WhiteLimitConfig", "WhiteLimitResult", "WhiteLimitSummary", "power_law_fit", "white_limit_study"]
 
-PATH_COORDINATES = ("relative", "mass")
+#: The path coordinates the study reads the process at (``position`` reads a periodic process: no limit ℓ → 0).
+PATH_COORDINATES = (PathCoordinate.RELATIVE, PathCoordinate.MASS)
 #: Most doublings of the process length when a run's path exceeds it.
 MAX_EXTENSIONS = 4
 #: Convergence in Δτ: |σ(Δτ) − σ(Δτ/refine)| at most this many SE(σ(Δτ/refine)).
@@ -60,14 +61,14 @@ class WhiteLimitConfig:
     """Settings of the white-limit study; SI units (lengths in m, force in N)."""
 
     preset: str = "brake"
-    normal_force_n: float | None = None  #: default: the preset's middle normal-force study force
+    normal_force: float | None = None  #: default: the preset's middle normal-force study force
     correlation_lengths_m: tuple[float, ...] = (1e-3, 1e-4, 1e-5, 1e-6)
     runs: int = 300
     seed: int = 19
     damping_ratio: float = 5e-6
     tau_end: float | None = None  #: default: the preset's (50)
     stick_window: float = 0.5
-    path_coordinate: str = "relative"
+    path_coordinate: PathCoordinate = PathCoordinate.RELATIVE  #: one of :data:`PATH_COORDINATES`
     process_length_m: float | None = None  #: default 2 γ0 τ_end (L = 1 m)
     steps_per_cell: float = 4.0
     dt_max: float = 0.001  #: the largest Δτ used (the preset's 0.005 is not converged to the paired SE)
@@ -90,7 +91,9 @@ class WhiteLimitConfig:
         if isinstance(self.runs, bool) or not isinstance(self.runs, int) or self.runs < 2:
             raise CaseError(f"runs must be an integer >= 2 (standard errors over runs), got {self.runs!r}")
         if self.path_coordinate not in PATH_COORDINATES:
-            raise CaseError(f"path coordinate must be one of {list(PATH_COORDINATES)}, got {self.path_coordinate!r}")
+            raise CaseError(f"path coordinate must be one of {[str(p) for p in PATH_COORDINATES]}, "
+                            f"got {self.path_coordinate!r}")
+        object.__setattr__(self, "path_coordinate", PathCoordinate(self.path_coordinate))
         if not (math.isfinite(self.steps_per_cell) and self.steps_per_cell >= 1.0):
             raise CaseError(f"steps per grid cell must be >= 1, got {self.steps_per_cell!r}")
         if isinstance(self.refine, bool) or not isinstance(self.refine, int) or self.refine < 2:
@@ -99,7 +102,7 @@ class WhiteLimitConfig:
             raise CaseError(f"stick window fraction must be in [0, 1), got {self.stick_window!r}")
         if not (math.isfinite(self.damping_ratio) and self.damping_ratio >= 0.0):
             raise CaseError(f"damping ratio must be >= 0, got {self.damping_ratio!r}")
-        for name in ("normal_force_n", "tau_end", "process_length_m", "dt_max", "level_factor", "fit_min_length_m"):
+        for name in ("normal_force", "tau_end", "process_length_m", "dt_max", "level_factor", "fit_min_length_m"):
             v = getattr(self, name)
             if v is not None and not (math.isfinite(v) and v > 0.0):
                 raise CaseError(f"{name} must be a positive number, got {v!r}")
@@ -346,7 +349,7 @@ def power_law_fit(lengths: Sequence[float], sigma: Sequence[float], sigma_se: Se
 def _simulate_once(case: Any, process: Any, cfg: WhiteLimitConfig, tau_end: float, dt: float,
                    seed: np.random.SeedSequence) -> Any:
     return simulate(replace(case, process=process, tau_end=tau_end, dt=dt), model=Model.CONTACT, runs=cfg.runs,
-                    seed=seed, noise=NoiseOptions(path_coordinate=PathCoordinate(cfg.path_coordinate)),
+                    seed=seed, noise=NoiseOptions(path_coordinate=cfg.path_coordinate),
                     execution=ExecutionOptions(workers=cfg.workers))
 
 
@@ -375,7 +378,7 @@ def _setting(cfg: WhiteLimitConfig) -> _Setting:
     """The :class:`_Setting` of ``cfg`` (defaults from the preset), its size checked (:func:`_check_size`)."""
     setup = case_setup(cfg.preset)
     pre = setup.preset
-    force = cfg.normal_force_n if cfg.normal_force_n is not None else float(
+    force = cfg.normal_force if cfg.normal_force is not None else float(
         pre.study_parameters.normal_force_study_forces[1])
     case = setup.case(force, cfg.damping_ratio)
     tau_end = cfg.tau_end if cfg.tau_end is not None else setup.tau_end

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from typing import Any
 
 import numpy as np
@@ -18,6 +19,7 @@ from stochfric.process.ensemble import (
     window_contact,
     window_starts,
 )
+from stochfric.process.model_base import SigmaZetaRule
 from stochfric.surface.io import Surface, default_surface_path, read_surface, surface_from_array
 from stochfric.surface.preprocess import prepare
 from stochfric.surface.summits import find_summits, summits_of
@@ -117,6 +119,18 @@ def test_counts_share_one_validator() -> None:
         AnalysisConfig(length_factor=1)
     with pytest.raises(ContactError, match="shift_points must be an integer >= 1, got 0"):
         window_starts(10, 4, 0)
+
+
+def test_sigma_zeta_rule_is_the_enum_and_round_trips_through_json() -> None:
+    """``sigma_zeta_rule`` is a :class:`SigmaZetaRule` (a name given as text is turned into it), stored
+    as its text, and read back to an equal config; another name is refused."""
+    cfg = AnalysisConfig(sigma_zeta_rule="spectral_level")  # type: ignore[arg-type]
+    assert cfg.sigma_zeta_rule is SigmaZetaRule.SPECTRAL_LEVEL
+    text = json.dumps(cfg.to_dict())
+    assert json.loads(text)["sigma_zeta_rule"] == "spectral_level"
+    assert AnalysisConfig(**json.loads(text)) == cfg
+    with pytest.raises(ContactError, match="sigma_zeta_rule must be one of"):
+        AnalysisConfig(sigma_zeta_rule="psd")  # type: ignore[arg-type]
 
 
 def test_large_surface_many_windows_equal_naive() -> None:

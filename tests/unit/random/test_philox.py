@@ -213,8 +213,9 @@ def test_kernel_draws_equal_the_same_numbers_given_as_increments(scheme: int, so
 
 def test_simulate_white_streams() -> None:
     """Default ``philox-ziggurat``: key of trajectory (i, r) = its spawned seed, normals by the
-    ziggurat; ``philox-boxmuller`` (old name ``philox``, with a DeprecationWarning) the same blocks
-    by Box–Muller; ``pcg64`` numpy's normals of the same seed, given as increments."""
+    ziggurat; ``philox-boxmuller`` the same blocks by Box–Muller; ``pcg64`` numpy's normals of the
+    same seed, given as increments.  Any other name (``philox`` alone, which names no transform) is
+    refused with the three choices."""
     p = OscillatorParameters(gamma0=1.0, n=10.0)
     kw = dict(model="white", law=law_III(), runs=3, seed=4, integration=IntegrationOptions(tau_end=5.0),
               output=OutputOptions(save_trajectory=True, save_every=1))
@@ -224,7 +225,8 @@ def test_simulate_white_streams() -> None:
     for name, r in res.items():
         assert r.settings["white_stream"] == name
     assert not np.array_equal(res["philox-ziggurat"].trajectory, res["philox-boxmuller"].trajectory)
-    with pytest.raises(ParameterError, match="unknown white-noise stream 'philox'"):
+    with pytest.raises(ParameterError, match="unknown white-noise stream 'philox'; choose one of "
+                       r"\['philox-ziggurat', 'philox-boxmuller', 'pcg64'\]"):
         simulate(p, **kw, noise=NoiseOptions(sigma_zeta=0.05, white_stream="philox"))
     dt, nsteps = 0.005, 1000
     root = np.random.SeedSequence(4)

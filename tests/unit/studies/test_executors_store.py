@@ -238,7 +238,7 @@ def test_ctrl_c_says_what_is_saved_and_how_to_resume(tmp_path: Path, monkeypatch
     import stochfric.studies.executors as executors
     from stochfric.cli import app
 
-    args = ["study", "damping", "--normal-force", "4000,6000", "--damping", "0.1,0.14,0.18", "--runs", "3",
+    args = ["study", "damping", "--normal-force", "4000,6000", "--damping-ratio", "0.1,0.14,0.18", "--runs", "3",
             "--seed", "5", "--tau-end", "12", "--checkpoint", str(tmp_path / "ck")]
     monkeypatch.setattr(executors, "make_executor", lambda *a, **k: CountingExecutor(interrupt_after=2))
     res = CliRunner().invoke(app, args)

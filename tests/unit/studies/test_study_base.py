@@ -1,4 +1,4 @@
-"""The Study base (issue 12 item 4) and the renamed config fields (item 5)."""
+"""The Study base and the study config fields."""
 
 from __future__ import annotations
 

@@ -65,7 +65,7 @@ def test_ensemble_statistics_pairs_the_runs() -> None:
         ({"stick_window": 1.0}, "stick window"),
         ({"level_factor": 0.0}, "level_factor"),
         ({"dt_max": float("nan")}, "dt_max"),
-        ({"normal_force_n": -3.0}, "normal_force_n"),
+        ({"normal_force": -3.0}, "normal_force "),
     ],
 )
 def test_config_refuses_bad_settings(kwargs, match) -> None:  # type: ignore[no-untyped-def]
@@ -74,7 +74,7 @@ def test_config_refuses_bad_settings(kwargs, match) -> None:  # type: ignore[no-
 
 
 def test_a_small_study_runs_and_never_repeats_the_process() -> None:
-    cfg = WhiteLimitConfig(preset="brake", normal_force_n=2720.0, correlation_lengths_m=(1e-3, 1e-4),
+    cfg = WhiteLimitConfig(preset="brake", normal_force=2720.0, correlation_lengths_m=(1e-3, 1e-4),
                            runs=24, tau_end=20.0, seed=5, workers=1)
     res = white_limit_study(cfg)
     s = res.summary
