@@ -604,11 +604,13 @@ def _allocate_output(n_traj: int, capacity: int, nsave: int) -> _k.KernelOutput:
     )
 
 
-#: Process segments a contact run starts with; ``None``: the belt path γ0·τ_end in segments, plus one.
-#: The paths of the presets' runs stay below 0.65 γ0·τ_end (both presets, the forces and η of
-#: ``reproduce``), so a run is rarely generated twice; one that needs more is run again with more
-#: segments.  The numbers do not depend on it (tests/unit/oscillator/test_simulate.py).
+#: Process segments a contact run starts with; ``None``: enough for a path of 0.7 γ0·τ_end (the paths of
+#: the presets' runs stay below 0.65 γ0·τ_end: both presets, the forces and η of ``reproduce``), so a
+#: run is rarely integrated twice and few unused segments are generated; a run that needs more is run
+#: again with more.  The numbers do not depend on it (tests/unit/oscillator/test_simulate.py).
 FIRST_SEGMENTS: int | None = None
+#: The path per belt path γ0·τ_end that :data:`FIRST_SEGMENTS` provides for.
+PATH_PER_BELT = 0.7
 
 
 @dataclass
@@ -740,7 +742,8 @@ class _BatchRunner:
             return FIRST_SEGMENTS
         prm = self.rows[0][idx // self.runs]
         belt = float(np.max(prm[:, _k.P_GAMMA0] / prm[:, _k.P_PROC_DX])) * self.plan.nsteps * self.dt
-        return max(1, math.ceil(belt / self.n_proc) + 1)
+        # a run is rerun when its path passes (n − 0.1) segments (_exhausted)
+        return max(1, math.ceil(PATH_PER_BELT * belt / self.n_proc + 0.1))
 
     def __call__(self, lo: int, hi: int) -> None:
         o = self.out
