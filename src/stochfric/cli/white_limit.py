@@ -1,5 +1,5 @@
 """``stochfric study white-limit``: σ(X_gh) of the contact model as the process's correlation length
-ℓ → 0 at a fixed low-frequency level (issue 19; :mod:`stochfric.studies.white_limit`).  Parse, call,
+ℓ → 0 at a fixed low-frequency level (:mod:`stochfric.studies.white_limit`).  Parse, call,
 print; no physics.  Input errors end with a one-line message and exit code 2.
 """
 

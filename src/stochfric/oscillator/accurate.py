@@ -12,13 +12,12 @@ its order; every non-smooth point is an *event* at which the integration restart
 * the path coordinate crossing a grid point of the friction process (the linear
   interpolation of μ̂ has a kink at every grid point).
 
-Events are located by bisection on the dense output to ``θ`` resolution 1e-15 and the
-state at the event is recomputed by one Dormand–Prince step of exactly that length.  Within a
-step the signs ``s = sign(γ0 − x2)`` and ``sign(x2)`` are held (the right-hand side is then
-smooth across ``x2 = γ0`` and ``x2 = 0``; the step that contains one is not rejected by the
-error control), and a step that would cross a grid point of the process is aimed at it
-instead (cubic Hermite guess, then Newton on the step length: 1–2 extra steps per grid point
-instead of a cascade of rejected steps across the kink).
+Within a slip segment the signs ``s = sign(γ0 − x2)`` and ``sign(x2)`` and, for the contact model,
+the linear function of the process's current grid cell (extended past the cell's end) are held
+(:class:`Segment`), so the right-hand side is smooth and no step straddling an event is rejected by the
+error control.  After an accepted step the first event inside it is located on the dense output
+(bisection to ``θ`` resolution 1e-15; grid points by Illinois regula falsi to 1e-12 Δx) and the state
+there is recomputed by one Dormand–Prince step of exactly that length.
 The stick phase is solved in closed form (``x1 = x1s + γ0 (τ − τs)``); its end, the
 first ``τ`` with ``|x1 + 2Dγ0 − q cos(x30 + ητ)| > n μ_s``, is found in closed form for
 ``q = 0`` and by a scan plus bisection otherwise (the scan jumps by the margin over the

@@ -42,7 +42,7 @@ class BandLimitedProcessModel(ProcessModelBase):
         flat, §3.2.4).  ``"falling"``: S falls linearly from 1 at f_min to
         ``falling_ratio`` at f_max (relative), our documented stand-in for the sheet
         spectrum, which the thesis only describes as falling slightly with frequency
-        (§3.3.3), until measured spectra are tabulated (issue 4).
+        (§3.3.3), until measured spectra are tabulated.
     falling_ratio:
         S(f_max)/S(f_min) of the ``"falling"`` shape, in [0, 1]; ignored for ``"flat"``.
     sigma_zeta_rule:

@@ -71,7 +71,7 @@ def sheet_process() -> BandLimitedProcessModel:
     Δx = 0.02/67 m ≈ 2.99·10⁻⁴ m (thesis: 3·10⁻⁴ m, adjusted to span exactly one period with 67
     points), length 0.02 m, spectrum falling linearly to half its level over the band — our
     stand-in for the thesis's "falls slightly with frequency" (§3.3.3) until measured spectra
-    exist (issue 4).
+    exist.
     """
     return BandLimitedProcessModel(
         name="sheet",
@@ -91,7 +91,7 @@ BRAKE_PSD_LEVEL_FIT = ModelFunction(a=0.0068, b=-0.3174, c=2.4785e-5)
 SHEET_PSD_LEVEL_FIT = ModelFunction(a=0.0223, b=-0.3174, c=-5.9154e-5)
 
 
-# --- reproduction mode: the process level from the thesis's E[S](p) fits (issue 10) -----------
+# --- reproduction mode: the process level from the thesis's E[S](p) fits --------------------
 
 #: The thesis's own check of a generated brake process (§3.2.5, Fig. 3.23): standard deviation
 #: σ_μ̂SD = 0.08 at p = 0.5 MPa.  It fixes the unstated normalisation of the E[S] fits.

@@ -457,7 +457,7 @@ def _det_verdict(risk: dict[str, list[list[DMaxRisk]]], det: float | None, k: in
 def verdict_section(results: Sequence[StudyResult[Any]]) -> str:
     """The one-look answer at the top of the report: per preset (damping study), per normal force, the
     deterministic limit D_max^d, the stick-slip limit D_max(α) of each stochastic model with its interval at
-    the first risk level, and whether the deterministic limit holds at that risk (issue 20 §5)."""
+    the first risk level, and whether the deterministic limit holds at that risk."""
     out = []
     for res in results:
         s = res.summary

@@ -171,7 +171,7 @@ def damping_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "dampin
                     f"underestimates stick-slip; {pos} (positive) where the deterministic run sticks more often."))
     if nn.size > 1:
         out.append(_probability_map(ds, d, prefix, models, dd, nn))
-    if "d_max_risk" in ds:  # results saved before issue 19 have the sample extreme only
+    if "d_max_risk" in ds:  # a result without risk levels has the sample extreme only
         out.append(_risk_figure(ds, d, prefix, models, dd, nn))
         out.append(_dmax_figure(ds, d, prefix, models, dd, nn))
     return out

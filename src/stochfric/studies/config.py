@@ -201,7 +201,7 @@ class _ForcedConfig(StudyConfig):
 
     forcing_q: Grid = (5e-5, 5e-4)
     eta: Grid = Field(default_factory=lambda: parse_grid("0:3:61"))
-    #: The forced studies run on the converged integrator by default (issue 19): Euler at the thesis's
+    #: The forced studies run on the converged integrator by default: Euler at the thesis's
     #: Δτ = 0.005 locks spurious cycles at some η (brake 4000 N, q = 5e-4, η = 1.2: λ = -0.86 against
     #: +0.28 converged).  ``euler`` is their reproduction mode (recorded in the outputs).
     integrator: OdeIntegrator = Field(

@@ -11,7 +11,7 @@ E[X_gh], σ(X_gh), E[M_s]; M_diff = M_d − E[M_s] (4.41), M_quot = E[M_s]/M_d (
   boundary lies in [D_max^d, next grid D);
 * P(stick-slip | D) = probability of a cycle, estimated per grid D by k/R with a two-sided
   Clopper–Pearson interval at ``confidence`` (``stick_probability``, ``_low``, ``_high``);
-* **D_max(α)** (issue 19) = the largest grid D with P(stick-slip | D) ≥ α, for each risk level α
+* **D_max(α)** = the largest grid D with P(stick-slip | D) ≥ α, for each risk level α
   of ``risk_levels`` (default 10 %, 1 %), with the interval [low, high] read off the per-D bands
   (:func:`~stochfric.studies.stats.risk_limit`): low = the largest D whose lower bound is ≥ α,
   high = the largest D whose upper bound is ≥ α; high at the grid end = open ("≥ grid end"),

@@ -11,18 +11,18 @@ value — method §7.9).  All three use the same noise realisation (``common_ran
 
 K = the number of transitions both runs have (stochastic: the smallest over the runs).
 
-**What is measured, and when it is undefined (issue 10).**  A finite-difference exponent is a
+**What is measured, and when it is undefined.**  A finite-difference exponent is a
 property of the dynamics only while the separation stays in the *linear regime*: there w(i)
 is proportional to δ.  Once w reaches the scale of the attractor (or, for the contact model,
 of the process grid: the two runs then read unrelated parts of the surface) it saturates, and
-(4.43) becomes a function of δ (issue: median 3.4 / 2.8 / 1.2 for δ = 1e-8 / 1e-6 / 1e-4).
+(4.43) becomes a function of δ.
 
 * **Twin check.**  In the linear regime the signed differences obey d₂(i) = 2 d(i); a pair is
   *linear* when |d₂(i) − 2 d(i)| ≤ ``linearity_tolerance`` · 2 max_{j≤i} |d(j)| (default 0.1)
   for every i ≤ K.  This catches saturation and the non-smooth parts of the switching logic (a
   breakaway moved across a grid step; probably the white noise's slip remainder ΔW_k √(h/Δτ),
   not Lipschitz in h at h = 0; the contact model's breakaway check) alike, without a length scale.
-* **Diverging pairs (issue 19).**  A pair whose separation grew by at least
+* **Diverging pairs.**  A pair whose separation grew by at least
   :data:`DIVERGING_GROWTH` (10²) over w(1) within the transitions that pass the twin check, and only
   then failed it, has left the linear regime by saturating, not by a jump: status ``diverging``,
   λ = the slope of ln w over that linear prefix, a *lower bound* of the exponent

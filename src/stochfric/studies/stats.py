@@ -4,7 +4,7 @@
   probability at a damping ratio, §6.2), from the beta distribution; :func:`wilson` — the
   Wilson score interval (reference only: it can undercover at small n·p).
 * :func:`risk_limit` — D_max(α), the largest grid D at which P(stick-slip) ≥ α, with the
-  interval read off the per-D Clopper–Pearson bands (issue 19).
+  interval read off the per-D Clopper–Pearson bands.
 * :func:`sample_summary` — E[X_gh], σ(X_gh) and VarK = |σ|/|E| (eq. 4.40) with standard
   errors, both the closed forms for independent samples and a bootstrap over *runs*
   (the X_gh of one run are correlated, so the run is the independent unit).

@@ -1,4 +1,4 @@
-"""Is white noise the small-ℓ limit of the contact process for X_gh?  (issue 19, docs/studies.md §7)
+"""Is white noise the small-ℓ limit of the contact process for X_gh?  (docs/studies.md)
 
 A path-domain friction fluctuation of correlation length ℓ and low-frequency one-sided PSD level S0
 tends, as ℓ → 0 at fixed S0, to white noise in the path of level S0/2 per unit length — and then,
