@@ -34,14 +34,7 @@ import numpy.typing as npt
 
 from ..oscillator.case import WHITE_MODEL_STANDING, Case, CaseSetup, case_setup
 from ..oscillator.integrate import simulate
-from ..oscillator.options import (
-    ExecutionOptions,
-    IntegrationOptions,
-    Integrator,
-    Model,
-    NoiseOptions,
-    OutputOptions,
-)
+from ..oscillator.options import ExecutionOptions, IntegrationOptions, Integrator, Model, NoiseOptions, OutputOptions
 from ..oscillator.parameters import OscillatorParameters
 from .errors import StudyError
 
