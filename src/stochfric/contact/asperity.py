@@ -43,6 +43,8 @@ IntArray = npt.NDArray[np.int64]
 #: (see :func:`default_approach_m`; the default rule is ``"contacts"``).
 DEFAULT_APPROACH_SIGMA = (0.25, 3.0)
 DEFAULT_APPROACH_NUM = 12
+#: Relative margin by which the ``"contacts"`` range ends inside its area limit (rounding only).
+AREA_TARGET_MARGIN = 1e-9
 
 #: Block size (elements of the u × summits broadcast) that bounds the memory of the force sum.
 _BLOCK_ELEMENTS = 1 << 22
@@ -131,7 +133,9 @@ def default_approach_m(
     c_beta = np.cumsum(np.pi * beta)
     c_beta_depth = np.cumsum(np.pi * beta * depth)
     area_at_depth = c_beta * depth - c_beta_depth  # A at u = depth[k] from summits 0..k
-    target = max_area_fraction * summits.area_m2
+    # a hair inside the limit, so that rounding in the contact sums never puts the last approach past
+    # the limit the validity check (contact.validity, ``beyond-non-interaction``) tests
+    target = max_area_fraction * summits.area_m2 * (1.0 - AREA_TARGET_MARGIN)
     k = int(np.searchsorted(area_at_depth, target, side="right"))
     if k >= zs.size:  # every summit touches before the area target: extrapolate linearly
         u_area = float(depth[-1] + (target - area_at_depth[-1]) / c_beta[-1])

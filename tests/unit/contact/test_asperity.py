@@ -188,11 +188,12 @@ def test_contacts_rule_spans_twenty_contacts_to_the_non_interaction_limit() -> N
     frac, count = _area_fraction(sm, u)
     assert count[0] == 20
     half = count[-1] >= (sm.count - 1) // 2 and count[-1] <= sm.count // 2 + 1
-    assert frac[-1] == pytest.approx(0.1, rel=1e-9) or (half and frac[-1] < 0.1)
-    assert np.all(frac <= 0.1 * (1 + 1e-9)) and np.all(np.diff(u) > 0)
+    assert frac[-1] == pytest.approx(0.1, rel=1e-8) or (half and frac[-1] < 0.1)
+    # never past the limit that the validity check (beyond-non-interaction) tests, not even by rounding
+    assert np.all(frac <= 0.1) and np.all(np.diff(u) > 0)
     for fraction in (0.002, 0.01):  # a smaller limit ends the range where the area reaches it
         frac_f, _ = _area_fraction(sm, default_approach_m(sm, max_area_fraction=fraction))
-        assert frac_f[-1] == pytest.approx(fraction, rel=1e-9)
+        assert frac_f[-1] == pytest.approx(fraction, rel=1e-8) and frac_f[-1] <= fraction
 
 
 def test_contacts_rule_is_shifted_but_not_widened_by_a_spike() -> None:
