@@ -29,8 +29,8 @@ F = TypeVar("F", bound=Callable[..., Any])
 GROUP: Any = None
 
 __all__ = [
-    "FLAGS", "GROUP", "AmplitudeChoice", "LawChoice", "MethodChoice", "PressureRuleChoice", "SummitRuleChoice",
-    "SurrogateChoice", "VarianceRuleChoice", "fail", "flag_of", "in_flags", "option_group",
+    "FLAGS", "GROUP", "AmplitudeChoice", "LawChoice", "MethodChoice", "SummitRuleChoice",
+    "SurrogateChoice", "fail", "flag_of", "in_flags", "option_group",
 ]  # fmt: skip
 
 # simulate (method §5): the named friction laws of oscillator.friction_laws
@@ -41,8 +41,6 @@ MethodChoice = StrEnum("MethodChoice", "asperity halfspace")
 # friction-process (method §3–§4)
 SurrogateChoice = StrEnum("SurrogateChoice", "auto phase iaaft quilt")  # process.analysis_config
 AmplitudeChoice = StrEnum("AmplitudeChoice", "tukey hann raw")  # surface.synthesis.amplitude_spectrum
-PressureRuleChoice = StrEnum("PressureRuleChoice", "nearest interpolate")  # spectrum between analysed p
-VarianceRuleChoice = StrEnum("VarianceRuleChoice", "sigma_mu tabulated")
 
 #: The flag of each library field whose flag is not ``--`` + the field name with dashes (the case of
 #: ``simulate``: :mod:`stochfric.oscillator.case`; the study configs: :mod:`stochfric.studies.config`).

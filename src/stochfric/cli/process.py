@@ -23,9 +23,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from stochfric.cli.options import (
     GROUP,
     AmplitudeChoice,
-    PressureRuleChoice,
     SurrogateChoice,
-    VarianceRuleChoice,
     fail,
     option_group,
     write_failed,
@@ -48,6 +46,7 @@ from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.memory import iaaft_cost_seconds
 from stochfric.process.model_base import SigmaZetaRule
 from stochfric.process.statistics import AnalysisConfig, StatisticalContactAnalysis, analyse
+from stochfric.process.tabulated import PressureRule, VarianceRule
 from stochfric.surface.grid import crop_surface, resample_surface
 from stochfric.surface.io import Surface, SurfaceError
 from stochfric.surface.quilting import quilt_applicable, quilt_heights
@@ -141,11 +140,11 @@ def friction_process_command(
                      "of the GW/boundary-element plateau at equal load, docs/surface_contact.md)."),
     ] = DEFAULT_MAX_AREA_FRACTION,
     pressure_rule: Annotated[
-        PressureRuleChoice, typer.Option("--pressure-rule", help="nearest (thesis) or interpolate (log-log in p).")
-    ] = PressureRuleChoice.nearest,
+        PressureRule, typer.Option("--pressure-rule", help="nearest (thesis) or interpolate (log-log in p).")
+    ] = PressureRule.NEAREST,
     variance_rule: Annotated[
-        VarianceRuleChoice, typer.Option("--variance-rule", help="sigma_mu (scale to the σ_μ fit) or tabulated.")
-    ] = VarianceRuleChoice.sigma_mu,
+        VarianceRule, typer.Option("--variance-rule", help="sigma_mu (scale to the σ_μ fit) or tabulated.")
+    ] = VarianceRule.SIGMA_MU,
     sigma_zeta_rule: Annotated[
         SigmaZetaRule, typer.Option("--sigma-zeta-rule", help="sigma_mu (thesis) or spectral_level (S0/2).")
     ] = SigmaZetaRule.SIGMA_MU,
@@ -171,7 +170,7 @@ def friction_process_command(
             realizations=realizations, long_surfaces=long_surfaces, length_factor=length_factor,
             window_shift_points=_window_shift_points(scans[0], window_shift_um, length_factor),
             surrogate=surrogate.value, amplitude=amplitude.value, summit_rule=surf.summit_rule,
-            max_area_fraction=max_area_fraction, pressure_rule=pressure_rule.value, variance_rule=variance_rule.value,
+            max_area_fraction=max_area_fraction, pressure_rule=pressure_rule, variance_rule=variance_rule,
             sigma_zeta_rule=sigma_zeta_rule, window_tiles=window_tiles, seed=seed,
         )  # fmt: skip
         if not as_json:

@@ -18,6 +18,7 @@ from stochfric.process.checks import WINDOW_TILES
 from stochfric.process.ensemble import SurrogateOptions
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.model_base import SigmaZetaRule
+from stochfric.process.tabulated import PressureRule, VarianceRule
 from stochfric.surface.quilting import quilt_applicable
 from stochfric.surface.statistics import curvature_gaussianity
 from stochfric.surface.summits import find_summits
@@ -57,8 +58,8 @@ class AnalysisConfig:
     summit_rule: str = "thesis"
     iaaft_tol: float = 1e-3
     max_area_fraction: float = DEFAULT_MAX_AREA_FRACTION
-    pressure_rule: str = "nearest"
-    variance_rule: str = "sigma_mu"
+    pressure_rule: PressureRule = PressureRule.NEAREST
+    variance_rule: VarianceRule = VarianceRule.SIGMA_MU
     sigma_zeta_rule: SigmaZetaRule = SigmaZetaRule.SIGMA_MU
     pdf_bins: int = 30
     check_realizations: int = 200
@@ -86,6 +87,10 @@ class AnalysisConfig:
             raise ContactError(f"sigma_zeta_rule must be one of {[str(r) for r in SigmaZetaRule]}, "
                                f"got {self.sigma_zeta_rule!r}")
         object.__setattr__(self, "sigma_zeta_rule", SigmaZetaRule(self.sigma_zeta_rule))
+        for name, rule in (("pressure_rule", PressureRule), ("variance_rule", VarianceRule)):
+            if getattr(self, name) not in tuple(rule):
+                raise ContactError(f"{name} must be one of {[str(r) for r in rule]}, got {getattr(self, name)!r}")
+            object.__setattr__(self, name, rule(getattr(self, name)))
         self.surrogate_options  # noqa: B018 - validates surrogate and amplitude (ContactError)
 
     @property

@@ -389,8 +389,8 @@ def _process_model(
         pressures_pa=tuple(float(v) for v in pressure_pa[order]),
         table_frequencies=tuple(float(v) for v in spectra.frequencies),
         table_psd=tuple(tuple(float(v) for v in spectra.psd[k]) for k in order),
-        pressure_rule=cfg.pressure_rule,  # type: ignore[arg-type]
-        variance_rule=cfg.variance_rule,  # type: ignore[arg-type]
+        pressure_rule=cfg.pressure_rule,
+        variance_rule=cfg.variance_rule,
         sigma_zeta_rule=cfg.sigma_zeta_rule,
         psd_level=fits["psd_level"].model_function(),
         window_length_m=path.window_length_m,

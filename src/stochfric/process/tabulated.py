@@ -10,7 +10,8 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass
-from typing import Any, Literal, get_args
+from enum import StrEnum
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -22,11 +23,20 @@ from stochfric.validation import finite_tuple, positive
 
 __all__ = ["PressureRule", "TabulatedProcessModel", "VarianceRule"]
 
-PressureRule = Literal["nearest", "interpolate"]
-VarianceRule = Literal["sigma_mu", "tabulated"]
+class PressureRule(StrEnum):
+    """How a tabulated spectrum is read between the analysed pressures: ``nearest`` (the thesis) or
+    ``interpolate`` (log-log in p)."""
 
-_PRESSURE_RULES: tuple[str, ...] = get_args(PressureRule)
-_VARIANCE_RULES: tuple[str, ...] = get_args(VarianceRule)
+    NEAREST = "nearest"
+    INTERPOLATE = "interpolate"
+
+
+class VarianceRule(StrEnum):
+    """The variance of a tabulated process: ``sigma_mu`` (scaled to the σ_μ(p) fit) or ``tabulated``."""
+
+    SIGMA_MU = "sigma_mu"
+    TABULATED = "tabulated"
+
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -89,8 +99,8 @@ class TabulatedProcessModel(ProcessModelBase):
     pressures_pa: tuple[float, ...]
     table_frequencies: tuple[float, ...]
     table_psd: tuple[tuple[float, ...], ...]
-    pressure_rule: PressureRule = "nearest"
-    variance_rule: VarianceRule = "sigma_mu"
+    pressure_rule: PressureRule = PressureRule.NEAREST
+    variance_rule: VarianceRule = VarianceRule.SIGMA_MU
     sigma_zeta_rule: SigmaZetaRule = SigmaZetaRule.SIGMA_MU
     psd_level: ModelFunction | None = None
     window_length_m: float | None = None
@@ -123,9 +133,10 @@ class TabulatedProcessModel(ProcessModelBase):
         object.__setattr__(self, "pressures_pa", p)
         object.__setattr__(self, "table_frequencies", f)
         object.__setattr__(self, "table_psd", tuple(tuple(float(v) for v in row) for row in table))
-        for attr, allowed in (("pressure_rule", _PRESSURE_RULES), ("variance_rule", _VARIANCE_RULES)):
-            if getattr(self, attr) not in allowed:
-                raise ValueError(f"{attr} must be one of {allowed}, got {getattr(self, attr)!r}")
+        for attr, rule in (("pressure_rule", PressureRule), ("variance_rule", VarianceRule)):
+            if getattr(self, attr) not in tuple(rule):
+                raise ValueError(f"{attr} must be one of {tuple(str(r) for r in rule)}, got {getattr(self, attr)!r}")
+            object.__setattr__(self, attr, rule(getattr(self, attr)))
 
     # --- the spectrum ------------------------------------------------------------------
 

@@ -20,6 +20,7 @@ from stochfric.process.ensemble import (
     window_starts,
 )
 from stochfric.process.model_base import SigmaZetaRule
+from stochfric.process.tabulated import PressureRule, VarianceRule
 from stochfric.surface.io import Surface, default_surface_path, read_surface, surface_from_array
 from stochfric.surface.preprocess import prepare
 from stochfric.surface.summits import find_summits, summits_of
@@ -131,6 +132,17 @@ def test_sigma_zeta_rule_is_the_enum_and_round_trips_through_json() -> None:
     assert AnalysisConfig(**json.loads(text)) == cfg
     with pytest.raises(ContactError, match="sigma_zeta_rule must be one of"):
         AnalysisConfig(sigma_zeta_rule="psd")  # type: ignore[arg-type]
+
+
+def test_pressure_and_variance_rules_are_the_process_layers_enums() -> None:
+    """The spectrum rules of the tabulated model are one choice each (:class:`PressureRule`,
+    :class:`VarianceRule`), for the config and the model alike; text is turned into them, other names refused."""
+    cfg = AnalysisConfig(pressure_rule="interpolate", variance_rule="tabulated")  # type: ignore[arg-type]
+    assert cfg.pressure_rule is PressureRule.INTERPOLATE and cfg.variance_rule is VarianceRule.TABULATED
+    assert AnalysisConfig(**json.loads(json.dumps(cfg.to_dict()))) == cfg
+    for field in ("pressure_rule", "variance_rule"):
+        with pytest.raises(ContactError, match=f"{field} must be one of"):
+            AnalysisConfig(**{field: "linear"})
 
 
 def test_large_surface_many_windows_equal_naive() -> None:
