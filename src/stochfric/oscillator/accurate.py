@@ -58,6 +58,7 @@ from .kernels import (
     KernelOutput,
     KernelRows,
     process_value_row,
+    segment_ends,
     slip_drift,
     stick_force,
     store_diagnostics,
@@ -463,19 +464,6 @@ def _node_theta(
 
 
 @numba.njit(cache=True, nogil=True)
-def _cell_values(proc: npt.NDArray[np.float64], r: int, n_proc: int, cell: float) -> tuple[float, float]:
-    """Process values at the two ends of grid cell ``cell = floor(path/Δx)`` of row ``r`` (periodic beyond
-    ``n_proc`` points, as :func:`~stochfric.oscillator.kernels.process_value_row`)."""
-    j0 = int(cell)
-    if j0 < 0 or j0 >= n_proc:
-        j0 %= n_proc
-    j1 = j0 + 1
-    if j1 == n_proc:
-        j1 = 0
-    return proc[r, j0], proc[r, j1]
-
-
-@numba.njit(cache=True, nogil=True)
 def _new_segment(
     tau: float, y: npt.NDArray[np.float64], k: npt.NDArray[np.float64], s: float, rows: KernelRows, run: Run,
 ) -> tuple[Segment, float]:  # pragma: no cover
@@ -492,7 +480,9 @@ def _new_segment(
     node = np.inf
     if run.use_nodes:
         cell = math.floor(y[2] / pdx + 1e-9)
-        p0, p1 = _cell_values(rows.proc, i, rows.n_proc[i], cell)
+        j0, j1 = segment_ends(cell, rows.n_proc[i])
+        p0 = rows.proc[i, j0]
+        p1 = rows.proc[i, j1]
         inv_dx = 1.0 / pdx
         node = (cell + 1.0) * pdx
     rate_vr = 0.0 if run.mass_path else s

@@ -297,12 +297,12 @@ def process_value_row(
     grid points ``j·dx`` and periodic continuation with period ``n_proc·dx`` (thesis 4.1.3)."""
     u = path / dx
     i = math.floor(u)
-    i0, i1 = _segment_ends(i, n_proc)
+    i0, i1 = segment_ends(i, n_proc)
     return lerp(u - i, proc[r, i0], proc[r, i1])
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
-def _segment_ends(i: float, n_proc: int) -> tuple[int, int]:  # pragma: no cover
+def segment_ends(i: float, n_proc: int) -> tuple[int, int]:  # pragma: no cover
     """Grid indices ``(i0, i1)`` of the ends of process segment ``i = floor(path/dx)`` under the
     periodic continuation with period ``n_proc`` points."""
     i0 = int(i)
@@ -641,7 +641,7 @@ def _load_segment(
     """Lane ``jj``: the process segment ``floor(coord/dx)`` of realisation ``proc[r]`` and its
     end values, as :func:`process_value_row` indexes them (periodic continuation)."""
     i = math.floor(coord / dx)
-    i0, i1 = _segment_ends(i, n_proc[r])
+    i0, i1 = segment_ends(i, n_proc[r])
     seg[_S_INDEX, jj] = i
     seg[_S_V0, jj] = proc[r, i0]
     seg[_S_V1, jj] = proc[r, i1]

@@ -297,6 +297,12 @@ def lyapunov_signs(summary: LyapunovSummary, model: str) -> list[str]:
     return out
 
 
+def _defined_cells(summary: LyapunovSummary, model: str) -> str:
+    """``"k of n"``: the cells of ``model`` with a defined exponent (``ok`` or ``diverging``)."""
+    counts = summary.status_counts[model]
+    return f"{counts.get('ok', 0) + counts.get('diverging', 0)} of {sum(counts.values())}"
+
+
 def lyapunov_reading(summary: LyapunovSummary) -> tuple[str, str]:
     """(table, reading) for a Lyapunov study summary."""
     rows = []
@@ -317,9 +323,8 @@ def lyapunov_reading(summary: LyapunovSummary) -> tuple[str, str]:
            f"{summary.integrator} ({summary.integrator_mode}{white})"
            + ((". Sign over η (η = " + ", ".join(f"{e:g}" for e in summary.eta) + "; + / − beyond 2 SE, "
                "0 within, . undefined, ~ the forces differ): " + signs) if signs else "")
-           + (". White noise: no sign is read, since the few cells with a defined exponent at this Δτ vanish as "
-              "Δτ → 0 (full plan 14 / 7 / 2 of 180 brake cells at Δτ = 0.005 / 0.0025 / 0.00125, docs/studies.md)"
-              if "white" in summary.models else "")
+           + (f". White noise: no sign is read ({_defined_cells(summary, 'white')} cells have a defined exponent "
+              "here; such cells vanish as Δτ → 0, docs/studies.md)" if "white" in summary.models else "")
            + ". For the contact model the path offset of "
            "the two runs is a neutral direction, so a positive value is no evidence of chaos by itself.")
     return _table(["model", "ok", "diverging (lower bound)", "merged (w = 0)", "too few transitions",
