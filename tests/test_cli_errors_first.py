@@ -138,6 +138,21 @@ def test_simulate_memory_estimate_scales_with_the_request() -> None:
     traj = _simulation_memory_bytes(100, 50.0, 0.005, save_every=10, trajectories=True, model="deterministic",
                                     process_points=0, workers=1)
     assert traj - base == pytest.approx(100 * 48 * 1001)
+    # a contact run holds the process segments of its whole path (first_segments), a batch at a time
+    contact = _simulation_memory_bytes(10, 50.0, 0.005, save_every=10, trajectories=False, model="contact",
+                                       process_points=67 * 3, workers=2)
+    assert contact - _simulation_memory_bytes(10, 50.0, 0.005, save_every=10, trajectories=False,
+                                              model="deterministic", process_points=0, workers=2) \
+        == pytest.approx(10 * 8 * 67 * 3)
+
+
+@pytest.mark.usefixtures("no_work")
+def test_a_contact_run_too_long_for_its_process_in_memory_is_refused_before_work() -> None:
+    """Sheet, τ_end = 10⁸: the path needs about 1.1·10⁷ process segments per run (tens of GB for 64 runs)."""
+    res = runner.invoke(app, ["simulate", "--preset", "sheet", "--model", "contact", "--tau-end", "1e8",
+                                   "--dt", "1", "--runs", "64"])
+    assert res.exit_code == 2, res.output
+    assert "of memory, but only" in res.output
 
 
 def test_disk_full_exits_2_and_keeps_the_previous_file(tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:

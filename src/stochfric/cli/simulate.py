@@ -49,11 +49,12 @@ def _simulation_memory_bytes(runs: int, tau_end: float, dt: float, *, save_every
                              model: str, process_points: int, workers: int | None) -> float:
     """Bytes that ``simulate`` allocates for one parameter set: X_gh/t_gh (2·(2τ_end + 16) per run),
     the stored trajectories (3 components every ``save_every`` steps, doubled for the NetCDF copy), and
-    per worker a batch of 256 white-noise increments or process realisations."""
+    per worker a batch of 256 white-noise increments or process realisations (``process_points`` per run:
+    the segments a contact run starts with)."""
     nsteps = math.ceil(tau_end / dt)
     events = int(2 * tau_end) + 16
     per_run = 8 * (2 * events + 1 + 9) + (2 * 24 * (nsteps // save_every + 1) if trajectories else 0)
-    batch = 256 * (workers or os.cpu_count() or 1) * 8 * (
+    batch = min(runs, 256 * (workers or os.cpu_count() or 1)) * 8 * (
         (nsteps if model == "white" else 0) + (process_points if model == "contact" else 0))
     return float(runs) * per_run + batch
 
@@ -247,9 +248,14 @@ def _check_resources(case: Case, model: Model, runs: int, *, save_every: int, tr
     simulation that would not fit in memory (:func:`_simulation_memory_bytes`)."""
     te, step, process = case.tau_end, case.dt, case.process
     _check_step_count(te, step, runs)
+    # a contact run holds the process for its whole path: first_segments of the model's length
+    points = 0
+    if process is not None:
+        belt = case.params.gamma0 * te * case.params.length_scale / process.length
+        points = round(process.length / process.dx) * integrate.first_segments(belt)
     need = _simulation_memory_bytes(
         runs, te, step, save_every=save_every, trajectories=trajectories, model=model,
-        process_points=round(process.length / process.dx) if process is not None else 0, workers=workers)
+        process_points=points, workers=workers)
     require_memory(need, what=f"simulate with --runs {runs} --tau-end {te:g} --dt {step:g}", advice=(
         "use fewer --runs or a shorter --tau-end (run several smaller jobs with different --seed)"
         + (", or a larger --save-every, or drop --out/--plot (no trajectories are kept without them)"

@@ -613,6 +613,15 @@ FIRST_SEGMENTS: int | None = None
 PATH_PER_BELT = 0.7
 
 
+def first_segments(belt_segments: float) -> int:
+    """Process segments a contact run starts with when the belt moves ``belt_segments`` = γ0·τ_end/ℓ
+    process lengths during it (:data:`FIRST_SEGMENTS`, :data:`PATH_PER_BELT`); a run is run again with
+    more when its path passes ``n − 0.1`` of them."""
+    if FIRST_SEGMENTS is not None:
+        return FIRST_SEGMENTS
+    return max(1, math.ceil(PATH_PER_BELT * belt_segments + 0.1))
+
+
 @dataclass
 class _BatchRunner:
     """Runs trajectories ``lo … hi − 1`` (trajectory ``j`` = parameter set ``j // runs``, run
@@ -742,8 +751,7 @@ class _BatchRunner:
             return FIRST_SEGMENTS
         prm = self.rows[0][idx // self.runs]
         belt = float(np.max(prm[:, _k.P_GAMMA0] / prm[:, _k.P_PROC_DX])) * self.plan.nsteps * self.dt
-        # a run is rerun when its path passes (n − 0.1) segments (_exhausted)
-        return max(1, math.ceil(PATH_PER_BELT * belt / self.n_proc + 0.1))
+        return first_segments(belt / self.n_proc)
 
     def __call__(self, lo: int, hi: int) -> None:
         o = self.out
