@@ -19,22 +19,27 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
 from ..io_utils import check_output_path, require_memory, write_netcdf_atomic, write_text_atomic
-from ..oscillator import integrate
-from ..oscillator.case import Case, CaseError, DimensionlessInput, FrictionInput, PhysicalInput, build_case
-from ..oscillator.options import (
+from ..oscillator import (
+    Case,
+    CaseError,
+    DimensionlessInput,
     ExecutionOptions,
+    FrictionInput,
     IntegrationOptions,
     Integrator,
     Model,
     NoiseOptions,
     OutputOptions,
+    ParameterError,
     PathCoordinate,
+    PhysicalInput,
+    PresetName,
+    SimulationResult,
     WhiteIntensity,
     WhiteStream,
+    build_case,
+    integrate,
 )
-from ..oscillator.parameters import ParameterError
-from ..oscillator.presets import PresetName
-from ..oscillator.result import SimulationResult
 from ..process.presets import ProcessLevel
 from ..report.figures import plot_phase_portrait
 from .options import GROUP, LawChoice, fail, in_flags, option_group, write_failed

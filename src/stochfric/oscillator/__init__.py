@@ -11,7 +11,16 @@ the numba kernels compile (or load from their cache) on first use.
 
 from __future__ import annotations
 
-from stochfric.oscillator.case import Case, CaseError, build_case, case_setup
+from stochfric.oscillator.case import (
+    Case,
+    CaseError,
+    CaseSetup,
+    DimensionlessInput,
+    FrictionInput,
+    PhysicalInput,
+    build_case,
+    case_setup,
+)
 from stochfric.oscillator.friction_laws import FrictionLaw, get_law, law_I, law_II, law_III, pressure_law
 from stochfric.oscillator.integrate import simulate
 from stochfric.oscillator.options import (
@@ -33,7 +42,10 @@ from stochfric.oscillator.result import SimulationResult, SimulationWarning, loa
 __all__ = [
     "Case",
     "CaseError",
+    "CaseSetup",
+    "DimensionlessInput",
     "ExecutionOptions",
+    "FrictionInput",
     "FrictionLaw",
     "IntegrationOptions",
     "Integrator",
@@ -43,6 +55,7 @@ __all__ = [
     "OutputOptions",
     "ParameterError",
     "PathCoordinate",
+    "PhysicalInput",
     "PhysicalParameters",
     "Preset",
     "PresetName",

@@ -46,25 +46,15 @@ from ..random import SeedLike, as_seed_sequence, child_seed
 from ..random import philox as _ph
 from . import accurate as _acc
 from . import kernels as _k
+from . import options
 from .case import Case
 from .friction_laws import FrictionLaw, law_III
-from .options import (
-    ExecutionOptions,
-    IntegrationOptions,
-    Integrator,
-    Model,
-    NoiseOptions,
-    OutputOptions,
-    PathCoordinate,
-    WhiteIncrement,
-    WhiteStream,
-)
 from .parameters import OscillatorParameters, ParameterError
 from .result import SimulationResult, SimulationWarning
 
 #: Kernel path mode of each path coordinate (:class:`~.options.PathCoordinate`).
-_PATH_MODES = {PathCoordinate.MASS: _k.PATH_MASS, PathCoordinate.RELATIVE: _k.PATH_RELATIVE,
-               PathCoordinate.POSITION: _k.PATH_POSITION}
+_PATH_MODES = {options.PathCoordinate.MASS: _k.PATH_MASS, options.PathCoordinate.RELATIVE: _k.PATH_RELATIVE,
+               options.PathCoordinate.POSITION: _k.PATH_POSITION}
 
 #: Above this Δτ the Euler methods are refused: fewer than ~25 steps per natural period
 #: 2π turn the solution's character (thesis Fig. 4.7/4.8 already shows it at 0.05/0.1).
@@ -234,7 +224,7 @@ class _System:
     laws: list[FrictionLaw] | LawSpec
     process: ProcessModel | None
     sigma_zeta: float | Callable[[float], float] | None
-    white_increment: WhiteIncrement | str
+    white_increment: options.WhiteIncrement | str
     tau_end: float
     dt: float
 
@@ -251,8 +241,8 @@ def _same(a: Any, b: Any) -> bool:
 
 def _system(
     system: Case | Sequence[Case] | OscillatorParameters | Sequence[OscillatorParameters],
-    model: Model, law: LawSpec | None, process: ProcessModel | None, noise: NoiseOptions,
-    integration: IntegrationOptions,
+    model: options.Model, law: LawSpec | None, process: ProcessModel | None, noise: options.NoiseOptions,
+    integration: options.IntegrationOptions,
 ) -> _System:
     """The parameter sets and what they run with: from the :class:`Case` (or cases), else from ``law``,
     ``process`` and the options (defaults: law III, Itô increments, τ_end = 50, Δτ = 0.005)."""
@@ -264,7 +254,7 @@ def _system(
         return _System(
             params=list(items),  # type: ignore[arg-type]
             laws=law_III() if law is None else law, process=process, sigma_zeta=noise.sigma_zeta,
-            white_increment=WhiteIncrement.ITO if noise.white_increment is None else noise.white_increment,
+            white_increment=options.WhiteIncrement.ITO if noise.white_increment is None else noise.white_increment,
             tau_end=50.0 if integration.tau_end is None else integration.tau_end,
             dt=0.005 if integration.dt is None else integration.dt,
         )
@@ -290,9 +280,9 @@ def _system(
 
 def _plan(
     sysm: _System,
-    model: Model,
+    model: options.Model,
     x0: tuple[float, float] | Sequence[tuple[float, float]] | None,
-    white_increment: WhiteIncrement,
+    white_increment: options.WhiteIncrement,
 ) -> _Plan:
     params, law, process, sigma_zeta, dt = sysm.params, sysm.laws, sysm.process, sysm.sigma_zeta, sysm.dt
     laws: list[FrictionLaw] = []
@@ -305,7 +295,7 @@ def _plan(
     for i, p in enumerate(params):
         laws.append(law[i] if isinstance(law, list) else _resolve_law(law, p))
         pressures.append(p.pressure_pa)
-        if model == Model.WHITE:
+        if model == options.Model.WHITE:
             if sigma_zeta is None and process is None:
                 raise ParameterError(
                     "the white-noise model needs the intensity sigma_zeta or a friction-process "
@@ -322,7 +312,7 @@ def _plan(
                 raise ParameterError(f"sigma_zeta must be finite and >= 0, got {sig[-1]}")
         else:
             sig.append(0.0)
-        if model == Model.CONTACT:
+        if model == options.Model.CONTACT:
             if process is None:
                 raise ParameterError("the contact-analysis model needs a friction-process model")
             _need_pressure(p, "friction process")
@@ -337,7 +327,7 @@ def _plan(
         if not all(math.isfinite(v) for v in x0s[-1]):
             raise ParameterError(f"initial state x0 must be finite, got {x0s[-1]}")
     nsteps = round(sysm.tau_end / dt)
-    eff = [thesis_sigma_zeta(s_, p, dt) if white_increment == WhiteIncrement.THESIS else s_
+    eff = [thesis_sigma_zeta(s_, p, dt) if white_increment == options.WhiteIncrement.THESIS else s_
            for s_, p in zip(sig, params, strict=True)]
     return _Plan(list(params), laws, sig, eff, pressures, x0s, nsteps)
 
@@ -404,16 +394,16 @@ def pack_rows(
 def simulate(
     system: Case | Sequence[Case] | OscillatorParameters | Sequence[OscillatorParameters],
     *,
-    model: Model | str = Model.DETERMINISTIC,
+    model: options.Model | str = options.Model.DETERMINISTIC,
     law: LawSpec | None = None,
     process: ProcessModel | None = None,
     x0: tuple[float, float] | Sequence[tuple[float, float]] | None = None,
     runs: int = 1,
     seed: SeedLike = None,
-    noise: NoiseOptions | None = None,
-    integration: IntegrationOptions | None = None,
-    output: OutputOptions | None = None,
-    execution: ExecutionOptions | None = None,
+    noise: options.NoiseOptions | None = None,
+    integration: options.IntegrationOptions | None = None,
+    output: options.OutputOptions | None = None,
+    execution: options.ExecutionOptions | None = None,
 ) -> SimulationResult:
     """Simulate the friction oscillator for every parameter set and run.
 
@@ -456,11 +446,11 @@ def simulate(
         :class:`~.options.ExecutionOptions`: threads, batch size, progress callback; they change the
         speed, never the numbers.
     """
-    noise = noise or NoiseOptions()
-    integration = integration or IntegrationOptions()
-    output = output or OutputOptions()
-    execution = execution or ExecutionOptions()
-    model_ = _choice(Model, model, "model")
+    noise = noise or options.NoiseOptions()
+    integration = integration or options.IntegrationOptions()
+    output = output or options.OutputOptions()
+    execution = execution or options.ExecutionOptions()
+    model_ = _choice(options.Model, model, "model")
     sysm = _system(system, model_, law, process, noise, integration)
     plist, process, tau_end, dt = sysm.params, sysm.process, sysm.tau_end, sysm.dt
     integrator, white_increment, white_stream, path_coordinate = _check_options(
@@ -490,9 +480,9 @@ def simulate(
 
 
 def _result(
-    runner: _BatchRunner, model: Model, integrator: Integrator, white_increment: WhiteIncrement,
-    path_coordinate: PathCoordinate, *, tau_end: float, integration: IntegrationOptions, save_trajectory: bool,
-    warnings: list[SimulationWarning],
+    runner: _BatchRunner, model: options.Model, integrator: options.Integrator,
+    white_increment: options.WhiteIncrement, path_coordinate: options.PathCoordinate, *, tau_end: float,
+    integration: options.IntegrationOptions, save_trajectory: bool, warnings: list[SimulationWarning],
 ) -> SimulationResult:
     """The :class:`SimulationResult` of the trajectories ``runner`` has run: its outputs shaped per
     parameter set and run, the diagnostics, the warnings of the run (``warnings``, the time step's)
@@ -524,7 +514,7 @@ def _result(
         x0=plan.x0,
         laws=[lw.to_dict() for lw in plan.laws],
         sigma_zeta=plan.sigma,
-        process=process.to_dict() if (process is not None and model != Model.DETERMINISTIC) else None,
+        process=process.to_dict() if (process is not None and model != options.Model.DETERMINISTIC) else None,
         warnings=warn_list,
         settings={
             "save_every": runner.save_every, "max_events": nev,
@@ -560,30 +550,30 @@ def _choice(kind: type[_E], value: Any, what: str) -> _E:
 
 
 def _check_options(
-    model: Model, integration: IntegrationOptions, noise: NoiseOptions, white_increment: WhiteIncrement | str,
-    runs: Any, output: OutputOptions,
-) -> tuple[Integrator, WhiteIncrement, WhiteStream, PathCoordinate]:
+    model: options.Model, integration: options.IntegrationOptions, noise: options.NoiseOptions,
+    white_increment: options.WhiteIncrement | str, runs: Any, output: options.OutputOptions,
+) -> tuple[options.Integrator, options.WhiteIncrement, options.WhiteStream, options.PathCoordinate]:
     """Refuse a combination of :func:`simulate` options that has no meaning, saying what to change;
     the choices as their enums."""
-    integrator = _choice(Integrator, integration.integrator, "integrator")
-    if model == Model.WHITE and integrator == Integrator.ACCURATE:
+    integrator = _choice(options.Integrator, integration.integrator, "integrator")
+    if model == options.Model.WHITE and integrator == options.Integrator.ACCURATE:
         raise ParameterError(
             "the white-noise model is an SDE: use integrator 'euler' (Euler–Maruyama) or "
             "'milstein', not 'accurate'"
         )
-    if integrator == Integrator.MILSTEIN and model != Model.WHITE:
+    if integrator == options.Integrator.MILSTEIN and model != options.Model.WHITE:
         raise ParameterError(
             "'milstein' is the strong order-1 scheme for the white-noise SDE; for the "
             f"{model} model use 'euler' or 'accurate'"
         )
-    increment = _choice(WhiteIncrement, white_increment, "white-noise increment")
-    if increment != WhiteIncrement.ITO and model != Model.WHITE:
+    increment = _choice(options.WhiteIncrement, white_increment, "white-noise increment")
+    if increment != options.WhiteIncrement.ITO and model != options.Model.WHITE:
         raise ParameterError(
             f"white_increment '{increment}' applies to the white-noise model only, not '{model}'"
         )
-    stream = _choice(WhiteStream, noise.white_stream, "white-noise stream")
-    path = _choice(PathCoordinate, noise.path_coordinate, "path coordinate")
-    if path == PathCoordinate.POSITION and integrator == Integrator.ACCURATE:
+    stream = _choice(options.WhiteStream, noise.white_stream, "white-noise stream")
+    path = _choice(options.PathCoordinate, noise.path_coordinate, "path coordinate")
+    if path == options.PathCoordinate.POSITION and integrator == options.Integrator.ACCURATE:
         raise ParameterError(
             "path coordinate 'position' (a reproduction mode) is implemented for the fixed-step "
             "'euler' scheme only"
