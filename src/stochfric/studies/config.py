@@ -24,7 +24,7 @@ from __future__ import annotations
 import json
 from collections.abc import Callable
 from pathlib import Path
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, Literal, TypeVar
 
 from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
@@ -34,6 +34,18 @@ from ..process.presets import ProcessLevel
 from .grids import STICK_WINDOW, parse_grid
 
 Grid = Annotated[tuple[float, ...], BeforeValidator(parse_grid)]
+
+_T = TypeVar("_T")
+
+
+def _distinct(values: tuple[_T, ...], what: str, example: str = "") -> tuple[_T, ...]:
+    """``values`` when it holds at least one value and none twice; else the ``ValueError`` that
+    names ``what`` one value is (``example``: how to give them)."""
+    if not values:
+        raise ValueError(f"give at least one {what}{example}")
+    if len(set(values)) != len(values):
+        raise ValueError(f"a {what} is listed twice: {', '.join(str(x) for x in values)}")
+    return values
 
 
 def _one_of(*allowed: Integrator) -> Callable[[Integrator], Integrator]:
@@ -115,11 +127,7 @@ class StudyConfig(BaseModel):
     @field_validator("models")
     @classmethod
     def _unique_models(cls, v: tuple[Model, ...]) -> tuple[Model, ...]:
-        if not v:
-            raise ValueError("give at least one model")
-        if len(set(v)) != len(v):
-            raise ValueError(f"a model is listed twice: {[str(m) for m in v]}")
-        return v
+        return _distinct(v, "model")
 
     def hash_config(self) -> dict[str, Any]:
         """Everything that changes the numbers (for the checkpoint key)."""
@@ -168,14 +176,10 @@ class DampingConfig(StudyConfig):
     @field_validator("risk_levels")
     @classmethod
     def _risk_levels(cls, v: tuple[float, ...]) -> tuple[float, ...]:
-        if not v:
-            raise ValueError("give at least one risk level, e.g. 0.1,0.01")
         bad = [a for a in v if not 0.0 < a < 1.0]
         if bad:
             raise ValueError(f"risk levels must lie in (0, 1) (a probability, 0.1 = 10 %), got {bad[0]:g}")
-        if len(set(v)) != len(v):
-            raise ValueError(f"a risk level is listed twice: {list(v)}")
-        return v
+        return _distinct(v, "risk level", ", e.g. 0.1,0.01")
 
     def hash_config(self) -> dict[str, Any]:
         """As :meth:`StudyConfig.hash_config` without ``risk_levels``: they change the analysis only, so
@@ -191,9 +195,7 @@ class DampingConfig(StudyConfig):
             return v
         if any(not 0 <= d < 1 for d in v):
             raise ValueError("phase-diagram damping ratios must lie in [0, 1)")
-        if len(set(v)) != len(v):
-            raise ValueError(f"a phase-diagram damping ratio is listed twice: {list(v)}")
-        return tuple(sorted(v))
+        return tuple(sorted(_distinct(v, "phase-diagram damping ratio")))
 
 
 class _ForcedConfig(StudyConfig):

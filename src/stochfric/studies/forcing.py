@@ -24,30 +24,23 @@ from .config import ForcingConfig, integrator_record
 from .executors import Executor, SweepStats
 from .grids import window_mask
 from .stats import RatioEstimate, sample_summary, std_ratio_over_cells
-from .summary import OPTIONAL, StudySummary, Table
+from .summary import OPTIONAL, ForcedSummary, Table
 from .tasks import TaskSpec
 
 
 @dataclass(frozen=True, kw_only=True)
-class ForcingSummary(StudySummary):
+class ForcingSummary(ForcedSummary):
     """The forcing study's summary (module docstring).
 
-    Case: ``normal_force_n`` [N], ``damping_ratio`` [-], σ_ζ and σ_ζ,eff [-] at that force; grid:
-    ``forcing_q`` (q = Q/(cL), [-]) with ``forcing_amplitude_n`` (Q [N]) and ``eta`` (η = Ω/ω0, [-]);
-    the integrators.  Per model, tables ``[forcing_q][eta]`` [-]: E[X_gh] and σ(X_gh) after the
-    transient with their bootstrap SEs.  With white and contact, per q (keyed ``f"{q:g}"``):
-    σ_contact/σ_white per η with its 95 % bootstrap interval (``[eta][low, high]``), and its median
-    over η with SE and interval.
+    Case: ``normal_force_n`` [N], σ_ζ and σ_ζ,eff [-] at that force; the forcing amplitudes
+    ``forcing_amplitude_n`` (Q [N]) of the grid ``forcing_q`` (:class:`ForcedSummary`).  Per model,
+    tables ``[forcing_q][eta]`` [-]: E[X_gh] and σ(X_gh) after the transient with their bootstrap
+    SEs.  With white and contact, per q (keyed ``f"{q:g}"``): σ_contact/σ_white per η with its 95 %
+    bootstrap interval (``[eta][low, high]``), and its median over η with SE and interval.
     """
 
     normal_force_n: float
-    damping_ratio: float
-    forcing_q: list[float]
     forcing_amplitude_n: list[float]
-    eta: list[float]
-    integrator: str
-    sde_integrator: str
-    integrator_mode: str
     sigma_zeta: float
     sigma_zeta_effective: float
     x_gh_mean: dict[str, Table]

@@ -72,7 +72,7 @@ from .base import Study, StudyResult
 from .config import LyapunovConfig, integrator_record
 from .errors import StudyError
 from .executors import Executor, SweepStats
-from .summary import StudySummary
+from .summary import ForcedSummary
 from .tasks import TaskSpec
 
 STATUS = ("ok", "diverging", "merged", "too-few-transitions", "nonlinear")
@@ -235,12 +235,12 @@ Cells = list[list[list[float]]]
 
 
 @dataclass(frozen=True, kw_only=True)
-class LyapunovSummary(StudySummary):
+class LyapunovSummary(ForcedSummary):
     """The Lyapunov study's summary (module docstring).
 
-    Grid: ``normal_force_n`` [N], ``forcing_q`` (q = Q/(cL), [-]), ``eta`` (η = Ω/ω0, [-]) at
-    ``damping_ratio`` [-]; σ_ζ, σ_ζ,eff [-] per force; ``perturbation`` δ (dimensionless x = y/L),
-    ``linearity_tolerance`` of the twin check, the integrators.  Per model and cell
+    Grid: ``normal_force_n`` [N] beside ``forcing_q`` and ``eta`` (:class:`ForcedSummary`); σ_ζ,
+    σ_ζ,eff [-] per force; ``perturbation`` δ (dimensionless x = y/L), ``linearity_tolerance`` of the
+    twin check.  Per model and cell
     ``[forcing_q][normal_force_n][eta]``: ``lyapunov`` (exponent per slip→stick transition, [-]) with its
     SE and ``status``, whether it is a lower bound (``diverging``, growth ≥ ``diverging_growth``), K of
     (4.43)/(4.44), and (4.43)/(4.44) as printed (``separation_index_443``) with its status.  Per model:
@@ -248,16 +248,10 @@ class LyapunovSummary(StudySummary):
     """
 
     normal_force_n: list[float]
-    forcing_q: list[float]
-    eta: list[float]
-    damping_ratio: float
     sigma_zeta: list[float]
     sigma_zeta_effective: list[float]
     perturbation: float
     linearity_tolerance: float
-    integrator: str
-    sde_integrator: str
-    integrator_mode: str
     lyapunov: dict[str, Cells]
     lyapunov_se: dict[str, Cells]
     status: dict[str, list[list[list[str]]]]

@@ -155,3 +155,17 @@ class StudySummary:
     def from_json(cls, data: dict[str, Any]) -> Self:
         """The summary :meth:`to_json` wrote."""
         return from_json(cls, data)
+
+
+@dataclass(frozen=True, kw_only=True)
+class ForcedSummary(StudySummary):
+    """The fields the summaries of the forced studies (forcing, Lyapunov) add, as their configs do:
+    the grids ``forcing_q`` (q = Q/(cL), [-]) and ``eta`` (η = Ω/ω0, [-]), ``damping_ratio`` [-] and
+    the integrators (:func:`~stochfric.studies.config.integrator_record`)."""
+
+    forcing_q: list[float]
+    eta: list[float]
+    damping_ratio: float
+    integrator: str
+    sde_integrator: str
+    integrator_mode: str
