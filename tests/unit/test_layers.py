@@ -5,7 +5,7 @@ layer or a lower one, never a higher one.  Read as imports: ``import`` and ``fro
 (module level and inside functions, absolute and relative; ``from X import name`` is an import of
 ``X.name`` where that is a module or package, and ``from stochfric import name`` / ``stochfric.name``
 of the home module of the API name), and ``importlib.import_module`` / ``__import__`` calls, whose
-names must be string literals.  The foundation modules (units, random, validation, io_utils,
+names must be string literals.  The foundation modules (units, arrays, random, validation, io_utils,
 plotting, progress) sit below every layer and import none of them.
 """
 
@@ -21,7 +21,7 @@ PACKAGE = Path(__file__).resolve().parents[2] / "src" / "stochfric"
 #: Layer of each top-level module or sub-package of stochfric, lowest first.
 LAYERS: dict[str, int] = {
     "units": 0, "random": 0, "validation": 0, "io_utils": 0, "plotting": 0, "progress": 0, "__init__": 0, "data": 0,
-    "vector_width": 0,
+    "vector_width": 0, "arrays": 0,
     "surface": 1,
     "contact": 2,
     "process": 3,

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from stochfric.arrays import FloatArray
 from stochfric.contact.materials import Material
 from stochfric.contact.validity import MIN_CONTACTS, NON_INTERACTION_AREA_FRACTION
 from stochfric.io_utils import write_netcdf_atomic
@@ -35,7 +36,6 @@ __all__ = [
     "read_contact_result",
 ]
 
-FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int64]
 
 #: Approach range of the ``"sigma"`` rule in units of σ_S: ``linspace(σ_S/4, 3σ_S, 12)`` (ratio 1:12 as

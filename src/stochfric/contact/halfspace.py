@@ -18,6 +18,7 @@ import numpy as np
 import numpy.typing as npt
 from scipy import ndimage
 
+from stochfric.arrays import FloatArray
 from stochfric.contact.asperity import ContactError, ContactResult, _as_approach, asperity_contact
 from stochfric.contact.materials import Material
 from stochfric.surface.io import Surface
@@ -30,8 +31,6 @@ __all__ = [
     "halfspace_available",
     "halfspace_contact",
 ]
-
-FloatArray = npt.NDArray[np.float64]
 
 
 def halfspace_available() -> bool:

@@ -15,6 +15,8 @@ import numpy as np
 import numpy.typing as npt
 from scipy import integrate, special
 
+from stochfric.arrays import FloatArray
+
 __all__ = [
     "GWContact",
     "HertzContact",
@@ -24,8 +26,6 @@ __all__ = [
     "hertz_contact",
     "hertz_indentation_from_force",
 ]
-
-FloatArray = npt.NDArray[np.float64]
 
 
 @dataclass(frozen=True, kw_only=True)

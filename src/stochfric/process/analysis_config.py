@@ -11,8 +11,8 @@ from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
-import numpy.typing as npt
 
+from stochfric.arrays import FloatArray
 from stochfric.contact.asperity import ContactError
 from stochfric.process.checks import WINDOW_TILES
 from stochfric.process.ensemble import SurrogateOptions
@@ -27,7 +27,6 @@ from stochfric.validation import count
 
 __all__ = ["AUTO_SURROGATE", "AnalysisConfig"]
 
-FloatArray = npt.NDArray[np.float64]
 
 #: The surrogate setting that picks the method from the map (:meth:`AnalysisConfig.surrogate_for`).
 AUTO_SURROGATE = "auto"

@@ -1,7 +1,9 @@
 """The result of the statistical contact analysis and its files (JSON summary, NetCDF).
 
 :class:`StatisticalContactAnalysis` holds everything :func:`stochfric.process.statistics.analyse`
-computes (SI units; arrays over the approach u last); :meth:`~StatisticalContactAnalysis.to_json_dict`
+computes (SI units; arrays over the approach u last), with the fields of the sections its steps return
+(:class:`EnsembleStatistics`, :class:`SurrogateChecks`, :class:`PathMoments`, :class:`PathSpectra`);
+:meth:`~StatisticalContactAnalysis.to_json_dict`
 is the command line's summary, :meth:`~StatisticalContactAnalysis.to_dataset` /
 :meth:`~StatisticalContactAnalysis.to_netcdf` the full statistics with units and provenance.
 """
@@ -18,6 +20,7 @@ import numpy as np
 import numpy.typing as npt
 import xarray as xr
 
+from stochfric.arrays import FloatArray
 from stochfric.contact.validity import ValidityWarning
 from stochfric.io_utils import package_versions, write_netcdf_atomic
 from stochfric.process.analysis_config import AnalysisConfig
@@ -28,22 +31,14 @@ from stochfric.process.fit import ModelFit
 from stochfric.process.model_base import SigmaZetaRule
 from stochfric.process.tabulated import TabulatedProcessModel
 
-__all__ = ["StatisticalContactAnalysis"]
-
-FloatArray = npt.NDArray[np.float64]
+__all__ = ["EnsembleStatistics", "PathMoments", "PathSpectra", "StatisticalContactAnalysis", "SurrogateChecks"]
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
-class StatisticalContactAnalysis:
-    """All results of :func:`analyse` (SI units; arrays over the approach u last)."""
+class EnsembleStatistics:
+    """Statistics of the surrogate ensemble per approach u (§4a, Fig. 3.16–3.18a): E[μ], σ_μ and their
+    standard errors, the mean pressure [Pa] and A_c/A_nom with its line fit, the PDFs of μ."""
 
-    config: AnalysisConfig
-    seed_entropy: int
-    material: dict[str, Any]
-    surface_info: dict[str, Any]
-    ensemble: ContactSamples
-    path: PathContact
-    # ensemble statistics (a)
     ensemble_mu_mean: FloatArray
     ensemble_mu_std: FloatArray
     ensemble_mu_mean_se: FloatArray
@@ -53,19 +48,26 @@ class StatisticalContactAnalysis:
     pdf_edges: FloatArray
     pdf_density: FloatArray
     contact_fraction_fit: dict[str, float]
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class SurrogateChecks:
+    """The checks of the surrogates against the measurement and themselves (§4b)."""
+
     ergodicity: ErgodicityCheck
     surrogate_check: SurrogateCheck
     #: The measured-window check (None when the map is too small for 2 × 2 windows).
     window_check: WindowScatterCheck | None
     #: Between-scan, within-scan and ensemble scatter of μ (:func:`~stochfric.process.statistics.analyse`).
     scan_scatter: dict[str, Any]
-    #: The gate: the reasons why this analysis is not credible (:mod:`stochfric.process.credibility`).
-    credibility: Credibility
-    #: The surrogate method used and why (``"auto"`` resolved by the map, or the user's choice).
-    surrogate_choice: str = ""
     #: Overlap of the first surrogates with the map and each other (:func:`~stochfric.process.checks.copy_check`).
     copy_check: dict[str, Any] = field(default_factory=dict)
-    # path statistics (c)
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class PathMoments:
+    """Moments and autocorrelation of μ along the path per approach u (§4c, eq. 3.17–3.18)."""
+
     pressure_pa: FloatArray
     area_fraction: FloatArray
     mu_mean: FloatArray
@@ -74,18 +76,41 @@ class StatisticalContactAnalysis:
     mu_std_se: FloatArray
     lags_m: FloatArray
     acf: FloatArray
-    #: Integral correlation length S(0)/(4σ_μ²) along the path [m], mean over the K surfaces, and its SE.
-    correlation_length_m: FloatArray
-    correlation_length_se_m: FloatArray
-    #: 95 % interval [lo, hi] of the correlation length per u (Student t over the K surfaces), shape (U, 2).
-    correlation_length_ci95_m: FloatArray = field(default_factory=lambda: np.empty((0, 2)))
     #: The thesis's correlation length: first zero crossing of the averaged ACF [m] (NaN: none).
     zero_crossing_m: FloatArray
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class PathSpectra:
+    """PSD, its level and the correlation length of μ along the path per approach u (§4c, eq. 3.19–3.20)."""
+
     frequencies: FloatArray
     psd: FloatArray
     psd_se: FloatArray
     psd_level: FloatArray
     psd_level_se: FloatArray
+    #: Integral correlation length S(0)/(4σ_μ²) along the path [m], mean over the K surfaces, and its SE.
+    correlation_length_m: FloatArray
+    correlation_length_se_m: FloatArray
+    #: 95 % interval [lo, hi] of the correlation length per u (Student t over the K surfaces), shape (U, 2).
+    correlation_length_ci95_m: FloatArray = field(default_factory=lambda: np.empty((0, 2)))
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class StatisticalContactAnalysis(EnsembleStatistics, SurrogateChecks, PathMoments, PathSpectra):
+    """All results of :func:`analyse` (SI units; arrays over the approach u last): the fields of its
+    sections (ensemble (a), checks (b), path (c)) and the ones below."""
+
+    config: AnalysisConfig
+    seed_entropy: int
+    material: dict[str, Any]
+    surface_info: dict[str, Any]
+    ensemble: ContactSamples
+    path: PathContact
+    #: The gate: the reasons why this analysis is not credible (:mod:`stochfric.process.credibility`).
+    credibility: Credibility
+    #: The surrogate method used and why (``"auto"`` resolved by the map, or the user's choice).
+    surrogate_choice: str = ""
     # fits (d) and model (e)
     fits: dict[str, ModelFit]
     model: TabulatedProcessModel

@@ -12,13 +12,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
-from typing import Any
+from dataclasses import dataclass, fields
+from typing import Any, ClassVar
 
 import numpy as np
 import numpy.typing as npt
 from scipy import stats as sps
 
+from stochfric.arrays import FloatArray
 from stochfric.contact.asperity import ContactError, asperity_sums, bowden_tabor_mu
 from stochfric.contact.materials import Material
 from stochfric.process.ensemble import ContactSamples, summit_statistics
@@ -48,14 +49,44 @@ __all__ = [
     "window_tiles",
 ]
 
-FloatArray = npt.NDArray[np.float64]
 
 #: Family-wise false-alarm probability of the ergodicity verdict (two-sided, Bonferroni).
 ERGODICITY_ALPHA = 0.05
 
 
+def _json_fields(check: Any) -> dict[str, Any]:
+    """The fields of the dataclass ``check`` by name, JSON-ready (tuples as lists, dicts copied)."""
+    def plain(value: Any) -> Any:
+        if isinstance(value, tuple | list):
+            return [plain(v) for v in value]
+        if isinstance(value, dict):
+            return {k: plain(v) for k, v in value.items()}
+        return value
+
+    return {f.name: plain(getattr(check, f.name)) for f in fields(check)}
+
+
 @dataclass(frozen=True, kw_only=True)
-class ErgodicityCheck:
+class _ZVerdict:
+    """A family of z tests read together: consistent if every |z| ≤ ``threshold`` (two-sided,
+    Bonferroni over the tests); ``max_abs_z`` is the largest |z|.  A subclass names what is
+    consistent (``SUBJECT``) and states its rule (``RULE``) for the JSON."""
+
+    SUBJECT: ClassVar[str]
+    RULE: ClassVar[str]
+
+    threshold: float
+    consistent: bool
+    max_abs_z: float
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready dictionary: the fields, the verdict and the rule."""
+        verdict = "consistent" + self.SUBJECT
+        return {**_json_fields(self), "verdict": verdict if self.consistent else "NOT " + verdict, "rule": self.RULE}
+
+
+@dataclass(frozen=True, kw_only=True)
+class ErgodicityCheck(_ZVerdict):
     """Path statistics of one long surface against the ensemble of independent ones (method §4b).
 
     Like with like: both populations are the **non-overlapping windows of long surfaces from the
@@ -75,35 +106,18 @@ class ErgodicityCheck:
     construction is in docs/statistical_contact.md and tests/statistical/test_ergodicity.py.
     """
 
+    SUBJECT = " with ergodicity"
+    RULE = ("non-overlapping windows of K independent long surfaces of one generator: ANOVA of the path means "
+            "and jackknife z of sd along a path minus sd across surfaces; |z| <= Bonferroni threshold "
+            "(alpha = 0.05, 2U tests)")
+
     z_mean: tuple[float, ...]
     z_std: tuple[float, ...]
     p_mean: tuple[float, ...]
     path_std: tuple[float, ...]
     ensemble_std: tuple[float, ...]
-    threshold: float
-    consistent: bool
-    max_abs_z: float
     surfaces: int
     windows_per_surface: int
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary."""
-        return {
-            "z_mean": list(self.z_mean),
-            "z_std": list(self.z_std),
-            "p_mean": list(self.p_mean),
-            "path_std": list(self.path_std),
-            "ensemble_std": list(self.ensemble_std),
-            "threshold": self.threshold,
-            "max_abs_z": self.max_abs_z,
-            "consistent": self.consistent,
-            "verdict": "consistent with ergodicity" if self.consistent else "NOT consistent with ergodicity",
-            "rule": "non-overlapping windows of K independent long surfaces of one generator: ANOVA of the path "
-            "means and jackknife z of sd along a path minus sd across surfaces; |z| <= Bonferroni threshold "
-            "(alpha = 0.05, 2U tests)",
-            "surfaces": self.surfaces,
-            "windows_per_surface": self.windows_per_surface,
-        }
 
 
 def _sd_difference(mu: FloatArray) -> float:
@@ -190,23 +204,10 @@ class SurrogateCheck:
         return out
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary."""
-        return {
-            "measured": dict(self.measured),
-            "ensemble_mean": dict(self.ensemble_mean),
-            "ensemble_std": dict(self.ensemble_std),
-            "z": dict(self.z),
-            "mu_measured": list(self.mu_measured),
-            "mu_z": list(self.mu_z),
-            "max_abs_mu_z": float(np.nanmax(np.abs(self.mu_z))) if self.mu_z else None,
-            "limit": self.limit,
-            "credible": self.credible,
-            "failures": self.failures(),
-            "surrogate": self.surrogate,
-            "amplitude": self.amplitude,
-            "per_scan_z": [dict(z) for z in self.per_scan_z],
-            "rule": "z = (measured - ensemble mean) / ensemble sd; credible if every |z| < limit",
-        }
+        """JSON-ready dictionary: the fields, the largest |z| of μ, the failures and the rule."""
+        return {**_json_fields(self), "max_abs_mu_z": float(np.nanmax(np.abs(self.mu_z))) if self.mu_z else None,
+                "failures": self.failures(),
+                "rule": "z = (measured - ensemble mean) / ensemble sd; credible if every |z| < limit"}
 
 
 def _worst(z: FloatArray) -> FloatArray:
@@ -335,7 +336,7 @@ def _variance_df(n: int, kurtosis: float) -> float:
 
 
 @dataclass(frozen=True, kw_only=True)
-class WindowScatterCheck:
+class WindowScatterCheck(_ZVerdict):
     """Scatter of μ(u) across windows of size w: the measurement against its surrogates (method §3).
 
     The prepared measurement is cut into disjoint ``tiles × tiles`` windows of size w (J windows
@@ -353,46 +354,23 @@ class WindowScatterCheck:
     construction, only by making windows that scatter like the measured ones.
     """
 
+    SUBJECT = ""
+    RULE = ("sd of mu over disjoint windows of the measurement vs over the same windows of the surrogates; F test "
+            "of the variance ratio with kurtosis-adjusted degrees of freedom (kurtosis from the surrogate windows), "
+            "as a two-sided z; |z| <= Bonferroni threshold (alpha = 0.05, U approaches)")
+
     tiles: int
     window_size_m: tuple[float, float]
     measured_windows: int
     surrogate_windows: int
     measured_std: tuple[float, ...]
-    measured_std_ci: tuple[tuple[float, float], ...]
+    measured_std_ci95: tuple[tuple[float, float], ...]
     surrogate_std: tuple[float, ...]
-    surrogate_std_ci: tuple[tuple[float, float], ...]
+    surrogate_std_ci95: tuple[tuple[float, float], ...]
     measured_mean: tuple[float, ...]
     surrogate_mean: tuple[float, ...]
     kurtosis: tuple[float, ...]
     z: tuple[float, ...]
-    threshold: float
-    consistent: bool
-    max_abs_z: float
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready dictionary."""
-        return {
-            "tiles": self.tiles,
-            "window_size_m": list(self.window_size_m),
-            "measured_windows": self.measured_windows,
-            "surrogate_windows": self.surrogate_windows,
-            "measured_std": list(self.measured_std),
-            "measured_std_ci95": [list(c) for c in self.measured_std_ci],
-            "surrogate_std": list(self.surrogate_std),
-            "surrogate_std_ci95": [list(c) for c in self.surrogate_std_ci],
-            "measured_mean": list(self.measured_mean),
-            "surrogate_mean": list(self.surrogate_mean),
-            "kurtosis": list(self.kurtosis),
-            "z": list(self.z),
-            "threshold": self.threshold,
-            "max_abs_z": self.max_abs_z,
-            "consistent": self.consistent,
-            "verdict": "consistent" if self.consistent else "NOT consistent",
-            "rule": "sd of mu over disjoint windows of the measurement vs over the same windows of the "
-            "surrogates; F test of the variance ratio with kurtosis-adjusted degrees of freedom (kurtosis from "
-            "the surrogate windows), as a two-sided z; "
-            "|z| <= Bonferroni threshold (alpha = 0.05, U approaches)",
-        }
 
 
 def window_scatter_check(
@@ -441,8 +419,8 @@ def window_scatter_check(
     return WindowScatterCheck(
         tiles=int(tiles), window_size_m=(float(window_size_m[0]), float(window_size_m[1])),
         measured_windows=int(m.shape[0]), surrogate_windows=int(s.shape[0]),
-        measured_std=tuple(out["sm"]), measured_std_ci=tuple(out["smci"]), surrogate_std=tuple(out["ss"]),
-        surrogate_std_ci=tuple(out["ssci"]), measured_mean=tuple(out["mm"]), surrogate_mean=tuple(out["ms"]),
+        measured_std=tuple(out["sm"]), measured_std_ci95=tuple(out["smci"]), surrogate_std=tuple(out["ss"]),
+        surrogate_std_ci95=tuple(out["ssci"]), measured_mean=tuple(out["mm"]), surrogate_mean=tuple(out["ms"]),
         kurtosis=tuple(out["kap"]), z=tuple(out["z"]), threshold=threshold, consistent=bool(max_abs <= threshold),
         max_abs_z=max_abs,
     )  # fmt: skip

@@ -19,7 +19,8 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
-from stochfric.contact.asperity import BowdenTabor, ContactError, FloatArray, IntArray, asperity_sums
+from stochfric.arrays import FloatArray
+from stochfric.contact.asperity import BowdenTabor, ContactError, IntArray, asperity_sums
 from stochfric.contact.materials import Material
 from stochfric.process.parallel import map_indexed
 from stochfric.progress import Progress

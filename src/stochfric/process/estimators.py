@@ -14,9 +14,9 @@ import math
 import numpy as np
 import numpy.typing as npt
 
-__all__ = ["linear_fit", "mean_and_std_errors", "mu_pdfs"]
+from stochfric.arrays import FloatArray
 
-FloatArray = npt.NDArray[np.float64]
+__all__ = ["linear_fit", "mean_and_std_errors", "mu_pdfs"]
 
 
 def mean_and_std_errors(samples: npt.ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:

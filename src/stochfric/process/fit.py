@@ -17,6 +17,7 @@ import numpy as np
 import numpy.typing as npt
 from scipy.optimize import OptimizeWarning, curve_fit
 
+from stochfric.arrays import FloatArray
 from stochfric.contact.validity import NON_INTERACTION_AREA_FRACTION
 from stochfric.process.model_function import ModelFunction
 
@@ -27,7 +28,6 @@ __all__ = [
     "fit_model_function",
 ]
 
-FloatArray = npt.NDArray[np.float64]
 
 #: Largest mean contact-area fraction A_c/A_nom of a point used in the fits: the end of the
 #: non-interaction range measured against the half-space at equal load (docs/surface_contact.md).

@@ -14,6 +14,7 @@ import math
 import numpy as np
 import numpy.typing as npt
 
+from stochfric.arrays import FloatArray
 from stochfric.process.spectral import one_sided_psd
 
 __all__ = [
@@ -27,8 +28,6 @@ __all__ = [
     "psd_level",
     "window_response",
 ]
-
-FloatArray = npt.NDArray[np.float64]
 
 
 def normalise(mu: npt.ArrayLike) -> FloatArray:

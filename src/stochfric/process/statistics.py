@@ -10,22 +10,27 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import replace
+from dataclasses import fields, replace
 from typing import Any, NamedTuple
 
 import numpy as np
 import numpy.typing as npt
 
+from stochfric.arrays import FloatArray
 from stochfric.contact.asperity import ContactError, asperity_sums, bowden_tabor_mu
 from stochfric.contact.materials import Material
 from stochfric.contact.validity import contact_validity
 from stochfric.process.analysis_config import AnalysisConfig
-from stochfric.process.analysis_result import StatisticalContactAnalysis
+from stochfric.process.analysis_result import (
+    EnsembleStatistics,
+    PathMoments,
+    PathSpectra,
+    StatisticalContactAnalysis,
+    SurrogateChecks,
+)
 from stochfric.process.checks import (
     WINDOW_MIN_SUMMITS,
-    ErgodicityCheck,
     ProcessCheck,
-    SurrogateCheck,
     WindowScatterCheck,
     check_generated_process,
     copy_check,
@@ -69,8 +74,6 @@ __all__ = [
     "analyse",
 ]
 
-FloatArray = npt.NDArray[np.float64]
-
 
 def _measured_tiles(scans: list[Surface], material: Material, u: FloatArray, tiles: int, rule: str) -> FloatArray:
     """μ of the disjoint ``tiles × tiles`` windows of every scan, shape (scans·tiles², U)."""
@@ -113,57 +116,6 @@ def _scan_scatter(scan_mu: FloatArray, tile_mu: FloatArray, scans: int, ensemble
         "rule": "between: sd over scans of mu of each whole scan; within: sd over the disjoint windows of one "
         "scan, mean over scans; ensemble: sd of mu over the surrogates of original size",
     }
-
-
-class _EnsembleStatistics(NamedTuple):
-    """Statistics of the surrogate ensemble (§4a); the fields are named as in the result."""
-
-    ensemble_mu_mean: FloatArray
-    ensemble_mu_std: FloatArray
-    ensemble_mu_mean_se: FloatArray
-    ensemble_mu_std_se: FloatArray
-    ensemble_pressure_pa: FloatArray
-    ensemble_area_fraction: FloatArray
-    pdf_edges: FloatArray
-    pdf_density: FloatArray
-    contact_fraction_fit: dict[str, float]
-
-
-class _Checks(NamedTuple):
-    """The checks of the surrogates against the measurement and themselves (§4b); named as in the result."""
-
-    ergodicity: ErgodicityCheck
-    surrogate_check: SurrogateCheck
-    window_check: WindowScatterCheck | None
-    scan_scatter: dict[str, Any]
-    copy_check: dict[str, Any]
-
-
-class _PathMoments(NamedTuple):
-    """Moments and autocorrelation of μ along the path (§4c, eq. 3.17–3.18); named as in the result."""
-
-    pressure_pa: FloatArray
-    area_fraction: FloatArray
-    mu_mean: FloatArray
-    mu_std: FloatArray
-    mu_mean_se: FloatArray
-    mu_std_se: FloatArray
-    lags_m: FloatArray
-    acf: FloatArray
-    zero_crossing_m: FloatArray
-
-
-class _PathSpectra(NamedTuple):
-    """PSD, its level and the correlation length of μ along the path (§4c, eq. 3.19–3.20); named as in the result."""
-
-    frequencies: FloatArray
-    psd: FloatArray
-    psd_se: FloatArray
-    psd_level: FloatArray
-    psd_level_se: FloatArray
-    correlation_length_m: FloatArray
-    correlation_length_se_m: FloatArray
-    correlation_length_ci95_m: FloatArray
 
 
 class _Fits(NamedTuple):
@@ -220,7 +172,8 @@ def analyse(
     surrogates = surrogate_check(scans, material, ens, rule=cfg.summit_rule)
     window_check, scan_scatter, notes = _window_checks(scans, found, material, u, tiles, ens, cfg.summit_rule)
     copies = copy_check(scans, options, spawn_seed_sequences(s_ens, cfg.realizations))
-    checks = _Checks(ergodicity, surrogates, window_check, scan_scatter, copies)
+    checks = SurrogateChecks(ergodicity=ergodicity, surrogate_check=surrogates, window_check=window_check,
+                             scan_scatter=scan_scatter, copy_check=copies)
     moments, spectra = _path_moments(path), _path_spectra(path)
     fits = _fit_all(moments, spectra, path.samples.mu.shape[0], cfg)
     notes += [fits.note] if fits.note else []
@@ -235,11 +188,16 @@ def analyse(
         model = replace(model, not_credible=tuple(f"[{r.code}] {r.message}" for r in credibility.reasons))
     return StatisticalContactAnalysis(
         config=cfg, seed_entropy=seed_entropy(root), material=material.to_dict(), surface_info=_surface_info(scans),
-        ensemble=ens, path=path, **ens_stats._asdict(), **checks._asdict(), credibility=credibility,
-        surrogate_choice=surrogate_choice, **moments._asdict(), **spectra._asdict(), fits=fits.fits, model=model,
+        ensemble=ens, path=path, **_fields(ens_stats), **_fields(checks), credibility=credibility,
+        surrogate_choice=surrogate_choice, **_fields(moments), **_fields(spectra), fits=fits.fits, model=model,
         process_check=_process_check(model, moments.pressure_pa[fits.mask], cfg, s_check), notes=notes,
         warnings=validity,
     )  # fmt: skip
+
+
+def _fields(section: EnsembleStatistics | SurrogateChecks | PathMoments | PathSpectra) -> dict[str, Any]:
+    """The fields of one section of the result, by name (no copies)."""
+    return {f.name: getattr(section, f.name) for f in fields(section)}
 
 
 def _stage(progress: StagedProgress | None, label: str) -> Progress | None:
@@ -258,7 +216,7 @@ def _long_surface_workers(surface: Surface, cfg: AnalysisConfig, approaches: int
     return workers_that_fit(surface.nb_grid_pts, cfg.length_factor, default_workers() if workers is None else workers)
 
 
-def _ensemble_statistics(ens: ContactSamples, pdf_bins: int) -> _EnsembleStatistics:
+def _ensemble_statistics(ens: ContactSamples, pdf_bins: int) -> EnsembleStatistics:
     """E[μ], σ_μ and their standard errors (delta method, :func:`mean_and_std_errors`), the mean
     pressure E[N]/A_nom and A_c/A_nom with its line fit, the PDFs of μ, per approach (§4a, Fig. 3.16–3.18a)."""
     mu = ens.mu
@@ -268,8 +226,11 @@ def _ensemble_statistics(ens: ContactSamples, pdf_bins: int) -> _EnsembleStatist
     pressure = ens.normal_force_n.mean(axis=0) / ens.nominal_area_m2
     fraction = ens.contact_area_m2.mean(axis=0) / ens.nominal_area_m2
     edges, density = mu_pdfs(mu, pdf_bins)
-    return _EnsembleStatistics(mean, std, mean_se, std_se, pressure, fraction, edges, density,
-                               linear_fit(pressure, fraction))
+    return EnsembleStatistics(
+        ensemble_mu_mean=mean, ensemble_mu_std=std, ensemble_mu_mean_se=mean_se, ensemble_mu_std_se=std_se,
+        ensemble_pressure_pa=pressure, ensemble_area_fraction=fraction, pdf_edges=edges, pdf_density=density,
+        contact_fraction_fit=linear_fit(pressure, fraction),
+    )  # fmt: skip
 
 
 def _window_checks(
@@ -297,7 +258,7 @@ def _window_checks(
     return window_check, _scan_scatter(scan_mu, measured_tile_mu, len(scans), ens.mu), notes
 
 
-def _path_moments(path: PathContact) -> _PathMoments:
+def _path_moments(path: PathContact) -> PathMoments:
     """E[μ], σ_μ pooled over the K long surfaces with standard errors from the scatter between them
     (sd/√K: windows of one surface overlap), the mean pressure and A_c/A_nom, the averaged
     autocorrelation (3.18) and its first zero crossing [m]."""
@@ -309,7 +270,7 @@ def _path_moments(path: PathContact) -> _PathMoments:
     root_k = math.sqrt(k_count)
     a_y = path.window_shift_m
     acfs = np.stack([autocorrelation(mu_p[:, :, k]) for k in range(n_u)])
-    return _PathMoments(
+    return PathMoments(
         pressure_pa=path.samples.normal_force_n.mean(axis=(0, 1)) / path.samples.nominal_area_m2,
         area_fraction=path.samples.contact_area_m2.mean(axis=(0, 1)) / path.samples.nominal_area_m2,
         mu_mean=pooled.mean(axis=0),
@@ -322,7 +283,7 @@ def _path_moments(path: PathContact) -> _PathMoments:
     )
 
 
-def _path_spectra(path: PathContact) -> _PathSpectra:
+def _path_spectra(path: PathContact) -> PathSpectra:
     """Per approach: the PSD averaged over the K long surfaces (3.19–3.20, method §0), its level
     S(f → 0) [m] and the integral correlation length S(0)/(4σ_μ²) [m] with their standard errors
     over the surfaces and the 95 % Student-t interval of the correlation length."""
@@ -345,7 +306,7 @@ def _path_spectra(path: PathContact) -> _PathSpectra:
         corr.append(cl_mean)
         corr_se.append(cl_se)
         corr_ci.append((cl_lo, cl_hi))
-    return _PathSpectra(
+    return PathSpectra(
         frequencies=freqs, psd=np.stack(psd_rows), psd_se=np.stack(psd_se_rows), psd_level=np.asarray(levels),
         psd_level_se=np.asarray(level_se), correlation_length_m=np.asarray(corr),
         correlation_length_se_m=np.asarray(corr_se),
@@ -353,7 +314,7 @@ def _path_spectra(path: PathContact) -> _PathSpectra:
     )  # fmt: skip
 
 
-def _fit_all(moments: _PathMoments, spectra: _PathSpectra, surfaces: int, cfg: AnalysisConfig) -> _Fits:
+def _fit_all(moments: PathMoments, spectra: PathSpectra, surfaces: int, cfg: AnalysisConfig) -> _Fits:
     """f(p) = a p^b + c (3.21) for E[μ], σ_μ and the PSD level over the path's mean pressure,
     points beyond ``cfg.max_area_fraction`` left out (:func:`~stochfric.process.fit.fit_mask`)."""
     p, fraction = moments.pressure_pa, moments.area_fraction
@@ -373,7 +334,7 @@ def _fit_all(moments: _PathMoments, spectra: _PathSpectra, surfaces: int, cfg: A
 
 
 def _process_model(
-    name: str, fits: dict[str, ModelFit], pressure_pa: FloatArray, spectra: _PathSpectra, path: PathContact,
+    name: str, fits: dict[str, ModelFit], pressure_pa: FloatArray, spectra: PathSpectra, path: PathContact,
     cfg: AnalysisConfig,
 ) -> TabulatedProcessModel:
     """The friction-process model (§4e): the fitted E[μ], σ_μ and PSD level, the measured PSDs
@@ -410,7 +371,7 @@ def _plasticity_index(found: list[Summits], material: Material) -> float | None:
 
 
 def _credibility(
-    name: str, u: FloatArray, checks: _Checks, moments: _PathMoments, ens_stats: _EnsembleStatistics, fits: _Fits
+    name: str, u: FloatArray, checks: SurrogateChecks, moments: PathMoments, ens_stats: EnsembleStatistics, fits: _Fits
 ) -> Credibility:
     """The gate (:mod:`stochfric.process.credibility`) on the checks, E[μ] and A_c/A_nom of the path
     and the ensemble, and the points the fits use."""

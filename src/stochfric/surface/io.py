@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from stochfric.arrays import FloatArray
 from stochfric.units import length_to_m
 
 __all__ = [
@@ -49,8 +50,6 @@ MIN_GRID_POINTS = 5
 
 #: A point more than this many Sq outside the range of the 3×3-median map is a spike.
 SPIKE_SQ = 20.0
-
-FloatArray = npt.NDArray[np.float64]
 
 
 class SurfaceError(ValueError):

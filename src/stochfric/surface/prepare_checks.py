@@ -17,6 +17,8 @@ import numpy as np
 import numpy.typing as npt
 from scipy import ndimage
 
+from stochfric.arrays import FloatArray
+
 __all__ = [
     "AUTO_VARIANCE_GAIN",
     "MAX_UNDEFINED_DEFAULT",
@@ -39,7 +41,6 @@ __all__ = [
     "tie_statistics",
 ]
 
-FloatArray = npt.NDArray[np.float64]
 
 #: Largest fraction of undefined points filled: the harmonic fill has no interior maximum (maximum
 #: principle), so a filled area carries no summit and biases the summit density by its fraction.

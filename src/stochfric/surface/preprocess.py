@@ -19,6 +19,7 @@ import numpy as np
 import numpy.typing as npt
 from scipy import ndimage
 
+from stochfric.arrays import FloatArray
 from stochfric.surface import prepare_checks as pc
 from stochfric.surface.io import MIN_GRID_POINTS, Surface, SurfaceError, _fill_harmonic
 
@@ -47,8 +48,6 @@ _ALIASES = {"center": "mean", "height": "plane", "curvature": "quadratic", "poly
 _BY_DEGREE = {1: "plane", 2: "quadratic", 3: "poly3"}
 #: Seed of the dither noise (fixed: the same map is prepared the same way every time).
 DITHER_SEED = 0
-
-FloatArray = npt.NDArray[np.float64]
 
 
 def _normalise_mode(mode: str) -> str:

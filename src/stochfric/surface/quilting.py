@@ -21,6 +21,7 @@ from scipy import fft as sfft
 from scipy.sparse import coo_matrix
 from scipy.sparse.csgraph import connected_components
 
+from stochfric.arrays import FloatArray
 from stochfric.random import SeedLike, as_generator
 from stochfric.surface.io import Surface, SurfaceError
 from stochfric.surface.summits import find_summits
@@ -56,7 +57,6 @@ __all__ = [
     "split_heights",
 ]
 
-FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.int32]
 
 #: Patch side in mean summit spacings (capped by :func:`max_patch`).

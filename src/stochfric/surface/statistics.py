@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from stochfric.arrays import FloatArray
 from stochfric.surface.io import Surface, SurfaceError
 from stochfric.surface.summits import Summits
 
@@ -36,8 +37,6 @@ __all__ = [
 ELASTIC_LIMIT = 0.6
 #: γ above this: mostly plastic (thesis 3.1.3).
 PLASTIC_LIMIT = 1.0
-
-FloatArray = npt.NDArray[np.float64]
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -15,6 +15,7 @@ from typing import Literal
 import numpy as np
 import numpy.typing as npt
 
+from stochfric.arrays import FloatArray
 from stochfric.surface.io import Surface, SurfaceError
 
 __all__ = ["SUMMIT_RULES", "SummitRule", "Summits", "find_summits", "summits_of"]
@@ -22,7 +23,6 @@ __all__ = ["SUMMIT_RULES", "SummitRule", "Summits", "find_summits", "summits_of"
 SummitRule = Literal["thesis", "8-neighbour"]
 SUMMIT_RULES: tuple[str, ...] = ("thesis", "8-neighbour")
 
-FloatArray = npt.NDArray[np.float64]
 IntArray = npt.NDArray[np.intp]
 
 

@@ -16,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 from scipy.signal import windows as sig_windows
 
+from stochfric.arrays import FloatArray
 from stochfric.random import SeedLike, as_generator
 from stochfric.surface.io import Surface, SurfaceError
 
@@ -50,7 +51,6 @@ DEFAULT_AMPLITUDE = "tukey"
 #: Fraction of each axis inside the cosine tapers of the ``"tukey"`` estimate (half at each edge).
 TUKEY_ALPHA = 0.2
 
-FloatArray = npt.NDArray[np.float64]
 ComplexArray = npt.NDArray[np.complex128]
 
 
