@@ -28,7 +28,7 @@ runner = CliRunner()
         (["--level-factor", "0"], "level_factor"),
         (["--dt-max", "-1"], "dt_max"),
         (["--normal-force", "-5"], "normal_force "),
-        (["--process-length", "inf"], "process_length_m"),
+        (["--process-length", "inf"], "process_length"),
         (["--plot"], "--out"),
         (["--workers", "0"], "--workers"),
         (["--lengths", "1e-3,1e-9"], "grid points"),

@@ -21,7 +21,7 @@ def _beta(**kw):  # type: ignore[no-untyped-def]
 
 def test_fast_small_version_sigma_grows_as_l_shrinks() -> None:
     """100 runs, S0/100 (all ℓ far above ℓ* ≈ 5e-8 m), ℓ = 1e-3, 1e-4, 1e-5 m: a few seconds."""
-    beta, se, s = _beta(correlation_lengths_m=(1e-3, 1e-4, 1e-5), runs=100, level_factor=0.01, seed=3)
+    beta, se, s = _beta(correlation_lengths=(1e-3, 1e-4, 1e-5), runs=100, level_factor=0.01, seed=3)
     assert beta + 3 * se < 0.0, s.fit
     assert abs(beta - (-0.290)) <= 3 * se + 3 * 0.010, s.fit
     for row in s.table:
@@ -32,14 +32,14 @@ def test_fast_small_version_sigma_grows_as_l_shrinks() -> None:
 
 @pytest.mark.slow
 def test_brake_exponent_at_the_preset_level() -> None:
-    beta, se, s = _beta(correlation_lengths_m=(1e-3, 3e-4, 1e-4, 3e-5, 1e-5), runs=300, seed=23)
+    beta, se, s = _beta(correlation_lengths=(1e-3, 3e-4, 1e-4, 3e-5, 1e-5), runs=300, seed=23)
     assert abs(beta - (-0.200)) <= 3 * max(se, 0.013), s.fit
     assert beta + 3 * se < 0.0
 
 
 @pytest.mark.slow
 def test_brake_exponent_at_a_hundredth_of_the_level() -> None:
-    beta, se, s = _beta(correlation_lengths_m=(1e-3, 1e-4, 1e-5, 1e-6), runs=300, level_factor=0.01, seed=23)
+    beta, se, s = _beta(correlation_lengths=(1e-3, 1e-4, 1e-5, 1e-6), runs=300, level_factor=0.01, seed=23)
     assert abs(beta - (-0.290)) <= 3 * max(se, 0.010), s.fit
     assert beta + 3 * se < 0.0
     # σ(X_gh) is linear in √S0: at ℓ = 1e-3 m a tenth of the preset level's 2.06e-4

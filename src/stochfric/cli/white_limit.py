@@ -96,10 +96,10 @@ def white_limit_command(
         raise fail(f"--workers must be >= 1, got {workers}")
     try:
         cfg = WhiteLimitConfig(
-            preset=preset.value, normal_force=normal_force, correlation_lengths_m=ells, runs=runs, seed=seed,
+            preset=preset.value, normal_force=normal_force, correlation_lengths=ells, runs=runs, seed=seed,
             damping_ratio=damping_ratio, tau_end=tau_end, path_coordinate=PathCoordinate(path_coordinate),
-            process_length_m=process_length, steps_per_cell=steps_per_cell, dt_max=dt_max, refine=refine,
-            level_factor=level_factor, fit_min_length_m=fit_min_length, workers=workers,
+            process_length=process_length, steps_per_cell=steps_per_cell, dt_max=dt_max, refine=refine,
+            level_factor=level_factor, fit_min_length=fit_min_length, workers=workers,
         )
         progress = None if json_out else (lambda msg: typer.echo(msg, err=True))
         result = white_limit_study(cfg, progress=progress)

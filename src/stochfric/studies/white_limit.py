@@ -14,7 +14,7 @@ a β significantly below 0 means there is no white-noise limit for X_gh.
 
 The time step follows the process grid: Δτ = min(preset Δτ, ``dt_max``, Δx/(``steps_per_cell`` · 2γ0)), so
 that a slip step moving at up to twice the belt speed advances the path by at most 1/``steps_per_cell``
-of a grid spacing.  The process is generated over at least ``process_length_m`` (default 2 γ0 τ_end L,
+of a grid spacing.  The process is generated over at least ``process_length`` (default 2 γ0 τ_end L,
 twice the belt's travel); a run whose path exceeds it is repeated with a process twice as long, so
 no result reads a repeated process.
 """
@@ -62,24 +62,24 @@ class WhiteLimitConfig:
 
     preset: str = "brake"
     normal_force: float | None = None  #: default: the preset's middle normal-force study force
-    correlation_lengths_m: tuple[float, ...] = (1e-3, 1e-4, 1e-5, 1e-6)
+    correlation_lengths: tuple[float, ...] = (1e-3, 1e-4, 1e-5, 1e-6)
     runs: int = 300
     seed: int = 19
     damping_ratio: float = 5e-6
     tau_end: float | None = None  #: default: the preset's (50)
     stick_window: float = 0.5
     path_coordinate: PathCoordinate = PathCoordinate.RELATIVE  #: one of :data:`PATH_COORDINATES`
-    process_length_m: float | None = None  #: default 2 γ0 τ_end (L = 1 m)
+    process_length: float | None = None  #: default 2 γ0 τ_end (L = 1 m)
     steps_per_cell: float = 4.0
     dt_max: float = 0.001  #: the largest Δτ used (the preset's 0.005 is not converged to the paired SE)
     refine: int = 4
     level_factor: float = 1.0  #: S0 of the rescaled processes = level_factor × the preset's
-    fit_min_length_m: float | None = None  #: fit σ ∝ ℓ^β over ℓ >= this only (default: all ℓ)
+    fit_min_length: float | None = None  #: fit σ ∝ ℓ^β over ℓ >= this only (default: all ℓ)
     workers: int | None = None
 
     def __post_init__(self) -> None:
-        lengths = tuple(float(v) for v in self.correlation_lengths_m)
-        object.__setattr__(self, "correlation_lengths_m", lengths)
+        lengths = tuple(float(v) for v in self.correlation_lengths)
+        object.__setattr__(self, "correlation_lengths", lengths)
         if len(lengths) < 2:
             raise CaseError("give at least two correlation lengths (--lengths 1e-3,1e-4,...)")
         if any(not (math.isfinite(v) and v > 0.0) for v in lengths):
@@ -102,7 +102,7 @@ class WhiteLimitConfig:
             raise CaseError(f"stick window fraction must be in [0, 1), got {self.stick_window!r}")
         if not (math.isfinite(self.damping_ratio) and self.damping_ratio >= 0.0):
             raise CaseError(f"damping ratio must be >= 0, got {self.damping_ratio!r}")
-        for name in ("normal_force", "tau_end", "process_length_m", "dt_max", "level_factor", "fit_min_length_m"):
+        for name in ("normal_force", "tau_end", "process_length", "dt_max", "level_factor", "fit_min_length"):
             v = getattr(self, name)
             if v is not None and not (math.isfinite(v) and v > 0.0):
                 raise CaseError(f"{name} must be a positive number, got {v!r}")
@@ -383,7 +383,7 @@ def _setting(cfg: WhiteLimitConfig) -> _Setting:
     case = setup.case(force, cfg.damping_ratio)
     tau_end = cfg.tau_end if cfg.tau_end is not None else setup.tau_end
     scale = case.params.length_scale
-    lmin = (cfg.process_length_m if cfg.process_length_m is not None
+    lmin = (cfg.process_length if cfg.process_length is not None
             else 2.0 * case.params.gamma0 * tau_end * scale)
     _check_size(cfg, pre.process, lmin, setup.dt, case.params.gamma0 * scale, tau_end)
     return _Setting(setup=setup, force=force, case=case, pressure_pa=force / pre.contact_area, tau_end=tau_end,
@@ -449,14 +449,14 @@ def white_limit_study(cfg: WhiteLimitConfig, progress: Callable[[str], None] | N
     rows: list[LengthRow] = []
     xs: list[list[npt.NDArray[np.float64]]] = []
     ts: list[list[npt.NDArray[np.float64]]] = []
-    for i, ell in enumerate(cfg.correlation_lengths_m):
+    for i, ell in enumerate(cfg.correlation_lengths):
         row, pair, t_pair = _length_row(st, cfg, i, ell, progress)
         rows.append(row)
         xs.append(pair)
         ts.append(t_pair)
-    use = [j for j, v in enumerate(cfg.correlation_lengths_m)
-           if cfg.fit_min_length_m is None or v >= cfg.fit_min_length_m * (1 - 1e-9)]
-    fit = power_law_fit([cfg.correlation_lengths_m[j] for j in use], [rows[j].fine.x_gh_std for j in use],
+    use = [j for j, v in enumerate(cfg.correlation_lengths)
+           if cfg.fit_min_length is None or v >= cfg.fit_min_length * (1 - 1e-9)]
+    fit = power_law_fit([cfg.correlation_lengths[j] for j in use], [rows[j].fine.x_gh_std for j in use],
                         [rows[j].fine.x_gh_std_se for j in use])
     s0 = low_frequency_psd(st.base, st.pressure_pa)
     summary = WhiteLimitSummary(
@@ -481,7 +481,7 @@ def _check_size(cfg: WhiteLimitConfig, base: Any, lmin: float, preset_dt: float,
                 tau_end: float) -> None:
     """Refuse, before any work, a study whose process or number of steps is out of reach."""
     steps = 0.0
-    for ell in cfg.correlation_lengths_m:
+    for ell in cfg.correlation_lengths:
         proc = rescaled_process(base, ell, lmin, cfg.level_factor)  # ValueError beyond MAX_POINTS
         dt = min(preset_dt, cfg.dt_max, proc.dx / (cfg.steps_per_cell * 2.0 * speed))
         steps += cfg.runs * tau_end / dt * (1.0 + cfg.refine)

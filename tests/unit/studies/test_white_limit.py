@@ -54,10 +54,10 @@ def test_ensemble_statistics_pairs_the_runs() -> None:
 @pytest.mark.parametrize(
     ("kwargs", "match"),
     [
-        ({"correlation_lengths_m": (1e-3,)}, "at least two"),
-        ({"correlation_lengths_m": (1e-3, -1e-4)}, "positive"),
-        ({"correlation_lengths_m": (1e-3, 1e-3)}, "twice"),
-        ({"correlation_lengths_m": (1.0, 1e-3)}, "0.1 m"),
+        ({"correlation_lengths": (1e-3,)}, "at least two"),
+        ({"correlation_lengths": (1e-3, -1e-4)}, "positive"),
+        ({"correlation_lengths": (1e-3, 1e-3)}, "twice"),
+        ({"correlation_lengths": (1.0, 1e-3)}, "0.1 m"),
         ({"runs": 1}, "runs"),
         ({"path_coordinate": "position"}, "path coordinate"),
         ({"steps_per_cell": 0.5}, "steps per grid cell"),
@@ -74,7 +74,7 @@ def test_config_refuses_bad_settings(kwargs, match) -> None:  # type: ignore[no-
 
 
 def test_a_small_study_runs_and_never_repeats_the_process() -> None:
-    cfg = WhiteLimitConfig(preset="brake", normal_force=2720.0, correlation_lengths_m=(1e-3, 1e-4),
+    cfg = WhiteLimitConfig(preset="brake", normal_force=2720.0, correlation_lengths=(1e-3, 1e-4),
                            runs=24, tau_end=20.0, seed=5, workers=1)
     res = white_limit_study(cfg)
     s = res.summary
