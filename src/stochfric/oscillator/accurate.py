@@ -275,19 +275,28 @@ def _root_theta(
     return hi
 
 
+class BeltPhase(NamedTuple):
+    """A mass moving with the belt from ``(τs, x1s)``, its force ``F`` seen with the sign ``sg``."""
+
+    x1s: float
+    tau_s: float
+    sg: float
+
+
 #: The process argument of :func:`_bisect_exit` for a limit without a process (static friction only).
 _NO_PROCESS = np.zeros((1, 1))
 
 
 @numba.njit(cache=True, nogil=True)
 def _bisect_exit(
-    x1s: float, tau_s: float, prm: npt.NDArray[np.float64], a: float, b: float, sg: float, lim: float,
-    inner: bool, nn_k0: float, proc: npt.NDArray[np.float64], r: int, n_proc: int, path0: float, rate: float,
+    phase: BeltPhase, prm: npt.NDArray[np.float64], a: float, b: float, lim: float, inner: bool, nn_k0: float,
+    proc: npt.NDArray[np.float64], r: int, n_proc: int, path0: float, rate: float,
 ) -> float:  # pragma: no cover
-    """Bisection in ``(a, b]`` (the force ``F`` of a mass moving with the belt from ``(τs, x1s)`` has left
-    its band at ``b``, not at ``a``) for the first ``τ`` at which ``sg·F(τ) ≤ lim`` (``inner``: it enters
-    the static band) or ``sg·F(τ)`` exceeds the limit above: ``lim`` without a process (``n_proc = 0``),
-    else ``nn_k0 + n μ̂(path0 + rate (τ − τs))``; to the resolution of ``τ``."""
+    """Bisection in ``(a, b]`` (the force has left its band at ``b``, not at ``a``) for the first ``τ`` at
+    which ``sg·F(τ) ≤ lim`` (``inner``: it enters the static band) or ``sg·F(τ)`` exceeds the limit above:
+    ``lim`` without a process (``n_proc = 0``), else ``nn_k0 + n μ̂(path0 + rate (τ − τs))``; to the
+    resolution of ``τ``."""
+    x1s, tau_s, sg = phase
     gamma0 = prm[P_GAMMA0]
     lo = a
     hi = b
@@ -337,7 +346,7 @@ def breakaway_time(
         b = min(a + max(delta, 0.999 * (lim - abs(fa)) / lip), tau_end)
         fb = stick_force(x1s + gamma0 * (b - tau_s), b, prm)
         if abs(fb) > lim:
-            return _bisect_exit(x1s, tau_s, prm, a, b, 1.0 if fb > 0.0 else -1.0, lim, False, 0.0,
+            return _bisect_exit(BeltPhase(x1s, tau_s, 1.0 if fb > 0.0 else -1.0), prm, a, b, lim, False, 0.0,
                                 _NO_PROCESS, 0, 0, 0.0, 0.0)
         a = b
         fa = fb
@@ -372,7 +381,8 @@ def carried_end(
         leb = nn_k0 + (prm[P_N] * process_value_row(proc, r, n_proc, pdx, path0 + rate * (b - tau_s)))
         if fb <= lim or fb > leb:
             inner = fb <= lim
-            return _bisect_exit(x1s, tau_s, prm, a, b, sg, lim, inner, nn_k0, proc, r, n_proc, path0, rate), inner
+            return _bisect_exit(BeltPhase(x1s, tau_s, sg), prm, a, b, lim, inner, nn_k0, proc, r, n_proc, path0,
+                                rate), inner
         a = b
     return np.inf, False
 

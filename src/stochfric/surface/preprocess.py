@@ -43,19 +43,19 @@ _DEGREES = {"mean": 0, "plane": 1, "quadratic": 2, "poly3": 3}
 FORM_FILTERS: tuple[str, ...] = ("gaussian", "robust-gaussian")
 DETREND_MODES: tuple[str, ...] = ("none", "mean", "plane", "quadratic", "poly3", "auto", *FORM_FILTERS)
 QUANTISED_TREATMENTS: tuple[str, ...] = ("warn", "dither")
-#: SurfaceTopography's names for the same modes, and degree-named aliases.
-_ALIASES = {"center": "mean", "height": "plane", "curvature": "quadratic", "poly1": "plane", "poly2": "quadratic"}
+#: SurfaceTopography's names for the same modes, and degree-named synonyms.
+_MODE_SYNONYMS = {"center": "mean", "height": "plane", "curvature": "quadratic", "poly1": "plane", "poly2": "quadratic"}
 _BY_DEGREE = {1: "plane", 2: "quadratic", 3: "poly3"}
 #: Seed of the dither noise (fixed: the same map is prepared the same way every time).
 DITHER_SEED = 0
 
 
 def _normalise_mode(mode: str) -> str:
-    m = _ALIASES.get(mode, mode)
+    m = _MODE_SYNONYMS.get(mode, mode)
     if m not in DETREND_MODES:
         raise SurfaceError(
             f"unknown detrend mode {mode!r}; use one of {', '.join(DETREND_MODES)} "
-            f"(or SurfaceTopography's {', '.join(list(_ALIASES)[:3])})"
+            f"(or SurfaceTopography's {', '.join(list(_MODE_SYNONYMS)[:3])})"
         )
     return m
 
