@@ -137,20 +137,34 @@ class Run(NamedTuple):
     nn_k0: float
 
 
+class Rhs(NamedTuple):
+    """The trajectory's constants of the slip equations: γ0, the velocity scale ``L ω0`` [m/s] of the
+    friction law, ``2D`` and ``n``."""
+
+    gamma0: float
+    vscale: float
+    dd2: float
+    nn: float
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
+def _rhs(prm: npt.NDArray[np.float64]) -> Rhs:  # pragma: no cover
+    return Rhs(prm[P_GAMMA0], prm[P_VSCALE], 2.0 * prm[P_D], prm[P_N])
+
+
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _f(
-    y0: float, y1: float, y2: float, force: float, prm: npt.NDArray[np.float64], lawp: npt.NDArray[np.float64],
-    seg: Segment, shape: int, row: int, out: npt.NDArray[np.float64], j: int,
-) -> None:  # pragma: no cover
-    """Slip equations (4.7)/(4.36) with the path coordinate as third state, into ``out[j]``; ``force`` is
-    the forcing ``q cos(x30 + ητ)`` at the stage's time (branch-free: the compiled step stays fast)."""
+    y0: float, y1: float, y2: float, force: float, c: Rhs, lawp: npt.NDArray[np.float64], seg: Segment,
+    shape: int, row: int,
+) -> tuple[float, float, float]:  # pragma: no cover
+    """Slip equations (4.7)/(4.36) with the path coordinate as third state: ``(x1', x2', path')``;
+    ``force`` is the forcing ``q cos(x30 + ητ)`` at the stage's time (branch-free, no stores: the
+    compiled step keeps the stages in registers)."""
     s = seg.s
-    vr = prm[P_GAMMA0] - y1
+    vr = c.gamma0 - y1
     w = y2 * seg.inv_dx - seg.cell
-    mu = mu_kinetic_row(shape, prm[P_VSCALE] * (s * vr), lawp, row) + ((1.0 - w) * seg.p0 + w * seg.p1)
-    out[j, 0] = y1
-    out[j, 1] = slip_drift(y0, y1, 2.0 * prm[P_D], prm[P_N], mu, s) + force
-    out[j, 2] = seg.rate_x2 * y1 + seg.rate_vr * vr
+    mu = mu_kinetic_row(shape, c.vscale * (s * vr), lawp, row) + ((1.0 - w) * seg.p0 + w * seg.p1)
+    return y1, slip_drift(y0, y1, c.dd2, c.nn, mu, s) + force, seg.rate_x2 * y1 + seg.rate_vr * vr
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
@@ -185,7 +199,9 @@ def _step(
     tau: float, y: npt.NDArray[np.float64], h: float, k: npt.NDArray[np.float64], prm: npt.NDArray[np.float64],
     lawp: npt.NDArray[np.float64], seg: Segment, shape: int, row: int, ynew: npt.NDArray[np.float64],
 ) -> None:  # pragma: no cover
-    """One Dormand–Prince step; ``k[0]`` must hold f(τ, y) on entry; fills k[1..6], ynew (FSAL)."""
+    """One Dormand–Prince step; ``k[0]`` must hold f(τ, y) on entry; fills k[1..6], ynew (FSAL).  The
+    stages are held in locals and stored once at the end (stores between them would make the compiler
+    reload every operand)."""
     q = prm[P_Q]
     g2 = g3 = g4 = g5 = g6 = 0.0
     if q != 0.0:
@@ -198,32 +214,40 @@ def _step(
         g4 = q * _shifted_cos(c0, s0, phase, C4 * eh)
         g5 = q * _shifted_cos(c0, s0, phase, C5 * eh)
         g6 = q * _shifted_cos(c0, s0, phase, eh)
+    c = _rhs(prm)
     a0, a1, a2 = y[0], y[1], y[2]
-    _f(a0 + h * A21 * k[0, 0], a1 + h * A21 * k[0, 1], a2 + h * A21 * k[0, 2], g2, prm, lawp, seg, shape, row, k, 1)
-    _f(a0 + h * (A31 * k[0, 0] + A32 * k[1, 0]),
-       a1 + h * (A31 * k[0, 1] + A32 * k[1, 1]),
-       a2 + h * (A31 * k[0, 2] + A32 * k[1, 2]),
-       g3, prm, lawp, seg, shape, row, k, 2)
-    _f(a0 + h * (A41 * k[0, 0] + A42 * k[1, 0] + A43 * k[2, 0]),
-       a1 + h * (A41 * k[0, 1] + A42 * k[1, 1] + A43 * k[2, 1]),
-       a2 + h * (A41 * k[0, 2] + A42 * k[1, 2] + A43 * k[2, 2]),
-       g4, prm, lawp, seg, shape, row, k, 3)
-    _f(a0 + h * (A51 * k[0, 0] + A52 * k[1, 0] + A53 * k[2, 0] + A54 * k[3, 0]),
-       a1 + h * (A51 * k[0, 1] + A52 * k[1, 1] + A53 * k[2, 1] + A54 * k[3, 1]),
-       a2 + h * (A51 * k[0, 2] + A52 * k[1, 2] + A53 * k[2, 2] + A54 * k[3, 2]),
-       g5, prm, lawp, seg, shape, row, k, 4)
-    _f(a0 + h * (A61 * k[0, 0] + A62 * k[1, 0] + A63 * k[2, 0] + A64 * k[3, 0] + A65 * k[4, 0]),
-       a1 + h * (A61 * k[0, 1] + A62 * k[1, 1] + A63 * k[2, 1] + A64 * k[3, 1] + A65 * k[4, 1]),
-       a2 + h * (A61 * k[0, 2] + A62 * k[1, 2] + A63 * k[2, 2] + A64 * k[3, 2] + A65 * k[4, 2]),
-       g6, prm, lawp, seg, shape, row, k, 5)
-    for i in range(3):
-        ynew[i] = y[i] + h * (
-            B1 * k[0, i] + B3 * k[2, i] + B4 * k[3, i] + B5 * k[4, i] + B6 * k[5, i]
-        )
-    _f(ynew[0], ynew[1], ynew[2], g6, prm, lawp, seg, shape, row, k, 6)
+    k10, k11, k12 = k[0, 0], k[0, 1], k[0, 2]
+    k20, k21, k22 = _f(a0 + h * A21 * k10, a1 + h * A21 * k11, a2 + h * A21 * k12, g2, c, lawp, seg, shape, row)
+    k30, k31, k32 = _f(a0 + h * (A31 * k10 + A32 * k20),
+                       a1 + h * (A31 * k11 + A32 * k21),
+                       a2 + h * (A31 * k12 + A32 * k22),
+                       g3, c, lawp, seg, shape, row)
+    k40, k41, k42 = _f(a0 + h * (A41 * k10 + A42 * k20 + A43 * k30),
+                       a1 + h * (A41 * k11 + A42 * k21 + A43 * k31),
+                       a2 + h * (A41 * k12 + A42 * k22 + A43 * k32),
+                       g4, c, lawp, seg, shape, row)
+    k50, k51, k52 = _f(a0 + h * (A51 * k10 + A52 * k20 + A53 * k30 + A54 * k40),
+                       a1 + h * (A51 * k11 + A52 * k21 + A53 * k31 + A54 * k41),
+                       a2 + h * (A51 * k12 + A52 * k22 + A53 * k32 + A54 * k42),
+                       g5, c, lawp, seg, shape, row)
+    k60, k61, k62 = _f(a0 + h * (A61 * k10 + A62 * k20 + A63 * k30 + A64 * k40 + A65 * k50),
+                       a1 + h * (A61 * k11 + A62 * k21 + A63 * k31 + A64 * k41 + A65 * k51),
+                       a2 + h * (A61 * k12 + A62 * k22 + A63 * k32 + A64 * k42 + A65 * k52),
+                       g6, c, lawp, seg, shape, row)
+    n0 = a0 + h * (B1 * k10 + B3 * k30 + B4 * k40 + B5 * k50 + B6 * k60)
+    n1 = a1 + h * (B1 * k11 + B3 * k31 + B4 * k41 + B5 * k51 + B6 * k61)
+    n2 = a2 + h * (B1 * k12 + B3 * k32 + B4 * k42 + B5 * k52 + B6 * k62)
+    k70, k71, k72 = _f(n0, n1, n2, g6, c, lawp, seg, shape, row)
+    ynew[0], ynew[1], ynew[2] = n0, n1, n2
+    k[1, 0], k[1, 1], k[1, 2] = k20, k21, k22
+    k[2, 0], k[2, 1], k[2, 2] = k30, k31, k32
+    k[3, 0], k[3, 1], k[3, 2] = k40, k41, k42
+    k[4, 0], k[4, 1], k[4, 2] = k50, k51, k52
+    k[5, 0], k[5, 1], k[5, 2] = k60, k61, k62
+    k[6, 0], k[6, 1], k[6, 2] = k70, k71, k72
 
 
-@numba.njit(cache=True, nogil=True, error_model="numpy")
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _err_norm(
     y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
     rtol: float, atol: float,
@@ -238,7 +262,7 @@ def _err_norm(
     return math.sqrt(err / 3.0)
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def _dense(
     y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64],
     h: float, theta: float, i: int,
@@ -255,7 +279,7 @@ def _dense(
     return y[i] + theta * (ydiff + t1 * (bspl + theta * (r4 + t1 * r5)))
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def _root_theta(
     y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64],
     h: float, comp: int, target: float, sgn: float,
@@ -408,7 +432,7 @@ def _save_stick(
     return isave
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def _save_dense(
     traj: npt.NDArray[np.float64], isave: int, save_dt: float, tau: float, tau_e: float,
     y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
@@ -443,7 +467,7 @@ C_M, C_SHORT, C_NO_STICK, C_BREAK, C_PHASES = range(5)
 F_MIN_SLIP, F_SLIP_START = range(2)
 
 
-@numba.njit(cache=True, nogil=True, error_model="numpy")
+@numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _node_theta(
     y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
     node: float, tol: float,
@@ -505,7 +529,7 @@ def _new_segment(
         node = (cell + 1.0) * pdx
     rate_vr = 0.0 if run.mass_path else s
     seg = Segment(s, 1.0 if run.mass_path else 0.0, rate_vr, cell, p0, p1, inv_dx)
-    _f(y[0], y[1], y[2], _forcing(prm, tau), prm, rows.lawp, seg, run.shape, i, k, 0)
+    k[0, 0], k[0, 1], k[0, 2] = _f(y[0], y[1], y[2], _forcing(prm, tau), _rhs(prm), rows.lawp, seg, run.shape, i)
     if run.mass_path:
         if y[1] != 0.0:
             sz = 1.0 if y[1] > 0.0 else -1.0
@@ -516,7 +540,7 @@ def _new_segment(
     return seg, node
 
 
-@numba.njit(cache=True, nogil=True)
+@numba.njit(cache=True, nogil=True, inline="always")
 def _first_event(
     y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
     seg: Segment, gamma0: float, node: float, node_tol: float,

@@ -150,7 +150,7 @@ def _dopri(h: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     k = np.zeros((7, 3))
     ynew = np.zeros(3)
     seg = A.Segment(s=1.0, rate_x2=-1.0, rate_vr=0.0, cell=0.0, p0=0.0, p1=0.0, inv_dx=0.0)  # mass path, x2 < 0
-    A._f(y[0], y[1], y[2], 0.0, prm, lawp.reshape(1, -1), seg, SHAPE_CONSTANT, 0, k, 0)
+    k[0] = A._f(y[0], y[1], y[2], 0.0, A._rhs(prm), lawp.reshape(1, -1), seg, SHAPE_CONSTANT, 0)
     A._step(0.0, y, h, k, prm, lawp.reshape(1, -1), seg, SHAPE_CONSTANT, 0, ynew)
     return y, ynew, k
 
