@@ -20,8 +20,8 @@ that same process, so the figures compare like with like on whatever machine run
   ``white_stream="pcg64"``) and ``contact euler, generate per run`` (``process.generate`` per
   trajectory instead of one batch evaluation).
 * **before** (``--before REV``) — the rates of the issue-13 models with the package of git
-  revision ``REV`` (in a subprocess) and with this one, three rounds alternately, best of each
-  (so both see the same load); ratios before/now per model.
+  revision ``REV`` and with this one, each in a fresh subprocess running the same script, three
+  rounds alternately, best of each (so both see the same load); ratios before/now per model.
 * **baselines** — :func:`stochfric.oscillator.reference.euler_python` (the thesis's Euler
   method as a plain Python loop), :func:`em_python` below (the same loop with the
   Euler–Maruyama update, increments pre-drawn), and
@@ -558,42 +558,41 @@ def before_after(ref: str, cfg: dict[str, Any], rounds: int = 3,
     """Seconds per trajectory-step of ``simulate`` (one core, brake) with the package of
     revision ``ref`` and with this one, ``rounds`` times alternately, best of each.
 
-    ``ref``: ``git archive`` of its ``src`` into a temporary directory, timed by
-    :data:`_BEFORE_SNIPPET` in a subprocess with that directory first on ``PYTHONPATH`` (its
-    numba cache kept in the directory across rounds).  Alternating the two keeps both under
-    the same load of a shared machine.
+    Both sides run the same :data:`_BEFORE_SNIPPET` in a fresh subprocess: ``ref`` from a ``git archive``
+    of its ``src`` in a temporary directory first on ``PYTHONPATH`` (its numba cache kept there across
+    rounds), this one from the working tree.  Timing this revision inside the benchmark process instead
+    read it up to 2x slower than the same code in a fresh process (a process that has compiled and run
+    every other configuration first), which made a before/after ratio say more about the process than
+    about the code.  Alternating the two keeps both under the same load of a shared machine.
     """
     import subprocess
     import tempfile
 
     say = log or (lambda _m: None)
     repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-    case = brake_case()
     runs, tau, reps = int(cfg["runs"]), float(cfg["tau_end"]), int(cfg["repeats"])
     before: dict[str, float] = {}
     after: dict[str, float] = {}
+
+    def timed(env: dict[str, str]) -> dict[str, float]:
+        res = subprocess.run([sys.executable, "-c", _BEFORE_SNIPPET, str(runs), str(tau), str(reps), str(DT)],
+                             env=env, check=True, capture_output=True, text=True)
+        return {k: float(v) for k, v in json.loads(res.stdout.strip().splitlines()[-1]).items()}
+
     with tempfile.TemporaryDirectory(prefix="stochfric-before-") as tmp:
         arch = subprocess.run(["git", "archive", ref, "src"], cwd=repo, check=True,
                               capture_output=True).stdout
         subprocess.run(["tar", "-x", "-C", tmp], input=arch, check=True)
-        env = dict(os.environ, PYTHONPATH=os.path.join(tmp, "src"),
-                   NUMBA_CACHE_DIR=os.path.join(tmp, "numba-cache"))
-        if vector_width.applied is not None and env.get("NUMBA_CPU_FEATURES") == vector_width.applied:
-            # the other revision as it ran: its own vector-width rule (none before it existed)
-            del env["NUMBA_CPU_FEATURES"]
+        env_now = dict(os.environ, PYTHONPATH=os.path.join(repo, "src"))
+        if vector_width.applied is not None and env_now.get("NUMBA_CPU_FEATURES") == vector_width.applied:
+            # each revision as it runs: its own vector-width rule (none before it existed)
+            del env_now["NUMBA_CPU_FEATURES"]
+        env_ref = dict(env_now, PYTHONPATH=os.path.join(tmp, "src"), NUMBA_CACHE_DIR=os.path.join(tmp, "numba-cache"))
         for r in range(rounds):
-            say(f"  before/after round {r + 1}/{rounds} (revision {ref} in a subprocess) ...")
-            res = subprocess.run([sys.executable, "-c", _BEFORE_SNIPPET, str(runs), str(tau),
-                                  str(reps), str(DT)], env=env, check=True, capture_output=True,
-                                 text=True)
-            got = json.loads(res.stdout.strip().splitlines()[-1])
-            for k, v in got.items():
-                before[k] = min(before.get(k, math.inf), float(v))
-            for model, integ in BEFORE_CONFIGS:
-                n = max(1, runs // 16) if integ == "accurate" else runs
-                wall, _ = _time(functools.partial(_sim, case, model, integ, n, tau), reps)
-                key = f"{model} {integ}"
-                after[key] = min(after.get(key, math.inf), wall / (n * round(tau / DT)))
+            say(f"  before/after round {r + 1}/{rounds} (revision {ref} and this one, each in a subprocess) ...")
+            for side, env in ((before, env_ref), (after, env_now)):
+                for k, v in timed(env).items():
+                    side[k] = min(side.get(k, math.inf), v)
     return before, after
 
 
@@ -639,7 +638,7 @@ def run_benchmarks(size: str = "quick", *, log: Callable[[str], None] | None = N
             rep.entries.append(Entry("before", "brake", what, runs, steps, b_sec[what] * steps,
                                      math.nan, 1.0 / b_sec[what], f"revision {before}"))
             rep.entries.append(Entry("after", "brake", what, runs, steps, a_sec[what] * steps,
-                                     math.nan, 1.0 / a_sec[what], "this revision, alternated"))
+                                     math.nan, 1.0 / a_sec[what], "this revision, subprocess, alternated"))
     reps = int(cfg["repeats"])
     cases = [brake_case(), demo_case()]
 
@@ -726,9 +725,10 @@ def run_benchmarks(size: str = "quick", *, log: Callable[[str], None] | None = N
     for model in ("deterministic", "contact"):
         rep.ratios[f"brake: {model} accurate / euler (time per Δτ)"] = (
             ns(f"{model} accurate") / ns(f"{model} euler"))
-        if before is not None:
-            rep.ratios[f"brake: {model} accurate / euler (time per Δτ), {before}"] = (
-                ns(f"{model} accurate", "before") / ns(f"{model} euler", "before"))
+        if before is not None:  # both revisions as measured side by side, in the same kind of process
+            for group, label in (("before", before), ("after", "now")):
+                rep.ratios[f"brake: {model} accurate / euler (time per Δτ), {label}, subprocess"] = (
+                    ns(f"{model} accurate", group) / ns(f"{model} euler", group))
     if before is not None:
         for model, integ in BEFORE_CONFIGS:
             what = f"{model} {integ}"
