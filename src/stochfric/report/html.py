@@ -612,20 +612,27 @@ def process_statistics_section(directory: Path, ch3: Chapter3) -> str:
 FigureJob = tuple[Callable[..., Any], tuple[Any, ...], dict[str, Any]]
 
 
-def render_jobs(jobs: Sequence[FigureJob], workers: int | None = None) -> list[Any]:
-    """Run the report's figure jobs, in order of ``jobs``, on up to ``workers`` processes.
+def render_jobs(
+    jobs: Sequence[FigureJob], workers: int | None = None, more: Callable[[], Sequence[FigureJob]] | None = None,
+) -> list[Any]:
+    """Run the report's figure jobs, in order of ``jobs`` then ``more()``, on up to ``workers`` processes.
 
-    Rendering PNGs is pure matplotlib and takes most of the report's time (≈ 14 s for the full
+    Rendering PNGs is pure matplotlib and takes most of the report's time (≈ 13 s for the full
     reproduction on one core); the jobs are independent (each writes its own files atomically),
     so they run in forked worker processes where the platform has ``fork`` (Linux), serially
-    otherwise or with ``workers = 1``.  ``None``: ``min(2, cpu count)``.  The HTML is assembled
-    from the results in the same order either way, so the report is the same file.
+    otherwise or with ``workers = 1``.  ``None``: ``min(2, cpu count)``.  ``more`` (optional) is called in
+    this process once ``jobs`` are handed to the workers, and its jobs run after them: work that the later
+    jobs need (the chapter-3 analysis) shares the cores with the drawing instead of preceding it.  The HTML
+    is assembled from the results in the same order either way, so the report is the same file.
     """
     n = min(2, os.cpu_count() or 1) if workers is None else int(workers)
-    if n <= 1 or len(jobs) < 2 or "fork" not in multiprocessing.get_all_start_methods():
+    if n <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+        jobs = [*jobs, *(more() if more is not None else ())]
         return [fn(*args, **kw) for fn, args, kw in jobs]
-    with ProcessPoolExecutor(max_workers=min(n, len(jobs)), mp_context=multiprocessing.get_context("fork")) as ex:
+    with ProcessPoolExecutor(max_workers=n, mp_context=multiprocessing.get_context("fork")) as ex:
         futures = [ex.submit(fn, *args, **kw) for fn, args, kw in jobs]
+        if more is not None:
+            futures += [ex.submit(fn, *args, **kw) for fn, args, kw in more()]
         return [f.result() for f in futures]
 
 
@@ -663,15 +670,16 @@ def write_report(
     directory: str | Path,
     *,
     title: str = "stochfric studies",
-    chapter3: Chapter3 | None = None,
+    chapter3: Chapter3 | Callable[[], Chapter3] | None = None,
     extra_html: str = "",
     workers: int | None = None,
 ) -> Path:
     """Write ``directory/index.html`` (and the PNG figures) for the study ``results``.
 
     ``chapter3`` (:func:`stochfric.studies.chapter3.chapter3_analysis`) adds the chapter-3
-    sections; the report renders it and computes nothing.  The figures are drawn on ``workers``
-    processes (:func:`render_jobs`).
+    sections; the report renders it and computes nothing.  Given as a function, it is called while
+    the study figures are drawn (:func:`render_jobs`' ``more``), so the analysis and the drawing share
+    the cores.  The figures are drawn on ``workers`` processes.
     """
     d = Path(directory)
     d.mkdir(parents=True, exist_ok=True)
@@ -680,9 +688,15 @@ def write_report(
         (SECTIONS[res.kind].figures, (res.dataset, d),
          {"prefix": f"{k:02d}_{res.kind.replace('-', '_')}_{res.summary.preset}"})
         for k, res in enumerate(results)]
-    if chapter3 is not None:
-        jobs += [(contact_section, (d, chapter3), {}), (process_statistics_section, (d, chapter3), {})]
-    rendered = render_jobs(jobs, workers)
+    ch3: list[Chapter3] = []
+
+    def chapter3_jobs() -> list[FigureJob]:
+        if chapter3 is None:
+            return []
+        ch3.append(chapter3() if callable(chapter3) else chapter3)
+        return [(contact_section, (d, ch3[0]), {}), (process_statistics_section, (d, ch3[0]), {})]
+
+    rendered = render_jobs(jobs, workers, more=chapter3_jobs)
     readings = []
     for k, res in enumerate(results):
         section, answer = study_section(k, res, rendered[k], d)
