@@ -626,7 +626,7 @@ def render_jobs(
     is assembled from the results in the same order either way, so the report is the same file.
     """
     n = min(2, os.cpu_count() or 1) if workers is None else int(workers)
-    if n <= 1 or "fork" not in multiprocessing.get_all_start_methods():
+    if n <= 1 or (len(jobs) < 2 and more is None) or "fork" not in multiprocessing.get_all_start_methods():
         jobs = [*jobs, *(more() if more is not None else ())]
         return [fn(*args, **kw) for fn, args, kw in jobs]
     with ProcessPoolExecutor(max_workers=n, mp_context=multiprocessing.get_context("fork")) as ex:
@@ -688,15 +688,13 @@ def write_report(
         (SECTIONS[res.kind].figures, (res.dataset, d),
          {"prefix": f"{k:02d}_{res.kind.replace('-', '_')}_{res.summary.preset}"})
         for k, res in enumerate(results)]
-    ch3: list[Chapter3] = []
-
     def chapter3_jobs() -> list[FigureJob]:
         if chapter3 is None:
             return []
-        ch3.append(chapter3() if callable(chapter3) else chapter3)
-        return [(contact_section, (d, ch3[0]), {}), (process_statistics_section, (d, ch3[0]), {})]
+        ch3 = chapter3() if callable(chapter3) else chapter3
+        return [(contact_section, (d, ch3), {}), (process_statistics_section, (d, ch3), {})]
 
-    rendered = render_jobs(jobs, workers, more=chapter3_jobs)
+    rendered = render_jobs(jobs, workers, more=chapter3_jobs if chapter3 is not None else None)
     readings = []
     for k, res in enumerate(results):
         section, answer = study_section(k, res, rendered[k], d)
