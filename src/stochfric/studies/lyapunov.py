@@ -28,7 +28,7 @@ of the process grid: the two runs then read unrelated parts of the surface) it s
   λ = the slope of ln w over that linear prefix, a *lower bound* of the exponent
   (``lyapunov_is_lower_bound``); never ``nonlinear``.  A cell of R pairs is ``diverging`` when every
   pair is ``ok`` or ``diverging`` and one at least is diverging (the mean is then a lower bound).
-* **Integrator.**  The study runs ``accurate`` (adaptive RK45 with events) for the deterministic and
+* **Integrator.**  The study runs ``accurate`` (adaptive DOP853 with events) for the deterministic and
   contact models by default: at the thesis's Euler Δτ = 0.005 the switching logic locks spurious
   cycles (brake 4000 N, q = 5·10⁻⁴, η = 1.2: λ = −0.86 against +0.28) and breaks the twin check of
   most contact pairs.  ``integrator = "euler"`` is the reproduction mode; both are recorded
@@ -37,11 +37,15 @@ of the process grid: the two runs then read unrelated parts of the surface) it s
 * ``lyapunov`` (with ``lyapunov_se``, ``status``) is the exponent *per slip→stick transition*:
   the least-squares slope of ln w(i) over all i = 1 … K (deterministic: SE from the regression;
   stochastic: mean over the R run pairs, SE = s/√R).  It is reported only when every pair is
-  linear, else NaN with status ``nonlinear``; ``merged`` (some w = 0: the runs coincide exactly,
-  thesis: no value) and ``too-few-transitions`` (K < 5) are the other reasons.  The window does
-  not depend on δ, so a reported value is the δ → 0 limit up to the linearisation error (test:
-  δ = 1e-8 … 1e-4 agree within their standard errors).  A window "until w saturates" would not
-  do: for the contact model ln w(i) is no straight line, so a δ-dependent window gives
+  linear, else NaN with status ``nonlinear``; ``merged`` (the runs coincide, or contract 10⁶-fold,
+  within fewer than 5 transitions; thesis: no value) and ``too-few-transitions`` (K < 5) are the
+  other reasons.  A contracting pair is fitted up to the transition before its separation falls
+  10⁶-fold below its largest so far (:data:`RESOLVED_CONTRACTION`): below that, at the
+  integrator's tolerance and the rounding of X_gh, ln w scatters at the floor or is −∞ (w = 0), and
+  those points would pull the slope toward 0 by an amount set by the integrator's accuracy and
+  τ_end.  The window does not depend on δ, so a reported value is the δ → 0 limit up to the
+  linearisation error (test: δ = 1e-8 … 1e-4 agree within their standard errors).  A window
+  "until w saturates" would not do: for the contact model ln w(i) is no straight line, so a δ-dependent window gives
   δ-dependent slopes.
 * ``separation_index_443`` is (4.43)/(4.44) evaluated exactly as printed, at this δ, with its
   own ``separation_index_status`` (``nonlinear`` where the twin check fails: then the number
@@ -83,6 +87,22 @@ MIN_LINEAR = 5
 DIVERGING_GROWTH = 100.0
 #: Fewest transitions of the linear prefix for the slope of a diverging pair.
 MIN_DIVERGING = 3
+#: Contraction, relative to the largest separation so far, below which a separation is no longer
+#: resolved: the fit of :func:`lyapunov_rate` ends before the first w(i) < RESOLVED_CONTRACTION ·
+#: max_{j≤i} w(j) (or w(i) = 0).  With δ = 10⁻⁶ that is w ≈ 10⁻¹², the integrator's tolerance and four
+#: decades above the rounding of X_gh (≈ 10⁻¹⁶), where a contracting pair's ln w stops falling and
+#: scatters (and, once it is exactly 0, has no logarithm).  Relative to w, so the window does not
+#: depend on δ in the linear regime.
+RESOLVED_CONTRACTION = 1e-6
+
+
+def resolved_prefix(w: npt.ArrayLike) -> int:
+    """Number of leading separations above the resolution floor (:data:`RESOLVED_CONTRACTION`): all of
+    them unless the pair contracts ≥ 10⁶-fold below its largest separation so far (or reaches w = 0)."""
+    arr = np.asarray(w, dtype=float)
+    low = arr < RESOLVED_CONTRACTION * np.maximum.accumulate(arr) if arr.size else arr.astype(bool)
+    low |= arr == 0.0
+    return int(np.argmax(low)) if low.any() else arr.size
 
 
 def lyapunov_exponent(w: npt.ArrayLike) -> tuple[float, str, int]:
@@ -105,13 +125,16 @@ def lyapunov_exponent(w: npt.ArrayLike) -> tuple[float, str, int]:
 def lyapunov_rate(w: npt.ArrayLike, linear: bool = True) -> tuple[float, float, str, int]:
     """Exponent per slip→stick transition: least-squares slope of ln w(i) over i = 1 … K.
 
-    ``w`` are the separations w(1..K) (NaN entries end the sequence).  The window is always all
-    K transitions, so in the linear regime (w ∝ δ) the slope does not depend on δ; ``linear`` is
-    the twin check (:func:`is_linear`); without it the value would depend on δ: status
-    ``nonlinear``, NaN.  Other statuses:
-    ``merged`` (some w = 0: the runs coincide exactly, the map contracts to a point; thesis: no
-    value), ``too-few-transitions`` (K < :data:`MIN_LINEAR`).
-    Returns ``(rate, se, status, K)``; ``se`` is the regression standard error of the slope.
+    ``w`` are the separations w(1..K) (NaN entries end the sequence).  The window is all K
+    transitions, or those before the separation leaves the resolved range (:func:`resolved_prefix`:
+    a contracting pair reaches the rounding floor, where ln w stops falling), so in the linear regime
+    (w ∝ δ) the slope depends neither on δ nor on how far below the floor the integrator's accuracy
+    lets the runs go; ``linear`` is the twin check (:func:`is_linear`); without it the value would
+    depend on δ: status ``nonlinear``, NaN.  Other statuses: ``merged`` (the runs coincide or contract
+    to the floor within fewer than :data:`MIN_LINEAR` transitions: the map contracts to a point;
+    thesis: no value), ``too-few-transitions`` (K < :data:`MIN_LINEAR`).
+    Returns ``(rate, se, status, K)``; ``se`` is the regression standard error of the slope, K the
+    transitions fitted.
     """
     arr = np.asarray(w, dtype=float)
     fin = np.isfinite(arr)
@@ -119,7 +142,9 @@ def lyapunov_rate(w: npt.ArrayLike, linear: bool = True) -> tuple[float, float, 
     arr = arr[:k]
     if k < MIN_LINEAR:
         return math.nan, math.nan, "too-few-transitions", k
-    if np.any(arr == 0.0):
+    k = resolved_prefix(arr)
+    arr = arr[:k]
+    if k < MIN_LINEAR:
         return math.nan, math.nan, "merged", k
     if not linear:
         return math.nan, math.nan, "nonlinear", k

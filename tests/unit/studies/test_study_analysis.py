@@ -12,7 +12,7 @@ from stochfric.oscillator.parameters import OscillatorParameters
 from stochfric.studies.damping import d_max_deterministic, d_max_stochastic
 from stochfric.studies.errors import StudyError
 from stochfric.studies.grids import parse_grid, window_mask
-from stochfric.studies.lyapunov import lyapunov_exponent
+from stochfric.studies.lyapunov import RESOLVED_CONTRACTION, lyapunov_exponent, lyapunov_rate, resolved_prefix
 from stochfric.studies.stats import clopper_pearson, sample_summary, zero_count_upper_bound
 from stochfric.studies.tasks import cell_stream_key
 
@@ -93,6 +93,27 @@ def test_lyapunov_formula_443() -> None:
     assert status == "merged" and math.isnan(lam)
     assert lyapunov_exponent([1e-6, np.nan])[1] == "too-few-transitions"
     assert lyapunov_exponent([0.0, 0.0, 0.0])[1] == "merged"
+
+
+def test_a_contracting_pair_is_fitted_above_the_resolution_floor_only() -> None:
+    """A pair contracting e^−2 per transition reaches the rounding floor (w ≈ 1e-17, then scatter and
+    exact zeros, as the brake 4000 N, q = 5e-4, η = 1.4 pair does with DOP853): the slope is fitted
+    before w falls 10⁶-fold below its running maximum, so it is −2 whatever the floor points are (the
+    integrator's accuracy and τ_end decide how many there are); before, they pulled it to ≈ −0.9."""
+    rng = np.random.default_rng(3)
+    clean = 1e-6 * np.exp(-2.0 * np.arange(9))  # down to 1.1e-13 < 1e-6 · 1e-6 at i = 7
+    for floor in (np.zeros(20), 1e-17 * rng.random(20), 1e-16 * rng.random(5)):
+        w = np.concatenate([clean, floor])
+        rate, se, status, k = lyapunov_rate(w)
+        assert status == "ok" and k == resolved_prefix(w) == 7
+        assert rate == pytest.approx(-2.0, abs=1e-9) and se < 1e-9
+    # δ-independent: scaling w scales the floor with it
+    assert resolved_prefix(1e-3 * np.concatenate([clean, np.zeros(3)])) == 7
+    assert clean[7] < RESOLVED_CONTRACTION * clean[0] < clean[6]
+    # contracting to the floor within fewer than 5 transitions: merged, no value
+    assert lyapunov_rate([1e-6, 1e-9, 1e-13, 0.0, 0.0, 0.0])[2] == "merged"
+    # a growing or level pair is fitted over all its transitions
+    assert resolved_prefix(1e-6 * np.exp(0.3 * np.arange(12))) == 12
 
 
 def test_sample_summary_closed_forms() -> None:
