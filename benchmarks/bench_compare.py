@@ -29,7 +29,7 @@ core.  Per model (method §5):
 
 Rates are trajectory-steps per second, a "step" being one Δτ of simulated time (adaptive
 solvers take fewer or more internal steps).  The ratio is stochfric / other.  The "check"
-column compares the first slip→stick position with stochfric's ``accurate`` integrator (RK45
+column compares the first slip→stick position with stochfric's ``accurate`` integrator (DOP853
 with events; diffrax: x1 where x2 first returns to γ0), to show that each solver integrates
 the same motion (stochfric's Euler itself differs from ``accurate`` by its O(Δτ) error).
 """
@@ -312,7 +312,7 @@ def run_comparison(size: str = "quick", *, log: Callable[[str], None] | None = N
                             runs, runs * nst, wall, cpu, runs * nst / wall))
         rate[(model, "stochfric")] = runs * nst / wall
         first_x[model] = float(sim(model, 1).x_gh[0, 0, 0])
-        if model != "white":  # the accurate integrator (RK45 with events) for the checks
+        if model != "white":  # the accurate integrator (DOP853 with events) for the checks
             first_x[model + " accurate"] = float(sim(model, 1, integrator="accurate").x_gh[0, 0, 0])
         say(f"  stochfric {model}: {1e9 * wall / (runs * nst):.2f} ns/step")
 

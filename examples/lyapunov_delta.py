@@ -23,7 +23,7 @@ DELTAS = (1e-8, 1e-7, 1e-6, 1e-5, 1e-4)
 def main() -> None:
     warnings.simplefilter("ignore")
     out = {}
-    print("| δ | model | ok / nonlinear / merged / too few | median λ per transition (ok cells) | "
+    print("| δ | model | ok / diverging / nonlinear / merged / too few | median λ (ok, diverging cells) | "
           "cells λ > 2SE / λ < −2SE | median (4.43) as printed, all cells |")
     print("|---|---|---|---|---|---|")
     for d in DELTAS:
@@ -37,7 +37,8 @@ def main() -> None:
             c = s["status_counts"][m]
             sig = s["significance"][m]
             med = f"{np.nanmedian(lam):+.3f}" if np.isfinite(lam).any() else "—"
-            print(f"| {d:g} | {m} | {c['ok']} / {c['nonlinear']} / {c['merged']} / {c['too-few-transitions']} | "
+            print(f"| {d:g} | {m} | {c['ok']} / {c['diverging']} / {c['nonlinear']} / {c['merged']} / "
+                  f"{c['too-few-transitions']} | "
                   f"{med} | {sig['positive']} / {sig['negative']} | {np.nanmedian(sep):+.2f} |", flush=True)
     s = out[1e-8]
     eta = np.array(s["eta"])

@@ -1,10 +1,12 @@
-"""The ``accurate`` integrator: adaptive Dormand–Prince 5(4) with event location.
+"""The ``accurate`` integrator: adaptive Dormand–Prince 8(5,3) (DOP853) with event location.
 
 For the deterministic and the contact-analysis models (no SDE).  Between events the
-slip equations (4.7) / (4.36) are smooth, so the adaptive embedded Runge–Kutta pair
-of Dormand and Prince (order 5, error estimate of order 4, Hairer's 4th-order dense
-output; the method of MATLAB ``ode45`` that the thesis used as its reference) keeps
-its order; every non-smooth point is an *event* at which the integration restarts:
+slip equations (4.7) / (4.36) are smooth, so an adaptive high-order embedded Runge–Kutta pair keeps
+its order: Hairer's DOP853 (order 8, error estimate from the embedded 5th- and 3rd-order solutions,
+7th-order dense output; Hairer, Nørsett & Wanner, *Solving ODEs I*, §II.10; the coefficients are
+scipy's ``solve_ivp(method="DOP853")``).  The thesis's reference was MATLAB ``ode45``
+(Dormand–Prince 5(4)); at the tolerances used here DOP853 takes about a third of the steps for the
+same accuracy.  Every non-smooth point is an *event* at which the integration restarts:
 
 * ``x2 = γ0`` (``v_rel = 0``): slip→stick if ``|x1 + 2Dγ0 − q cos x3| ≤ n μ_s``,
   otherwise the mass passes the belt speed and keeps slipping (thesis Fig. 4.15);
@@ -16,8 +18,14 @@ Within a slip segment the signs ``s = sign(γ0 − x2)`` and ``sign(x2)`` and, f
 the linear function of the process's current grid cell (extended past the cell's end) are held
 (:class:`Segment`), so the right-hand side is smooth and no step straddling an event is rejected by the
 error control.  After an accepted step the first event inside it is located on the dense output
-(bisection to ``θ`` resolution 1e-15; grid points by Illinois regula falsi to 1e-12 Δx) and the state
-there is recomputed by one Dormand–Prince step of exactly that length.
+(bisection to ``θ`` resolution 1e-15; grid points by Illinois regula falsi to 1e-12 Δx), and the state
+there is the dense output's (7th order, so within the step's tolerance).  An event is looked for where
+the signs at the step's ends differ, and also where ``x2`` has an extremum inside the step toward the
+belt speed (toward 0 on the mass path) and ends near it (within ``h (|x2'(τ)| + |x2'(τ + h)|)``): the
+minimum distance is then found on the dense output (golden section), so an excursion that touches the
+belt speed and returns inside one step (a *graze*) is an event too.  A grid point passed before the
+first belt/zero event of a step (the path turns there, so the step's end may lie before the grid
+point again) is found the same way.
 The stick phase is solved in closed form (``x1 = x1s + γ0 (τ − τs)``); its end, the
 first ``τ`` with ``|x1 + 2Dγ0 − q cos(x30 + ητ)| > n μ_s``, is found in closed form for
 ``q = 0`` and by a scan plus bisection otherwise (the scan jumps by the margin over the
@@ -64,28 +72,180 @@ from .kernels import (
     store_diagnostics,
 )
 
-# Dormand–Prince 5(4) coefficients (Dormand & Prince 1980; Hairer, Nørsett & Wanner, Table II.5.2)
-C2, C3, C4, C5 = 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0
-A21 = 1.0 / 5.0
-A31, A32 = 3.0 / 40.0, 9.0 / 40.0
-A41, A42, A43 = 44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0
-A51, A52, A53, A54 = 19372.0 / 6561.0, -25360.0 / 2187.0, 64448.0 / 6561.0, -212.0 / 729.0
-A61, A62, A63, A64, A65 = (
-    9017.0 / 3168.0, -355.0 / 33.0, 46732.0 / 5247.0, 49.0 / 176.0, -5103.0 / 18656.0,
-)
-B1, B3, B4, B5, B6 = 35.0 / 384.0, 500.0 / 1113.0, 125.0 / 192.0, -2187.0 / 6784.0, 11.0 / 84.0
-E1, E3, E4, E5, E6, E7 = (
-    71.0 / 57600.0, -71.0 / 16695.0, 71.0 / 1920.0, -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0,
-)
-# dense output (Hairer's contd5)
-DD1, DD3, DD4, DD5, DD6, DD7 = (
-    -12715105075.0 / 11282082432.0,
-    87487479700.0 / 32700410799.0,
-    -10690763975.0 / 1880347072.0,
-    701980252875.0 / 199316789632.0,
-    -1453857185.0 / 822651844.0,
-    69997945.0 / 29380423.0,
-)
+# Dormand–Prince 8(5,3) coefficients (Hairer's dop853; scipy.integrate._ivp.dop853_coefficients)
+C1 = 0.05260015195876773
+A1_0 = 0.05260015195876773
+C2 = 0.0789002279381516
+A2_0 = 0.0197250569845379
+A2_1 = 0.0591751709536137
+C3 = 0.1183503419072274
+A3_0 = 0.02958758547680685
+A3_2 = 0.08876275643042054
+C4 = 0.2816496580927726
+A4_0 = 0.2413651341592667
+A4_2 = -0.8845494793282861
+A4_3 = 0.924834003261792
+C5 = 0.3333333333333333
+A5_0 = 0.037037037037037035
+A5_3 = 0.17082860872947386
+A5_4 = 0.12546768756682242
+C6 = 0.25
+A6_0 = 0.037109375
+A6_3 = 0.17025221101954405
+A6_4 = 0.06021653898045596
+A6_5 = -0.017578125
+C7 = 0.3076923076923077
+A7_0 = 0.03709200011850479
+A7_3 = 0.17038392571223998
+A7_4 = 0.10726203044637328
+A7_5 = -0.015319437748624402
+A7_6 = 0.008273789163814023
+C8 = 0.6512820512820513
+A8_0 = 0.6241109587160757
+A8_3 = -3.3608926294469414
+A8_4 = -0.868219346841726
+A8_5 = 27.59209969944671
+A8_6 = 20.154067550477894
+A8_7 = -43.48988418106996
+C9 = 0.6
+A9_0 = 0.47766253643826434
+A9_3 = -2.4881146199716677
+A9_4 = -0.590290826836843
+A9_5 = 21.230051448181193
+A9_6 = 15.279233632882423
+A9_7 = -33.28821096898486
+A9_8 = -0.020331201708508627
+C10 = 0.8571428571428571
+A10_0 = -0.9371424300859873
+A10_3 = 5.186372428844064
+A10_4 = 1.0914373489967295
+A10_5 = -8.149787010746927
+A10_6 = -18.52006565999696
+A10_7 = 22.739487099350505
+A10_8 = 2.4936055526796523
+A10_9 = -3.0467644718982196
+C11 = 1.0
+A11_0 = 2.273310147516538
+A11_3 = -10.53449546673725
+A11_4 = -2.0008720582248625
+A11_5 = -17.9589318631188
+A11_6 = 27.94888452941996
+A11_7 = -2.8589982771350235
+A11_8 = -8.87285693353063
+A11_9 = 12.360567175794303
+A11_10 = 0.6433927460157636
+C12 = 1.0
+A12_0 = 0.054293734116568765
+A12_5 = 4.450312892752409
+A12_6 = 1.8915178993145003
+A12_7 = -5.801203960010585
+A12_8 = 0.3111643669578199
+A12_9 = -0.1521609496625161
+A12_10 = 0.20136540080403034
+A12_11 = 0.04471061572777259
+C13 = 0.1
+A13_0 = 0.056167502283047954
+A13_6 = 0.25350021021662483
+A13_7 = -0.2462390374708025
+A13_8 = -0.12419142326381637
+A13_9 = 0.15329179827876568
+A13_10 = 0.00820105229563469
+A13_11 = 0.007567897660545699
+A13_12 = -0.008298
+C14 = 0.2
+A14_0 = 0.03183464816350214
+A14_5 = 0.028300909672366776
+A14_6 = 0.053541988307438566
+A14_7 = -0.05492374857139099
+A14_10 = -0.00010834732869724932
+A14_11 = 0.0003825710908356584
+A14_12 = -0.00034046500868740456
+A14_13 = 0.1413124436746325
+C15 = 0.7777777777777778
+A15_0 = -0.42889630158379194
+A15_5 = -4.697621415361164
+A15_6 = 7.683421196062599
+A15_7 = 4.06898981839711
+A15_8 = 0.3567271874552811
+A15_12 = -0.0013990241651590145
+A15_13 = 2.9475147891527724
+A15_14 = -9.15095847217987
+B0 = 0.054293734116568765
+B5 = 4.450312892752409
+B6 = 1.8915178993145003
+B7 = -5.801203960010585
+B8 = 0.3111643669578199
+B9 = -0.1521609496625161
+B10 = 0.20136540080403034
+B11 = 0.04471061572777259
+E5_0 = 0.01312004499419488
+E5_5 = -1.2251564463762044
+E5_6 = -0.4957589496572502
+E5_7 = 1.6643771824549864
+E5_8 = -0.35032884874997366
+E5_9 = 0.3341791187130175
+E5_10 = 0.08192320648511571
+E5_11 = -0.022355307863886294
+E3_0 = -0.18980075407240762
+E3_5 = 4.450312892752409
+E3_6 = 1.8915178993145003
+E3_7 = -5.801203960010585
+E3_8 = -0.4226823213237919
+E3_9 = -0.1521609496625161
+E3_10 = 0.20136540080403034
+E3_11 = 0.02265179219836082
+D0_0 = -8.428938276109013
+D0_5 = 0.5667149535193777
+D0_6 = -3.0689499459498917
+D0_7 = 2.38466765651207
+D0_8 = 2.117034582445028
+D0_9 = -0.871391583777973
+D0_10 = 2.2404374302607883
+D0_11 = 0.6315787787694688
+D0_12 = -0.08899033645133331
+D0_13 = 18.148505520854727
+D0_14 = -9.194632392478356
+D0_15 = -4.436036387594894
+D1_0 = 10.427508642579134
+D1_5 = 242.28349177525817
+D1_6 = 165.20045171727028
+D1_7 = -374.5467547226902
+D1_8 = -22.113666853125306
+D1_9 = 7.733432668472264
+D1_10 = -30.674084731089398
+D1_11 = -9.332130526430229
+D1_12 = 15.697238121770845
+D1_13 = -31.139403219565178
+D1_14 = -9.35292435884448
+D1_15 = 35.81684148639408
+D2_0 = 19.985053242002433
+D2_5 = -387.0373087493518
+D2_6 = -189.17813819516758
+D2_7 = 527.8081592054236
+D2_8 = -11.57390253995963
+D2_9 = 6.8812326946963
+D2_10 = -1.0006050966910838
+D2_11 = 0.7777137798053443
+D2_12 = -2.778205752353508
+D2_13 = -60.19669523126412
+D2_14 = 84.32040550667716
+D2_15 = 11.99229113618279
+D3_0 = -25.69393346270375
+D3_5 = -154.18974869023643
+D3_6 = -231.5293791760455
+D3_7 = 357.6391179106141
+D3_8 = 93.40532418362432
+D3_9 = -37.45832313645163
+D3_10 = 104.0996495089623
+D3_11 = 29.8402934266605
+D3_12 = -43.53345659001114
+D3_13 = 96.32455395918828
+D3_14 = -39.17726167561544
+D3_15 = -149.72683625798564
+#: rows of the stage array: k[0..15] the stages (k[12] = f(τ + h, y_new), FSAL; k[13..15] the extra
+#: stages of the dense output), k[16..22] its coefficients F0..F6
+K_F = 16
+K_ROWS = 23
 
 class AccurateSettings(NamedTuple):
     """Settings of the adaptive integrator: ``τ_end``, initial step ``h0``, ``max_step``,
@@ -199,52 +359,95 @@ def _step(
     tau: float, y: npt.NDArray[np.float64], h: float, k: npt.NDArray[np.float64], prm: npt.NDArray[np.float64],
     lawp: npt.NDArray[np.float64], seg: Segment, shape: int, row: int, ynew: npt.NDArray[np.float64],
 ) -> None:  # pragma: no cover
-    """One Dormand–Prince step; ``k[0]`` must hold f(τ, y) on entry; fills k[1..6], ynew (FSAL).  The
-    stages are held in locals and stored once at the end (stores between them would make the compiler
-    reload every operand)."""
+    """One DOP853 step; ``k[0]`` must hold f(τ, y) on entry; fills k[5..12] (the stages the error
+    estimate and the dense output use; k[12] = f(τ + h, ynew), FSAL) and ynew.  The stages are held in
+    locals and stored once at the end."""
     q = prm[P_Q]
-    g2 = g3 = g4 = g5 = g6 = 0.0
+
+    g1 = g2 = g3 = g4 = g5 = g6 = g7 = g8 = g9 = g10 = g11 = 0.0
     if q != 0.0:
         phase = prm[P_X30] + prm[P_ETA] * tau
         eh = prm[P_ETA] * h
         c0 = math.cos(phase)
         s0 = math.sin(phase)
+        g1 = q * _shifted_cos(c0, s0, phase, C1 * eh)
         g2 = q * _shifted_cos(c0, s0, phase, C2 * eh)
         g3 = q * _shifted_cos(c0, s0, phase, C3 * eh)
         g4 = q * _shifted_cos(c0, s0, phase, C4 * eh)
         g5 = q * _shifted_cos(c0, s0, phase, C5 * eh)
-        g6 = q * _shifted_cos(c0, s0, phase, eh)
+        g6 = q * _shifted_cos(c0, s0, phase, C6 * eh)
+        g7 = q * _shifted_cos(c0, s0, phase, C7 * eh)
+        g8 = q * _shifted_cos(c0, s0, phase, C8 * eh)
+        g9 = q * _shifted_cos(c0, s0, phase, C9 * eh)
+        g10 = q * _shifted_cos(c0, s0, phase, C10 * eh)
+        g11 = q * _shifted_cos(c0, s0, phase, eh)
     c = _rhs(prm)
     a0, a1, a2 = y[0], y[1], y[2]
-    k10, k11, k12 = k[0, 0], k[0, 1], k[0, 2]
-    k20, k21, k22 = _f(a0 + h * A21 * k10, a1 + h * A21 * k11, a2 + h * A21 * k12, g2, c, lawp, seg, shape, row)
-    k30, k31, k32 = _f(a0 + h * (A31 * k10 + A32 * k20),
-                       a1 + h * (A31 * k11 + A32 * k21),
-                       a2 + h * (A31 * k12 + A32 * k22),
-                       g3, c, lawp, seg, shape, row)
-    k40, k41, k42 = _f(a0 + h * (A41 * k10 + A42 * k20 + A43 * k30),
-                       a1 + h * (A41 * k11 + A42 * k21 + A43 * k31),
-                       a2 + h * (A41 * k12 + A42 * k22 + A43 * k32),
-                       g4, c, lawp, seg, shape, row)
-    k50, k51, k52 = _f(a0 + h * (A51 * k10 + A52 * k20 + A53 * k30 + A54 * k40),
-                       a1 + h * (A51 * k11 + A52 * k21 + A53 * k31 + A54 * k41),
-                       a2 + h * (A51 * k12 + A52 * k22 + A53 * k32 + A54 * k42),
-                       g5, c, lawp, seg, shape, row)
-    k60, k61, k62 = _f(a0 + h * (A61 * k10 + A62 * k20 + A63 * k30 + A64 * k40 + A65 * k50),
-                       a1 + h * (A61 * k11 + A62 * k21 + A63 * k31 + A64 * k41 + A65 * k51),
-                       a2 + h * (A61 * k12 + A62 * k22 + A63 * k32 + A64 * k42 + A65 * k52),
-                       g6, c, lawp, seg, shape, row)
-    n0 = a0 + h * (B1 * k10 + B3 * k30 + B4 * k40 + B5 * k50 + B6 * k60)
-    n1 = a1 + h * (B1 * k11 + B3 * k31 + B4 * k41 + B5 * k51 + B6 * k61)
-    n2 = a2 + h * (B1 * k12 + B3 * k32 + B4 * k42 + B5 * k52 + B6 * k62)
-    k70, k71, k72 = _f(n0, n1, n2, g6, c, lawp, seg, shape, row)
+    k0_0, k0_1, k0_2 = k[0, 0], k[0, 1], k[0, 2]
+    k1_0, k1_1, k1_2 = _f(a0 + h * (A1_0 * k0_0),
+        a1 + h * (A1_0 * k0_1),
+        a2 + h * (A1_0 * k0_2),
+        g1, c, lawp, seg, shape, row)
+    k2_0, k2_1, k2_2 = _f(a0 + h * (A2_0 * k0_0 + A2_1 * k1_0),
+        a1 + h * (A2_0 * k0_1 + A2_1 * k1_1),
+        a2 + h * (A2_0 * k0_2 + A2_1 * k1_2),
+        g2, c, lawp, seg, shape, row)
+    k3_0, k3_1, k3_2 = _f(a0 + h * (A3_0 * k0_0 + A3_2 * k2_0),
+        a1 + h * (A3_0 * k0_1 + A3_2 * k2_1),
+        a2 + h * (A3_0 * k0_2 + A3_2 * k2_2),
+        g3, c, lawp, seg, shape, row)
+    k4_0, k4_1, k4_2 = _f(a0 + h * (A4_0 * k0_0 + A4_2 * k2_0 + A4_3 * k3_0),
+        a1 + h * (A4_0 * k0_1 + A4_2 * k2_1 + A4_3 * k3_1),
+        a2 + h * (A4_0 * k0_2 + A4_2 * k2_2 + A4_3 * k3_2),
+        g4, c, lawp, seg, shape, row)
+    k5_0, k5_1, k5_2 = _f(a0 + h * (A5_0 * k0_0 + A5_3 * k3_0 + A5_4 * k4_0),
+        a1 + h * (A5_0 * k0_1 + A5_3 * k3_1 + A5_4 * k4_1),
+        a2 + h * (A5_0 * k0_2 + A5_3 * k3_2 + A5_4 * k4_2),
+        g5, c, lawp, seg, shape, row)
+    k6_0, k6_1, k6_2 = _f(a0 + h * (A6_0 * k0_0 + A6_3 * k3_0 + A6_4 * k4_0 + A6_5 * k5_0),
+        a1 + h * (A6_0 * k0_1 + A6_3 * k3_1 + A6_4 * k4_1 + A6_5 * k5_1),
+        a2 + h * (A6_0 * k0_2 + A6_3 * k3_2 + A6_4 * k4_2 + A6_5 * k5_2),
+        g6, c, lawp, seg, shape, row)
+    k7_0, k7_1, k7_2 = _f(a0 + h * (A7_0 * k0_0 + A7_3 * k3_0 + A7_4 * k4_0 + A7_5 * k5_0 + A7_6 * k6_0),
+        a1 + h * (A7_0 * k0_1 + A7_3 * k3_1 + A7_4 * k4_1 + A7_5 * k5_1 + A7_6 * k6_1),
+        a2 + h * (A7_0 * k0_2 + A7_3 * k3_2 + A7_4 * k4_2 + A7_5 * k5_2 + A7_6 * k6_2),
+        g7, c, lawp, seg, shape, row)
+    k8_0, k8_1, k8_2 = _f(a0 + h * (A8_0 * k0_0 + A8_3 * k3_0 + A8_4 * k4_0 + A8_5 * k5_0 + A8_6 * k6_0 + A8_7 * k7_0),
+        a1 + h * (A8_0 * k0_1 + A8_3 * k3_1 + A8_4 * k4_1 + A8_5 * k5_1 + A8_6 * k6_1 + A8_7 * k7_1),
+        a2 + h * (A8_0 * k0_2 + A8_3 * k3_2 + A8_4 * k4_2 + A8_5 * k5_2 + A8_6 * k6_2 + A8_7 * k7_2),
+        g8, c, lawp, seg, shape, row)
+    k9_0, k9_1, k9_2 = _f(a0 + h * (A9_0 * k0_0 + A9_3 * k3_0 + A9_4 * k4_0 + A9_5 * k5_0 + A9_6 * k6_0 +
+            A9_7 * k7_0 + A9_8 * k8_0),
+        a1 + h * (A9_0 * k0_1 + A9_3 * k3_1 + A9_4 * k4_1 + A9_5 * k5_1 + A9_6 * k6_1 + A9_7 * k7_1 + A9_8 * k8_1),
+        a2 + h * (A9_0 * k0_2 + A9_3 * k3_2 + A9_4 * k4_2 + A9_5 * k5_2 + A9_6 * k6_2 + A9_7 * k7_2 + A9_8 * k8_2),
+        g9, c, lawp, seg, shape, row)
+    k10_0, k10_1, k10_2 = _f(a0 + h * (A10_0 * k0_0 + A10_3 * k3_0 + A10_4 * k4_0 + A10_5 * k5_0 + A10_6 * k6_0 +
+            A10_7 * k7_0 + A10_8 * k8_0 + A10_9 * k9_0),
+        a1 + h * (A10_0 * k0_1 + A10_3 * k3_1 + A10_4 * k4_1 + A10_5 * k5_1 + A10_6 * k6_1 + A10_7 * k7_1 +
+                A10_8 * k8_1 + A10_9 * k9_1),
+        a2 + h * (A10_0 * k0_2 + A10_3 * k3_2 + A10_4 * k4_2 + A10_5 * k5_2 + A10_6 * k6_2 + A10_7 * k7_2 +
+                A10_8 * k8_2 + A10_9 * k9_2),
+        g10, c, lawp, seg, shape, row)
+    k11_0, k11_1, k11_2 = _f(a0 + h * (A11_0 * k0_0 + A11_3 * k3_0 + A11_4 * k4_0 + A11_5 * k5_0 + A11_6 * k6_0 +
+            A11_7 * k7_0 + A11_8 * k8_0 + A11_9 * k9_0 + A11_10 * k10_0),
+        a1 + h * (A11_0 * k0_1 + A11_3 * k3_1 + A11_4 * k4_1 + A11_5 * k5_1 + A11_6 * k6_1 + A11_7 * k7_1 +
+                A11_8 * k8_1 + A11_9 * k9_1 + A11_10 * k10_1),
+        a2 + h * (A11_0 * k0_2 + A11_3 * k3_2 + A11_4 * k4_2 + A11_5 * k5_2 + A11_6 * k6_2 + A11_7 * k7_2 +
+                A11_8 * k8_2 + A11_9 * k9_2 + A11_10 * k10_2),
+        g11, c, lawp, seg, shape, row)
+    n0 = a0 + h * (B0 * k0_0 + B5 * k5_0 + B6 * k6_0 + B7 * k7_0 + B8 * k8_0 + B9 * k9_0 + B10 * k10_0 + B11 * k11_0)
+    n1 = a1 + h * (B0 * k0_1 + B5 * k5_1 + B6 * k6_1 + B7 * k7_1 + B8 * k8_1 + B9 * k9_1 + B10 * k10_1 + B11 * k11_1)
+    n2 = a2 + h * (B0 * k0_2 + B5 * k5_2 + B6 * k6_2 + B7 * k7_2 + B8 * k8_2 + B9 * k9_2 + B10 * k10_2 + B11 * k11_2)
+    k12_0, k12_1, k12_2 = _f(n0, n1, n2, g11, c, lawp, seg, shape, row)
     ynew[0], ynew[1], ynew[2] = n0, n1, n2
-    k[1, 0], k[1, 1], k[1, 2] = k20, k21, k22
-    k[2, 0], k[2, 1], k[2, 2] = k30, k31, k32
-    k[3, 0], k[3, 1], k[3, 2] = k40, k41, k42
-    k[4, 0], k[4, 1], k[4, 2] = k50, k51, k52
-    k[5, 0], k[5, 1], k[5, 2] = k60, k61, k62
-    k[6, 0], k[6, 1], k[6, 2] = k70, k71, k72
+    k[5, 0], k[5, 1], k[5, 2] = k5_0, k5_1, k5_2
+    k[6, 0], k[6, 1], k[6, 2] = k6_0, k6_1, k6_2
+    k[7, 0], k[7, 1], k[7, 2] = k7_0, k7_1, k7_2
+    k[8, 0], k[8, 1], k[8, 2] = k8_0, k8_1, k8_2
+    k[9, 0], k[9, 1], k[9, 2] = k9_0, k9_1, k9_2
+    k[10, 0], k[10, 1], k[10, 2] = k10_0, k10_1, k10_2
+    k[11, 0], k[11, 1], k[11, 2] = k11_0, k11_1, k11_2
+    k[12, 0], k[12, 1], k[12, 2] = k12_0, k12_1, k12_2
 
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
@@ -252,46 +455,97 @@ def _err_norm(
     y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
     rtol: float, atol: float,
 ) -> float:  # pragma: no cover
-    """RMS of the embedded 4th-order error estimate, scaled by ``atol + rtol·max(|y|, |ynew|)``."""
-    err = 0.0
+    """DOP853's error norm (Hairer; scipy ``DOP853._estimate_error_norm``): the 5th- and 3rd-order
+    estimates ``e5``, ``e3`` scaled by ``atol + rtol·max(|y|, |ynew|)``,
+    ``h·|e5|² / sqrt(3 (|e5|² + 0.01 |e3|²))``."""
+    s5 = 0.0
+    s3 = 0.0
     for i in range(3):
         sc = atol + rtol * max(abs(y[i]), abs(ynew[i]))
-        e = h * (E1 * k[0, i] + E3 * k[2, i] + E4 * k[3, i] + E5 * k[4, i]
-                 + E6 * k[5, i] + E7 * k[6, i]) / sc
-        err += e * e
-    return math.sqrt(err / 3.0)
+        e = (E5_0 * k[0, i] + E5_5 * k[5, i] + E5_6 * k[6, i] + E5_7 * k[7, i] + E5_8 * k[8, i] + E5_9 * k[9, i] +
+                E5_10 * k[10, i] + E5_11 * k[11, i]) / sc
+        f = (E3_0 * k[0, i] + E3_5 * k[5, i] + E3_6 * k[6, i] + E3_7 * k[7, i] + E3_8 * k[8, i] + E3_9 * k[9, i] +
+                E3_10 * k[10, i] + E3_11 * k[11, i]) / sc
+        s5 += e * e
+        s3 += f * f
+    if s5 == 0.0 and s3 == 0.0:
+        return 0.0
+    return abs(h) * s5 / math.sqrt(3.0 * (s5 + 0.01 * s3))
+
+
+@numba.njit(cache=True, nogil=True, error_model="numpy")
+def _dense_prep(
+    tau: float, y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
+    prm: npt.NDArray[np.float64], lawp: npt.NDArray[np.float64], seg: Segment, shape: int, row: int,
+) -> None:  # pragma: no cover
+    """The 7th-order continuous extension of the accepted step ``[τ, τ + h]`` (scipy
+    ``DOP853._dense_output_impl``): the three extra stages k[13..15] and the coefficients
+    F0..F6 in k[16..22]; only for steps with an event or a save point."""
+    c = _rhs(prm)
+    g = _forcing(prm, tau + C13 * h)
+    k[13, 0], k[13, 1], k[13, 2] = _f(y[0] + h * (A13_0 * k[0, 0] + A13_6 * k[6, 0] + A13_7 * k[7, 0] +
+            A13_8 * k[8, 0] + A13_9 * k[9, 0] + A13_10 * k[10, 0] + A13_11 * k[11, 0] + A13_12 * k[12, 0]),
+        y[1] + h * (A13_0 * k[0, 1] + A13_6 * k[6, 1] + A13_7 * k[7, 1] + A13_8 * k[8, 1] + A13_9 * k[9, 1] +
+                A13_10 * k[10, 1] + A13_11 * k[11, 1] + A13_12 * k[12, 1]),
+        y[2] + h * (A13_0 * k[0, 2] + A13_6 * k[6, 2] + A13_7 * k[7, 2] + A13_8 * k[8, 2] + A13_9 * k[9, 2] +
+                A13_10 * k[10, 2] + A13_11 * k[11, 2] + A13_12 * k[12, 2]),
+        g, c, lawp, seg, shape, row)
+    g = _forcing(prm, tau + C14 * h)
+    k[14, 0], k[14, 1], k[14, 2] = _f(y[0] + h * (A14_0 * k[0, 0] + A14_5 * k[5, 0] + A14_6 * k[6, 0] +
+            A14_7 * k[7, 0] + A14_10 * k[10, 0] + A14_11 * k[11, 0] + A14_12 * k[12, 0] + A14_13 * k[13, 0]),
+        y[1] + h * (A14_0 * k[0, 1] + A14_5 * k[5, 1] + A14_6 * k[6, 1] + A14_7 * k[7, 1] + A14_10 * k[10, 1] +
+                A14_11 * k[11, 1] + A14_12 * k[12, 1] + A14_13 * k[13, 1]),
+        y[2] + h * (A14_0 * k[0, 2] + A14_5 * k[5, 2] + A14_6 * k[6, 2] + A14_7 * k[7, 2] + A14_10 * k[10, 2] +
+                A14_11 * k[11, 2] + A14_12 * k[12, 2] + A14_13 * k[13, 2]),
+        g, c, lawp, seg, shape, row)
+    g = _forcing(prm, tau + C15 * h)
+    k[15, 0], k[15, 1], k[15, 2] = _f(y[0] + h * (A15_0 * k[0, 0] + A15_5 * k[5, 0] + A15_6 * k[6, 0] +
+            A15_7 * k[7, 0] + A15_8 * k[8, 0] + A15_12 * k[12, 0] + A15_13 * k[13, 0] + A15_14 * k[14, 0]),
+        y[1] + h * (A15_0 * k[0, 1] + A15_5 * k[5, 1] + A15_6 * k[6, 1] + A15_7 * k[7, 1] + A15_8 * k[8, 1] +
+                A15_12 * k[12, 1] + A15_13 * k[13, 1] + A15_14 * k[14, 1]),
+        y[2] + h * (A15_0 * k[0, 2] + A15_5 * k[5, 2] + A15_6 * k[6, 2] + A15_7 * k[7, 2] + A15_8 * k[8, 2] +
+                A15_12 * k[12, 2] + A15_13 * k[13, 2] + A15_14 * k[14, 2]),
+        g, c, lawp, seg, shape, row)
+    for i in range(3):
+        dy = ynew[i] - y[i]
+        k[K_F, i] = dy
+        k[K_F + 1, i] = h * k[0, i] - dy
+        k[K_F + 2, i] = 2.0 * dy - h * (k[12, i] + k[0, i])
+        k[K_F + 3, i] = h * (D0_0 * k[0, i] + D0_5 * k[5, i] + D0_6 * k[6, i] + D0_7 * k[7, i] + D0_8 * k[8, i] +
+                D0_9 * k[9, i] + D0_10 * k[10, i] + D0_11 * k[11, i] + D0_12 * k[12, i] + D0_13 * k[13, i] +
+                D0_14 * k[14, i] + D0_15 * k[15, i])
+        k[K_F + 4, i] = h * (D1_0 * k[0, i] + D1_5 * k[5, i] + D1_6 * k[6, i] + D1_7 * k[7, i] + D1_8 * k[8, i] +
+                D1_9 * k[9, i] + D1_10 * k[10, i] + D1_11 * k[11, i] + D1_12 * k[12, i] + D1_13 * k[13, i] +
+                D1_14 * k[14, i] + D1_15 * k[15, i])
+        k[K_F + 5, i] = h * (D2_0 * k[0, i] + D2_5 * k[5, i] + D2_6 * k[6, i] + D2_7 * k[7, i] + D2_8 * k[8, i] +
+                D2_9 * k[9, i] + D2_10 * k[10, i] + D2_11 * k[11, i] + D2_12 * k[12, i] + D2_13 * k[13, i] +
+                D2_14 * k[14, i] + D2_15 * k[15, i])
+        k[K_F + 6, i] = h * (D3_0 * k[0, i] + D3_5 * k[5, i] + D3_6 * k[6, i] + D3_7 * k[7, i] + D3_8 * k[8, i] +
+                D3_9 * k[9, i] + D3_10 * k[10, i] + D3_11 * k[11, i] + D3_12 * k[12, i] + D3_13 * k[13, i] +
+                D3_14 * k[14, i] + D3_15 * k[15, i])
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
-def _dense(
-    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64],
-    h: float, theta: float, i: int,
-) -> float:  # pragma: no cover
-    """Component ``i`` of Hairer's 4th-order continuous extension at ``τ + θh``."""
-    ydiff = ynew[i] - y[i]
-    bspl = h * k[0, i] - ydiff
-    r4 = ydiff - h * k[6, i] - bspl
-    r5 = h * (
-        DD1 * k[0, i] + DD3 * k[2, i] + DD4 * k[3, i] + DD5 * k[4, i] + DD6 * k[5, i]
-        + DD7 * k[6, i]
-    )
+def _dense(y: npt.NDArray[np.float64], k: npt.NDArray[np.float64], theta: float, i: int) -> float:  # pragma: no cover
+    """Component ``i`` of DOP853's 7th-order continuous extension at ``τ + θh`` (after :func:`_dense_prep`)."""
+    x = theta
     t1 = 1.0 - theta
-    return y[i] + theta * (ydiff + t1 * (bspl + theta * (r4 + t1 * r5)))
+    f = k[K_F:, i]
+    return y[i] + x * (f[0] + t1 * (f[1] + x * (f[2] + t1 * (f[3] + x * (f[4] + t1 * (f[5] + x * f[6]))))))
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
 def _root_theta(
-    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64],
-    h: float, comp: int, target: float, sgn: float,
+    y: npt.NDArray[np.float64], k: npt.NDArray[np.float64], comp: int, target: float, sgn: float, hi0: float,
 ) -> float:  # pragma: no cover
-    """Smallest θ in (0, 1] with ``sgn·(target − y_comp(θ))`` reaching 0, by bisection."""
+    """Smallest θ in (0, hi0] with ``sgn·(target − y_comp(θ))`` reaching 0 (≤ 0 at hi0), by bisection."""
     lo = 0.0
-    hi = 1.0
+    hi = hi0
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         if mid <= lo or mid >= hi:
             break
-        g = sgn * (target - _dense(y, ynew, k, h, mid, comp))
+        g = sgn * (target - _dense(y, k, mid, comp))
         if g > 0.0:
             lo = mid
         else:
@@ -435,17 +689,50 @@ def _save_stick(
 @numba.njit(cache=True, nogil=True, inline="always")
 def _save_dense(
     traj: npt.NDArray[np.float64], isave: int, save_dt: float, tau: float, tau_e: float,
-    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
+    y: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
 ) -> int:  # pragma: no cover
     """Rows ``τ = isave·save_dt ≤ τ_e`` of ``traj`` from the dense output of the step ``[τ, τ + h]``
-    (slip); returns the next row index (the slip counterpart of :func:`_save_stick`)."""
+    (slip; :func:`_dense_prep` done); returns the next row index."""
     while isave < traj.shape[0] and isave * save_dt <= tau_e + SAVE_TOL * save_dt:
         tq = (isave * save_dt - tau) / h
         traj[isave, 0] = isave * save_dt
-        traj[isave, 1] = _dense(y, ynew, k, h, tq, 0)
-        traj[isave, 2] = _dense(y, ynew, k, h, tq, 1)
+        traj[isave, 1] = _dense(y, k, tq, 0)
+        traj[isave, 2] = _dense(y, k, tq, 1)
         isave += 1
     return isave
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
+def _graze_min(
+    y: npt.NDArray[np.float64], k: npt.NDArray[np.float64], comp: int, target: float, sgn: float,
+) -> tuple[float, float]:  # pragma: no cover
+    """(θ, g) at the minimum of ``g(θ) = sgn·(target − y_comp(θ))`` on [0, 1] (golden section on the
+    dense output; stops as soon as g ≤ 0)."""
+    a = 0.0
+    b = 1.0
+    r = 0.6180339887498949
+    c = b - r * (b - a)
+    d = a + r * (b - a)
+    gc = sgn * (target - _dense(y, k, c, comp))
+    gd = sgn * (target - _dense(y, k, d, comp))
+    for _ in range(50):
+        if gc <= 0.0 or gd <= 0.0 or b - a < 1e-9:
+            break
+        if gc < gd:
+            b = d
+            d = c
+            gd = gc
+            c = b - r * (b - a)
+            gc = sgn * (target - _dense(y, k, c, comp))
+        else:
+            a = c
+            c = d
+            gc = gd
+            d = a + r * (b - a)
+            gd = sgn * (target - _dense(y, k, d, comp))
+    if gc <= gd:
+        return c, gc
+    return d, gd
 
 
 #: Shortest step at the belt speed, and the time the mass is carried with the belt at least when no slip
@@ -469,25 +756,25 @@ F_MIN_SLIP, F_SLIP_START = range(2)
 
 @numba.njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _node_theta(
-    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
-    node: float, tol: float,
+    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64],
+    node: float, tol: float, b0: float, pb: float,
 ) -> float:  # pragma: no cover
     """θ in (0, 1] at which the dense output's path reaches ``node`` (``y[2] < node ≤ ynew[2]``), by
     the Illinois variant of regula falsi (superlinear; the path is monotone within a segment), to
     ``|path(θ) − node| ≤ tol``."""
     a = 0.0
-    b = 1.0
+    b = b0
     fa = y[2] - node
-    fb = ynew[2] - node
+    fb = pb - node
     if fb <= tol:
-        return 1.0
+        return b0
     side = 0
     c = b
     for _ in range(100):
         c = (a * fb - b * fa) / (fb - fa)
         if not a < c < b:
             c = 0.5 * (a + b)
-        fc = _dense(y, ynew, k, h, c, 2) - node
+        fc = _dense(y, k, c, 2) - node
         if abs(fc) <= tol or b - a <= 1e-15:
             break
         if fc > 0.0:
@@ -541,27 +828,59 @@ def _new_segment(
 
 
 @numba.njit(cache=True, nogil=True, inline="always")
+def _event_candidates(
+    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], seg: Segment, gamma0: float, node: float,
+) -> tuple[bool, bool, bool]:  # pragma: no cover
+    """Which events the accepted step ``[τ, τ + h]`` contains by the signs at its ends: the belt speed
+    reached, ``x2 = 0`` on the mass path, the next grid point of the process."""
+    belt = seg.s * (gamma0 - y[1]) > 0.0 and seg.s * (gamma0 - ynew[1]) <= 0.0
+    sz = seg.rate_x2  # sign(x2) on the mass path, else 0 (no event)
+    zero = sz != 0.0 and sz * ynew[1] < 0.0 and sz * y[1] > 0.0
+    return belt, zero, ynew[2] >= node
+
+
+@numba.njit(cache=True, nogil=True, inline="always")
 def _first_event(
-    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64], h: float,
-    seg: Segment, gamma0: float, node: float, node_tol: float,
+    y: npt.NDArray[np.float64], ynew: npt.NDArray[np.float64], k: npt.NDArray[np.float64],
+    seg: Segment, gamma0: float, node: float, node_tol: float, belt: bool, zero: bool, nd: bool,
+    gb: bool, gz: bool,
 ) -> tuple[int, float]:  # pragma: no cover
-    """The first event in the accepted step ``[τ, τ + h]`` and its θ: the belt speed reached, ``x2 = 0``
-    on the mass path, or the next grid point of the process (``EV_NONE``, 2.0 if none)."""
+    """The first event in the accepted step and its θ on the dense output (:func:`_dense_prep` done);
+    ``gb``/``gz``: the belt speed / x2 = 0 may be touched inside the step without a sign change at its
+    ends (an extremum of x2 in the step), found on the dense output.  A grid point passed before the
+    path's turning point (the first belt/zero event) but not at the step's end is found as well."""
     ev = EV_NONE
     th = 2.0
-    if seg.s * (gamma0 - y[1]) > 0.0 and seg.s * (gamma0 - ynew[1]) <= 0.0:
-        th = _root_theta(y, ynew, k, h, 1, gamma0, seg.s)
+    if belt:
+        th = _root_theta(y, k, 1, gamma0, seg.s, 1.0)
         ev = EV_BELT
-    sz = seg.rate_x2  # sign(x2) on the mass path, else 0 (no event)
-    if sz != 0.0 and sz * ynew[1] < 0.0 and sz * y[1] > 0.0:
-        t2 = _root_theta(y, ynew, k, h, 1, 0.0, -sz)  # g = sz·x2 > 0 before the crossing
+    elif gb:
+        tm, gm = _graze_min(y, k, 1, gamma0, seg.s)
+        if gm <= 0.0:
+            th = _root_theta(y, k, 1, gamma0, seg.s, tm)
+            ev = EV_BELT
+    sz = seg.rate_x2
+    if zero:
+        t2 = _root_theta(y, k, 1, 0.0, -sz, 1.0)  # g = sz·x2 > 0 before the crossing
         if t2 < th:
             th = t2
             ev = EV_ZERO_VELOCITY
-    if ynew[2] >= node:
-        t3 = _node_theta(y, ynew, k, h, node, node_tol)
+    elif gz:
+        tm, gm = _graze_min(y, k, 1, 0.0, -sz)
+        if gm <= 0.0:
+            t2 = _root_theta(y, k, 1, 0.0, -sz, tm)
+            if t2 < th:
+                th = t2
+                ev = EV_ZERO_VELOCITY
+    if nd:
+        t3 = _node_theta(y, ynew, k, node, node_tol, 1.0, ynew[2])
         if t3 < th:
             th = t3
+            ev = EV_NODE
+    elif ev != EV_NONE:
+        pe = _dense(y, k, th, 2)
+        if pe >= node:
+            th = _node_theta(y, ynew, k, node, node_tol, th, pe)
             ev = EV_NODE
     return ev, th
 
@@ -575,8 +894,8 @@ def _slip_until_event(
     """Integrate the slip segment ``seg`` from ``(τ, y)`` (``k[0] = f(τ, y)``) with adaptive steps
     until its first event or ``τ_end``; returns ``(event, τ, next step, next save row)``, ``y`` at the event.
 
-    The state at an event inside a step is recomputed by one step of exactly the located length;
-    the belt speed is then set exactly (``x2 = γ0``), as are ``x2 = 0`` and the grid point's path.
+    The state at an event inside a step is the 7th-order dense output at the located ``θ``; the belt
+    speed is then set exactly (``x2 = γ0``), as are ``x2 = 0`` and the grid point's path.
     """
     tau_end, _h0, max_step, rtol, atol, save_dt = settings
     prm = rows.prm[run.row]
@@ -600,30 +919,50 @@ def _slip_until_event(
                 continue
             at_belt = True
         err = 0.0 if at_belt else _err_norm(y, ynew, k, h, rtol, atol)
-        fac = 0.9 * max(err, 1e-10) ** -0.2  # the step-size controller's factor
+        fac = 0.9 * max(err, 1e-10) ** -0.125  # the controller's factor: err^(−1/8), 7 = the estimate's order
         if err > 1.0:
             h *= max(0.2, fac)
             continue
         h_next = min(h * min(5.0, max(0.2, fac)), max_step)
         if at_belt:
             return EV_AT_BELT, tau, max(h_next, 1e-6), isave
-        ev, th = _first_event(y, ynew, k, h, seg, gamma0, node, node_tol)
-        if ev == EV_NONE:
-            isave = _save_dense(traj, isave, save_dt, tau, tau + h, y, ynew, k, h)
+        belt, zero, nd = _event_candidates(y, ynew, seg, gamma0, node)
+        # touches without a sign change at the step's ends: x2 has an extremum in the step toward the
+        # belt speed (toward 0 on the mass path) and ends within a generous margin of it
+        margin = h * (abs(k[0, 1]) + abs(k[12, 1]))
+        ss = seg.s
+        gb = (not belt and ss * (gamma0 - y[1]) > 0.0 and ss * (gamma0 - ynew[1]) > 0.0
+              and ss * k[0, 1] > 0.0 and ss * k[12, 1] < 0.0
+              and min(ss * (gamma0 - y[1]), ss * (gamma0 - ynew[1])) <= margin)
+        sz = seg.rate_x2
+        gz = (sz != 0.0 and not zero and sz * y[1] > 0.0 and sz * ynew[1] > 0.0
+              and sz * k[0, 1] < 0.0 and sz * k[12, 1] > 0.0 and min(sz * y[1], sz * ynew[1]) <= margin)
+        save = isave < traj.shape[0] and isave * save_dt <= tau + h + SAVE_TOL * save_dt
+        ev, th = EV_NONE, 2.0
+        if belt or zero or nd or gb or gz:
+            _dense_prep(tau, y, ynew, k, h, prm, lawp, seg, shape, row)
+            ev, th = _first_event(y, ynew, k, seg, gamma0, node, node_tol, belt, zero, nd, gb, gz)
+        elif save:
+            _dense_prep(tau, y, ynew, k, h, prm, lawp, seg, shape, row)
+        if ev == EV_NONE:  # no event (a graze candidate may not touch): an ordinary step
+            if save:
+                isave = _save_dense(traj, isave, save_dt, tau, tau + h, y, k, h)
             tau += h
             for c in range(3):
                 y[c] = ynew[c]
-                k[0, c] = k[6, c]
+                k[0, c] = k[12, c]
             h = h_next
             if tau >= tau_end:
                 return EV_NONE, tau, h, isave
             continue
         hev = th * h
-        isave = _save_dense(traj, isave, save_dt, tau, tau + hev, y, ynew, k, h)
-        _step(tau, y, hev, k, prm, lawp, seg, shape, row, ynew)
+        isave = _save_dense(traj, isave, save_dt, tau, tau + hev, y, k, h)
+        # the state at the event from the 7th-order dense output (no recomputing step)
+        d0 = _dense(y, k, th, 0)
+        d1 = _dense(y, k, th, 1)
+        d2 = _dense(y, k, th, 2)
         tau += hev
-        for c in range(3):
-            y[c] = ynew[c]
+        y[0], y[1], y[2] = d0, d1, d2
         if ev == EV_NODE:
             y[2] = node
         elif ev == EV_BELT:
@@ -717,7 +1056,7 @@ def run_accurate(
     traj = out.traj[i]
     y = np.empty(3)
     ynew = np.empty(3)
-    k = np.empty((7, 3))
+    k = np.empty((K_ROWS, 3))
     cnt = np.zeros(5, dtype=np.int64)
     fl = np.array([np.inf, 0.0])
     y[0] = rows.x0[i, 0]

@@ -437,7 +437,7 @@ def simulate(
         stream keys (run ``r`` of set ``i`` draws from spawn key ``(*stream_keys[i], r)``).
     integration:
         :class:`~.options.IntegrationOptions`: ``euler`` (thesis; Euler–Maruyama for white noise),
-        ``milstein`` (white noise, strong order 1), ``accurate`` (adaptive RK45 with events;
+        ``milstein`` (white noise, strong order 1), ``accurate`` (adaptive DOP853 with events;
         deterministic/contact); τ_end and Δτ (``accurate``: initial step and sampling); its tolerances.
     output:
         :class:`~.options.OutputOptions`: keep every ``save_every``-th grid state (τ, x1, x2); capacity

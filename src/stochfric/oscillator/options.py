@@ -42,7 +42,7 @@ class Model(StrEnum):
 
 class Integrator(StrEnum):
     """Integration schemes: ``euler`` (thesis; Euler–Maruyama for white noise), ``milstein`` (white
-    noise, strong order 1), ``accurate`` (adaptive RK45 with event location; deterministic/contact)."""
+    noise, strong order 1), ``accurate`` (adaptive DOP853 with event location; deterministic/contact)."""
 
     EULER = "euler"
     MILSTEIN = "milstein"

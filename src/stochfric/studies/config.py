@@ -208,7 +208,7 @@ class _ForcedConfig(StudyConfig):
     #: +0.28 converged).  ``euler`` is their reproduction mode (recorded in the outputs).
     integrator: OdeIntegrator = Field(
         default=Integrator.ACCURATE,
-        description="deterministic and contact models: accurate (adaptive RK45 with events, default) | euler "
+        description="deterministic and contact models: accurate (adaptive DOP853 with events, default) | euler "
                     "(reproduction mode: the thesis's fixed Δτ)")
     damping_ratio: float | None = Field(default=None, ge=0, lt=1, description="damping ratio D")
 
