@@ -3,7 +3,7 @@
 Physical → dimensionless parameters (:mod:`.parameters`, eq. 4.6/4.7), the friction-law registry
 (:mod:`.friction_laws`, Table 4.1 and the pressure law 4.13), the thesis's cases (:mod:`.presets`) and
 one case built from any input (:mod:`.case`), the choices and option groups of a simulation
-(:mod:`.options`), ensembles of trajectories with the fixed-step kernels and the event-located DOPRI5
+(:mod:`.options`), ensembles of trajectories with the fixed-step kernels and the event-located DOP853
 integrator (:mod:`.integrate`), labelled results (:mod:`.result`) and closed-form references
 (:mod:`.reference`).  Importing compiles nothing:
 the numba kernels compile (or load from their cache) on first use.

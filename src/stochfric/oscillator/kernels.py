@@ -344,7 +344,7 @@ def milstein_step(
 def slip_drift(x1: float, x2: float, dd2: float, nn: float, mu: float, s: float) -> float:  # pragma: no cover
     """The unforced slip acceleration of (4.7)/(4.36), ``−x1 − 2D x2 + n μ s`` (``dd2 = 2D``,
     ``s = sign(γ0 − x2)``, μ = μ_k + μ̂); the caller adds ``q cos x3`` where the case is forced.
-    Every integrator (fixed step, DOPRI5) evaluates the slip equations through it."""
+    Every integrator (fixed step, DOP853) evaluates the slip equations through it."""
     return -x1 - dd2 * x2 + nn * mu * s
 
 
