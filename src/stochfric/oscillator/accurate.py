@@ -242,6 +242,18 @@ D3_12 = -43.53345659001114
 D3_13 = 96.32455395918828
 D3_14 = -39.17726167561544
 D3_15 = -149.72683625798564
+#: the extra stages 13–15 of the dense output: their nodes and rows of A (zeros where the tableau has none)
+C_EXTRA = np.array([C13, C14, C15])
+A_EXTRA = np.zeros((3, 15))
+A_EXTRA[0, [0, 6, 7, 8, 9, 10, 11, 12]] = [A13_0, A13_6, A13_7, A13_8, A13_9, A13_10, A13_11, A13_12]
+A_EXTRA[1, [0, 5, 6, 7, 10, 11, 12, 13]] = [A14_0, A14_5, A14_6, A14_7, A14_10, A14_11, A14_12, A14_13]
+A_EXTRA[2, [0, 5, 6, 7, 8, 12, 13, 14]] = [A15_0, A15_5, A15_6, A15_7, A15_8, A15_12, A15_13, A15_14]
+#: the dense output's coefficient rows D0..D3 over the 16 stages
+D_DENSE = np.zeros((4, 16))
+D_DENSE[0, [0, *range(5, 16)]] = [D0_0, D0_5, D0_6, D0_7, D0_8, D0_9, D0_10, D0_11, D0_12, D0_13, D0_14, D0_15]
+D_DENSE[1, [0, *range(5, 16)]] = [D1_0, D1_5, D1_6, D1_7, D1_8, D1_9, D1_10, D1_11, D1_12, D1_13, D1_14, D1_15]
+D_DENSE[2, [0, *range(5, 16)]] = [D2_0, D2_5, D2_6, D2_7, D2_8, D2_9, D2_10, D2_11, D2_12, D2_13, D2_14, D2_15]
+D_DENSE[3, [0, *range(5, 16)]] = [D3_0, D3_5, D3_6, D3_7, D3_8, D3_9, D3_10, D3_11, D3_12, D3_13, D3_14, D3_15]
 #: rows of the stage array: k[0..15] the stages (k[12] = f(τ + h, y_new), FSAL; k[13..15] the extra
 #: stages of the dense output), k[16..22] its coefficients F0..F6
 K_F = 16
@@ -482,48 +494,27 @@ def _dense_prep(
     ``DOP853._dense_output_impl``): the three extra stages k[13..15] and the coefficients
     F0..F6 in k[16..22]; only for steps with an event or a save point."""
     c = _rhs(prm)
-    g = _forcing(prm, tau + C13 * h)
-    k[13, 0], k[13, 1], k[13, 2] = _f(y[0] + h * (A13_0 * k[0, 0] + A13_6 * k[6, 0] + A13_7 * k[7, 0] +
-            A13_8 * k[8, 0] + A13_9 * k[9, 0] + A13_10 * k[10, 0] + A13_11 * k[11, 0] + A13_12 * k[12, 0]),
-        y[1] + h * (A13_0 * k[0, 1] + A13_6 * k[6, 1] + A13_7 * k[7, 1] + A13_8 * k[8, 1] + A13_9 * k[9, 1] +
-                A13_10 * k[10, 1] + A13_11 * k[11, 1] + A13_12 * k[12, 1]),
-        y[2] + h * (A13_0 * k[0, 2] + A13_6 * k[6, 2] + A13_7 * k[7, 2] + A13_8 * k[8, 2] + A13_9 * k[9, 2] +
-                A13_10 * k[10, 2] + A13_11 * k[11, 2] + A13_12 * k[12, 2]),
-        g, c, lawp, seg, shape, row)
-    g = _forcing(prm, tau + C14 * h)
-    k[14, 0], k[14, 1], k[14, 2] = _f(y[0] + h * (A14_0 * k[0, 0] + A14_5 * k[5, 0] + A14_6 * k[6, 0] +
-            A14_7 * k[7, 0] + A14_10 * k[10, 0] + A14_11 * k[11, 0] + A14_12 * k[12, 0] + A14_13 * k[13, 0]),
-        y[1] + h * (A14_0 * k[0, 1] + A14_5 * k[5, 1] + A14_6 * k[6, 1] + A14_7 * k[7, 1] + A14_10 * k[10, 1] +
-                A14_11 * k[11, 1] + A14_12 * k[12, 1] + A14_13 * k[13, 1]),
-        y[2] + h * (A14_0 * k[0, 2] + A14_5 * k[5, 2] + A14_6 * k[6, 2] + A14_7 * k[7, 2] + A14_10 * k[10, 2] +
-                A14_11 * k[11, 2] + A14_12 * k[12, 2] + A14_13 * k[13, 2]),
-        g, c, lawp, seg, shape, row)
-    g = _forcing(prm, tau + C15 * h)
-    k[15, 0], k[15, 1], k[15, 2] = _f(y[0] + h * (A15_0 * k[0, 0] + A15_5 * k[5, 0] + A15_6 * k[6, 0] +
-            A15_7 * k[7, 0] + A15_8 * k[8, 0] + A15_12 * k[12, 0] + A15_13 * k[13, 0] + A15_14 * k[14, 0]),
-        y[1] + h * (A15_0 * k[0, 1] + A15_5 * k[5, 1] + A15_6 * k[6, 1] + A15_7 * k[7, 1] + A15_8 * k[8, 1] +
-                A15_12 * k[12, 1] + A15_13 * k[13, 1] + A15_14 * k[14, 1]),
-        y[2] + h * (A15_0 * k[0, 2] + A15_5 * k[5, 2] + A15_6 * k[6, 2] + A15_7 * k[7, 2] + A15_8 * k[8, 2] +
-                A15_12 * k[12, 2] + A15_13 * k[13, 2] + A15_14 * k[14, 2]),
-        g, c, lawp, seg, shape, row)
+    for st in range(13, 16):  # the three extra stages, from the rows of A_EXTRA
+        a = A_EXTRA[st - 13]
+        z0 = a[0] * k[0, 0]
+        z1 = a[0] * k[0, 1]
+        z2 = a[0] * k[0, 2]
+        for j in range(5, st):  # rows 1-4 of k are not stored (their stages stay in registers)
+            z0 += a[j] * k[j, 0]
+            z1 += a[j] * k[j, 1]
+            z2 += a[j] * k[j, 2]
+        k[st, 0], k[st, 1], k[st, 2] = _f(y[0] + h * z0, y[1] + h * z1, y[2] + h * z2,
+                                          _forcing(prm, tau + C_EXTRA[st - 13] * h), c, lawp, seg, shape, row)
     for i in range(3):
         dy = ynew[i] - y[i]
         k[K_F, i] = dy
         k[K_F + 1, i] = h * k[0, i] - dy
         k[K_F + 2, i] = 2.0 * dy - h * (k[12, i] + k[0, i])
-        k[K_F + 3, i] = h * (D0_0 * k[0, i] + D0_5 * k[5, i] + D0_6 * k[6, i] + D0_7 * k[7, i] + D0_8 * k[8, i] +
-                D0_9 * k[9, i] + D0_10 * k[10, i] + D0_11 * k[11, i] + D0_12 * k[12, i] + D0_13 * k[13, i] +
-                D0_14 * k[14, i] + D0_15 * k[15, i])
-        k[K_F + 4, i] = h * (D1_0 * k[0, i] + D1_5 * k[5, i] + D1_6 * k[6, i] + D1_7 * k[7, i] + D1_8 * k[8, i] +
-                D1_9 * k[9, i] + D1_10 * k[10, i] + D1_11 * k[11, i] + D1_12 * k[12, i] + D1_13 * k[13, i] +
-                D1_14 * k[14, i] + D1_15 * k[15, i])
-        k[K_F + 5, i] = h * (D2_0 * k[0, i] + D2_5 * k[5, i] + D2_6 * k[6, i] + D2_7 * k[7, i] + D2_8 * k[8, i] +
-                D2_9 * k[9, i] + D2_10 * k[10, i] + D2_11 * k[11, i] + D2_12 * k[12, i] + D2_13 * k[13, i] +
-                D2_14 * k[14, i] + D2_15 * k[15, i])
-        k[K_F + 6, i] = h * (D3_0 * k[0, i] + D3_5 * k[5, i] + D3_6 * k[6, i] + D3_7 * k[7, i] + D3_8 * k[8, i] +
-                D3_9 * k[9, i] + D3_10 * k[10, i] + D3_11 * k[11, i] + D3_12 * k[12, i] + D3_13 * k[13, i] +
-                D3_14 * k[14, i] + D3_15 * k[15, i])
-
+        for r in range(4):  # F3..F6 = h Σ_j D[r, j] k_j
+            z = D_DENSE[r, 0] * k[0, i]
+            for j in range(5, 16):
+                z += D_DENSE[r, j] * k[j, i]
+            k[K_F + 3 + r, i] = h * z
 
 @numba.njit(cache=True, nogil=True, inline="always")
 def _dense(y: npt.NDArray[np.float64], k: npt.NDArray[np.float64], theta: float, i: int) -> float:  # pragma: no cover
@@ -1056,7 +1047,7 @@ def run_accurate(
     traj = out.traj[i]
     y = np.empty(3)
     ynew = np.empty(3)
-    k = np.empty((K_ROWS, 3))
+    k = np.zeros((K_ROWS, 3))
     cnt = np.zeros(5, dtype=np.int64)
     fl = np.array([np.inf, 0.0])
     y[0] = rows.x0[i, 0]
