@@ -37,6 +37,7 @@ from stochfric.studies.reproduce import plan
 
 #: Cells where Euler even at Δτ/8 keeps the spurious locked cycle of Δτ = 0.005 (issue 19: brake 4000 N,
 #: q = 5e-4, η = 1.2; accurate λ > 0, Euler λ < 0): the one opposite sign of the full plan (docs/studies.md).
+#: Refined further, Euler reaches accurate's sign there (``test_euler_refined_reaches_accurate_...``).
 EULER_NOT_CONVERGED = {("brake", 5e-4, 4000.0, 1.2)}
 
 
@@ -79,6 +80,31 @@ def test_sign_of_lambda_agrees_between_accurate_and_euler_dt_over_8_quick_plan()
 @pytest.mark.slow
 def test_sign_of_lambda_agrees_between_accurate_and_euler_dt_over_8_full_plan() -> None:
     _check_plan(quick=False)
+
+
+def _one_cell(preset: str, q: float, force: float, eta: float, **update: object) -> tuple[float, float, str]:
+    cfg = next(c for c in plan(False) if c.kind == "lyapunov" and c.preset == preset)
+    cfg = cfg.model_copy(update={"models": ("deterministic",), "normal_forces": (force,), "forcing_q": (q,),
+                                 "eta": (eta,), **update})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        s = lyapunov_study(cfg).to_json_dict()
+    return (float(np.ravel(s["lyapunov"]["deterministic"])[0] or math.nan),
+            float(np.ravel(s["lyapunov_se"]["deterministic"])[0] or math.nan),
+            str(np.ravel(s["status"]["deterministic"])[0]))
+
+
+@pytest.mark.parametrize("cell", sorted(EULER_NOT_CONVERGED))
+def test_euler_refined_reaches_accurate_where_euler_dt_over_8_is_still_locked(cell: tuple[Any, ...]) -> None:
+    """The exception above is Euler's, not the model's: Euler's λ walks to accurate's as Δτ shrinks
+    (brake 4000 N, q = 5e-4, η = 1.2, seed 2013: −0.85 at Δτ = 0.005, −0.25 at Δτ/8, −0.06 at Δτ/32,
+    +0.32 (diverging, lower bound) at Δτ/256, +0.29 ± 0.05 at Δτ/512 against accurate's +0.28 ± 0.05)."""
+    acc, acc_se, _ = _one_cell(*cell, integrator="accurate")
+    eighth, eighth_se, _ = _one_cell(*cell, integrator="euler", dt=0.005 / 8)
+    fine, fine_se, status = _one_cell(*cell, integrator="euler", dt=0.005 / 512)
+    assert acc - 2 * acc_se > 0 and eighth + 2 * eighth_se < 0  # the opposite sign the exception names
+    assert status == "ok" and fine - 2 * fine_se > 0  # Euler at Δτ/512: the same class as accurate …
+    assert abs(fine - acc) <= 2 * math.hypot(acc_se, fine_se)  # … and the same value within 2 combined SE
 
 
 def _exponents(cfg: LyapunovConfig, model: str, monkeypatch: pytest.MonkeyPatch, rtol: float
