@@ -26,7 +26,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated, Any, Literal, TypeVar
 
-from pydantic import AfterValidator, BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
 from ..oscillator.options import Integrator, Model, PathCoordinate, WhiteIntensity
 from ..oscillator.presets import PresetName
@@ -48,18 +48,19 @@ def _distinct(values: tuple[_T, ...], what: str, example: str = "") -> tuple[_T,
     return values
 
 
-def _one_of(*allowed: Integrator) -> Callable[[Integrator], Integrator]:
-    """A validator that accepts only the integrators ``allowed``."""
-    def check(value: Integrator) -> Integrator:
-        if value not in allowed:
+def _one_of(*allowed: Integrator) -> Callable[[Any], Any]:
+    """A validator, run before the enum's own, that accepts only the integrators ``allowed`` (so that a
+    wrong name is told the choices of this field, not every integrator of the package)."""
+    def check(value: Any) -> Any:
+        if not isinstance(value, str) or value not in {str(a) for a in allowed}:
             raise ValueError("Input should be " + " or ".join(f"'{a}'" for a in allowed))
         return value
     return check
 
 
 #: The scheme of the deterministic and contact models, and of the white-noise SDE.
-OdeIntegrator = Annotated[Integrator, AfterValidator(_one_of(Integrator.EULER, Integrator.ACCURATE))]
-SdeIntegrator = Annotated[Integrator, AfterValidator(_one_of(Integrator.EULER, Integrator.MILSTEIN))]
+OdeIntegrator = Annotated[Integrator, BeforeValidator(_one_of(Integrator.EULER, Integrator.ACCURATE))]
+SdeIntegrator = Annotated[Integrator, BeforeValidator(_one_of(Integrator.EULER, Integrator.MILSTEIN))]
 
 
 def parse_risk_levels(spec: Any) -> Any:

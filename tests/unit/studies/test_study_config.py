@@ -70,6 +70,12 @@ def test_defaults_and_grids(tmp_path: Path) -> None:
         ("[[study]]\nkind = 'forcing'\nphase_normal_force = 1000\n", "study[0].phase_normal_force: Extra inputs"),
         ("[[study]]\nkind = 'damping'\nintegrator = 'milstein'\n",
          "study[0].integrator: Input should be 'euler' or 'accurate'"),
+        # a name no integrator has: told this field's choices, not every integrator of the package
+        ("[[study]]\nkind = 'lyapunov'\nintegrator = 'rk4'\n",
+         "study[0].integrator: Input should be 'euler' or 'accurate'"),
+        ("[[study]]\nkind = 'forcing'\nsde_integrator = 'heun'\n",
+         "study[0].sde_integrator: Input should be 'euler' or 'milstein'"),
+        ("[[study]]\nkind = 'forcing'\nintegrator = 3\n", "study[0].integrator: Input should be 'euler' or 'accurate'"),
     ],
 )
 def test_errors_are_clear(tmp_path: Path, text: str, needle: str) -> None:
