@@ -183,8 +183,10 @@ class WhiteInput(NamedTuple):
     _F_PSS,  # path at the start of the current slip phase
     _F_MINSLIP,
     _F_DONE,  # 1.0 when the fast pass completed the current step
+    # the fast pass's new (x1, x2, s, path), copied into the fields above after the pass (see _fast_lane)
+    _F_NEW_X1, _F_NEW_X2, _F_NEW_S, _F_NEW_PATH,
     _NF,
-) = range(10)
+) = range(14)
 # per-lane counters
 (
     _I_M,  # slip→stick transitions M
@@ -451,7 +453,10 @@ def _fast_lane(
     """Lane ``jj``: both candidates, then a select (no branch) of the stick step without breakaway
     or the slip step that crosses no switching condition; anything else — and a slip at ``v_rel = 0``
     or one whose process segment is not cached (``hit`` false) — is left to the full step.  Returns
-    1 when the lane needs it."""
+    1 when the lane needs it.  The new (x1, x2, s, path) go to the ``_F_NEW_*`` fields (the old values
+    where the step is not taken), which the caller copies into the state fields after the pass: stored
+    into the field they were loaded from, the store of an old value is redundant, the compiler drops it
+    and the loop's stores become masked stores, which AMD's Zen 2/3 execute as microcode."""
     ln = _lane(cs, jj)
     a1 = fs[_F_X1, jj]
     a2 = fs[_F_X2, jj]
@@ -461,10 +466,12 @@ def _fast_lane(
     is_st = fs[_F_STK, jj] != 0.0
     good = ok_stick if is_st else ((sl.vr != 0.0) & (not sl.crosses) & hit)
     slip_ok = good & (not is_st)
-    fs[_F_X1, jj] = (x1s if is_st else sl.x1) if good else a1
-    fs[_F_X2, jj] = (ln.gamma0 if is_st else sl.x2) if good else a2
-    fs[_F_PATH, jj] = fs[_F_PATH, jj] + sl.dpath if slip_ok else fs[_F_PATH, jj]
-    fs[_F_S, jj] = sl.s if slip_ok else fs[_F_S, jj]
+    path = fs[_F_PATH, jj]
+    s_old = fs[_F_S, jj]
+    fs[_F_NEW_X1, jj] = (x1s if is_st else sl.x1) if good else a1
+    fs[_F_NEW_X2, jj] = (ln.gamma0 if is_st else sl.x2) if good else a2
+    fs[_F_NEW_PATH, jj] = path + sl.dpath if slip_ok else path
+    fs[_F_NEW_S, jj] = sl.s if slip_ok else s_old
     fs[_F_DONE, jj] = 1.0 if good else 0.0
     return 0 if good else 1
 
@@ -702,9 +709,12 @@ def _run_group(
     nsteps, dt, decimate = grid
     proc, n_proc, traj = rows.proc, rows.n_proc, out.traj
     nsave = traj.shape[1]
-    cs = np.zeros((_NC, ng))
-    fs = np.zeros((_NF, ng))
-    ist = np.zeros((_NI, ng), dtype=np.int64)
+    # LOCKSTEP columns also for a smaller last group: a row stride the compiler knows lets it prove that
+    # the fast pass's _F_NEW_* rows do not overlap the rows it reads, so the pass stays a SIMD loop
+    # (with a run-time stride: "unsafe dependent memory operations", a scalar loop)
+    cs = np.zeros((_NC, LOCKSTEP))
+    fs = np.zeros((_NF, LOCKSTEP))
+    ist = np.zeros((_NI, LOCKSTEP), dtype=np.int64)
     for jj in range(ng):
         _init_lane(cs, fs, jj, rows, g0 + jj, modes)
         ist[_I_ISAVE, jj] = 1
@@ -713,8 +723,8 @@ def _run_group(
             traj[g0 + jj, 0, 1] = fs[_F_X1, jj]
             traj[g0 + jj, 0, 2] = fs[_F_X2, jj]
     ext = _Extern(proc, n_proc, out.x_gh, out.t_gh)
-    stp = np.zeros((_NW, ng))
-    seg = np.zeros((_NS, ng))
+    stp = np.zeros((_NW, LOCKSTEP))
+    seg = np.zeros((_NS, LOCKSTEP))
     seg[_S_INDEX] = np.nan
     if modes.contact:
         for jj in range(ng):
@@ -765,6 +775,11 @@ def _run_group(
         else:
             for jj in range(ng):
                 nmiss += _fast_lane(jj, dt, cs, fs, stp, as_plain, 0.0, True)
+        for jj in range(ng):  # unconditional stores (see _fast_lane)
+            fs[_F_X1, jj] = fs[_F_NEW_X1, jj]
+            fs[_F_X2, jj] = fs[_F_NEW_X2, jj]
+            fs[_F_PATH, jj] = fs[_F_NEW_PATH, jj]
+            fs[_F_S, jj] = fs[_F_NEW_S, jj]
         save = nsave > 0 and (k + 1) % decimate == 0
         if nmiss == 0 and not save:
             continue  # no lane needs the full step (most steps): skip the per-lane loop
