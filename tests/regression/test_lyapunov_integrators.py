@@ -89,9 +89,8 @@ def _one_cell(preset: str, q: float, force: float, eta: float, **update: object)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         s = lyapunov_study(cfg).to_json_dict()
-    return (float(np.ravel(s["lyapunov"]["deterministic"])[0] or math.nan),
-            float(np.ravel(s["lyapunov_se"]["deterministic"])[0] or math.nan),
-            str(np.ravel(s["status"]["deterministic"])[0]))
+    lam, se = (np.ravel(np.array(s[key]["deterministic"], dtype=float))[0] for key in ("lyapunov", "lyapunov_se"))
+    return float(lam), float(se), str(np.ravel(s["status"]["deterministic"])[0])  # undefined: NaN (None → nan)
 
 
 @pytest.mark.parametrize("cell", sorted(EULER_NOT_CONVERGED))
