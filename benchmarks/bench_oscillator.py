@@ -61,6 +61,7 @@ import numpy.typing as npt
 import scipy
 
 from stochfric import vector_width
+from stochfric.friction_process.model import BandLimitedProcessModel
 from stochfric.oscillator import kernels as _k
 from stochfric.oscillator import reference
 from stochfric.oscillator.case import PhysicalInput, build_case
@@ -68,7 +69,6 @@ from stochfric.oscillator.friction_laws import FrictionLaw, law_III
 from stochfric.oscillator.integrate import pack_rows, simulate
 from stochfric.oscillator.options import ExecutionOptions, IntegrationOptions, NoiseOptions
 from stochfric.oscillator.parameters import OscillatorParameters
-from stochfric.process.model import BandLimitedProcessModel
 from stochfric.random import philox as _ph
 from stochfric.random import ziggurat as _zig
 
@@ -514,7 +514,7 @@ from stochfric.oscillator.parameters import PhysicalParameters
 try:
     from stochfric.oscillator.presets import brake
 except ImportError:
-    from stochfric.process.presets import brake
+    from stochfric.friction_process.presets import brake
 runs, tau, reps, dt = int(sys.argv[1]), float(sys.argv[2]), int(sys.argv[3]), float(sys.argv[4])
 pre = brake()
 p = PhysicalParameters(mass=pre.mass, stiffness=pre.stiffness, belt_speed=pre.belt_speed,

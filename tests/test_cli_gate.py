@@ -16,8 +16,8 @@ import typer
 from typer.testing import CliRunner
 
 from stochfric.cli import app as main_app
+from stochfric.friction_process.model import load_process_model
 from stochfric.process.credibility import NOT_CREDIBLE_EXIT
-from stochfric.process.model import load_process_model
 from stochfric.surface.io import default_surface_path, read_surface
 
 SMALL = ["--realizations", "12", "--long-surfaces", "3", "--length-factor", "3", "--seed", "3"]

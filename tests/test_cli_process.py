@@ -12,11 +12,11 @@ import typer
 from typer.testing import CliRunner
 
 from stochfric.cli.process import register
+from stochfric.friction_process.model import TabulatedProcessModel, load_process_model
 from stochfric.oscillator.integrate import simulate
 from stochfric.oscillator.options import IntegrationOptions
 from stochfric.oscillator.parameters import PhysicalParameters
 from stochfric.process.ensemble import default_window_shift_points
-from stochfric.process.model import TabulatedProcessModel, load_process_model
 
 #: Few realisations: the checks cannot pass on so few; the mechanics tests accept the result
 #: (the gate itself: tests/test_cli_gate.py).

@@ -123,9 +123,9 @@ def test_every_image_file_exists_and_decodes(report: Path) -> None:
 
 def test_friction_process_section(tmp_path: Path) -> None:
     """method §3–§4 on the shipped surface: tables, figures, and a model file simulate can use."""
+    from stochfric.friction_process.model import load_process_model
     from stochfric.oscillator.integrate import simulate
     from stochfric.oscillator.parameters import PhysicalParameters
-    from stochfric.process.model import load_process_model
 
     text = process_statistics_section(tmp_path, chapter3_analysis(tmp_path, quick=True))
     for needle in ("Ergodicity", "E[μ]", "σ_μ", "ℓ_corr", "a p<sup>b</sup> + c"):

@@ -46,7 +46,7 @@ API: dict[str, str] = {
     "AnalysisConfig": "stochfric.process.analysis_config",
     "analyse": "stochfric.process.statistics",
     "StatisticalContactAnalysis": "stochfric.process.analysis_result",
-    "load_process_model": "stochfric.process.model",
+    "load_process_model": "stochfric.friction_process.model",
     # the friction oscillator (§5)
     "get_preset": "stochfric.oscillator.presets",
     "build_case": "stochfric.oscillator.case",

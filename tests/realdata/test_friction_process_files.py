@@ -20,8 +20,8 @@ import typer
 from typer.testing import CliRunner
 
 from stochfric.cli import app as main_app
+from stochfric.friction_process.model import load_process_model
 from stochfric.process.credibility import NOT_CREDIBLE_EXIT
-from stochfric.process.model import load_process_model
 
 #: The shared files (tests/conftest.py SHARED_FILES); names → has undefined points.
 SHARED = {

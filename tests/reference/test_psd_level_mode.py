@@ -8,9 +8,9 @@ import math
 import numpy as np
 import pytest
 
+from stochfric.friction_process.presets import BRAKE_PSD_LEVEL_FIT, brake_process, process_with_level, psd_level_process
 from stochfric.oscillator.case import CaseError, case_setup
 from stochfric.oscillator.presets import get_preset
-from stochfric.process.presets import BRAKE_PSD_LEVEL_FIT, brake_process, process_with_level, psd_level_process
 
 
 def test_calibration_reproduces_the_thesis_check_and_scales_with_es() -> None:

@@ -11,7 +11,7 @@ import pytest
 import typer
 from typer.testing import CliRunner
 
-from stochfric.process.spectra import correlation_length_interval, integral_correlation_length
+from stochfric.friction_process.spectra import correlation_length_interval, integral_correlation_length
 
 
 def test_interval_covers_the_known_correlation_length() -> None:

@@ -14,8 +14,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from stochfric.process.model import BandLimitedProcessModel, ModelFunction
-from stochfric.process.spectral import generate_process, one_sided_psd
+from stochfric.friction_process.model import BandLimitedProcessModel, ModelFunction
+from stochfric.friction_process.spectral import generate_process, one_sided_psd
 from stochfric.random import spawn_generators
 
 N_REAL = 400

@@ -22,13 +22,14 @@ PACKAGE = Path(__file__).resolve().parents[2] / "src" / "stochfric"
 LAYERS: dict[str, int] = {
     "units": 0, "random": 0, "validation": 0, "io_utils": 0, "plotting": 0, "progress": 0, "__init__": 0, "data": 0,
     "vector_width": 0, "arrays": 0,
-    "surface": 1,
-    "contact": 2,
-    "process": 3,
-    "oscillator": 4,
-    "studies": 5,
-    "report": 6,
-    "cli": 7, "__main__": 7,
+    "friction_process": 1,
+    "surface": 2,
+    "contact": 3,
+    "process": 4,
+    "oscillator": 5,
+    "studies": 6,
+    "report": 7,
+    "cli": 8, "__main__": 8,
 }  # fmt: skip
 
 #: The one dynamic import whose name is a variable: ``stochfric.__getattr__`` imports the home module
@@ -44,7 +45,7 @@ class UncheckableImport(AssertionError):
 
 
 def _layer_of(module: str) -> int:
-    """Layer of a dotted module name inside stochfric (``stochfric.process.model`` → 3)."""
+    """Layer of a dotted module name inside stochfric (``stochfric.friction_process.model`` → 3)."""
     parts = module.split(".")
     assert parts[0] == "stochfric", module
     if len(parts) == 1:

@@ -3,8 +3,8 @@ field names, and the one-line error exit.
 
 Each choice is one :class:`~enum.StrEnum` (typer shows its values and refuses others).  The choices
 of a simulation and a study are the library's own (:mod:`stochfric.oscillator.options`,
-:class:`~stochfric.oscillator.presets.PresetName`, :class:`~stochfric.process.presets.ProcessLevel`,
-:class:`~stochfric.process.model_base.SigmaZetaRule`); the ones below belong to the command line's
+:class:`~stochfric.oscillator.presets.PresetName`, :class:`~stochfric.friction_process.presets.ProcessLevel`,
+:class:`~stochfric.friction_process.model_base.SigmaZetaRule`); the ones below belong to the command line's
 own steps.  Errors of the library name their inputs by field name in backquotes (```normal_force```);
 :func:`in_flags` shows the flag instead (one table, :data:`FLAGS`).
 """

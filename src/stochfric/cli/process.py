@@ -37,6 +37,8 @@ from stochfric.cli.surface import (
 )
 from stochfric.contact.asperity import ContactError, default_approach_m
 from stochfric.contact.materials import MaterialError, load_material, material_names
+from stochfric.friction_process.model_base import SigmaZetaRule
+from stochfric.friction_process.tabulated import PressureRule, VarianceRule
 from stochfric.io_utils import check_output_path
 from stochfric.process.checks import WINDOW_TILES
 from stochfric.process.credibility import NOT_CREDIBLE_EXIT
@@ -44,9 +46,7 @@ from stochfric.process.ensemble import default_window_shift_points
 from stochfric.process.figures import plot_surrogates, write_process_figures
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.memory import iaaft_cost_seconds
-from stochfric.process.model_base import SigmaZetaRule
 from stochfric.process.statistics import AnalysisConfig, StatisticalContactAnalysis, analyse
-from stochfric.process.tabulated import PressureRule, VarianceRule
 from stochfric.surface.grid import crop_surface, resample_surface
 from stochfric.surface.io import Surface, SurfaceError
 from stochfric.surface.quilting import quilt_applicable, quilt_heights

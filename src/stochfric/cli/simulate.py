@@ -18,6 +18,7 @@ from rich.console import Console
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
+from ..friction_process.presets import ProcessLevel
 from ..io_utils import check_output_path, require_memory, write_netcdf_atomic, write_text_atomic
 from ..oscillator import (
     Case,
@@ -40,7 +41,6 @@ from ..oscillator import (
     build_case,
     integrate,
 )
-from ..process.presets import ProcessLevel
 from ..report.figures import plot_phase_portrait
 from .options import GROUP, LawChoice, fail, in_flags, option_group, write_failed
 

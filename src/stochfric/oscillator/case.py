@@ -33,8 +33,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from ..process.model import FrictionProcessModel, SigmaZetaRule, load_process_model
-from ..process.presets import ProcessLevel
+from ..friction_process.model import FrictionProcessModel, SigmaZetaRule, load_process_model
+from ..friction_process.presets import ProcessLevel
 from .friction_laws import FrictionLaw, get_law, pressure_law
 from .options import Model, WhiteIncrement, WhiteIntensity, white_increment_of
 from .parameters import OscillatorParameters, ParameterError, PhysicalParameters
@@ -120,7 +120,7 @@ def resolve_process(
     """The friction-process model of a case and its source (``"preset:brake"``, ``"file:…"``).
 
     A ``process_file`` replaces the preset's model; ``process_level`` ``"psd_level"`` (reproduction
-    mode, presets only) replaces it by :class:`~stochfric.process.presets.PsdLevelProcessModel`;
+    mode, presets only) replaces it by :class:`~stochfric.friction_process.presets.PsdLevelProcessModel`;
     ``white_intensity`` (``None``: keep the model's own rule) sets the σ_ζ rule; ``process_length``
     [m] regenerates over another length.  ``(None, "")`` without preset and file.
     """
@@ -305,7 +305,7 @@ def case_setup(
     """Resolve a preset name and an optional friction-process model file; the σ_ζ rule
     ``white_intensity`` is applied to the process model (it overrides a file's own).
     ``process_level`` ``"psd_level"`` (reproduction mode, presets only) replaces the preset's
-    process by :class:`~stochfric.process.presets.PsdLevelProcessModel`."""
+    process by :class:`~stochfric.friction_process.presets.PsdLevelProcessModel`."""
     pre = _preset(preset)
     process, source = resolve_process(pre, process_file, white_intensity=white_intensity,
                                       process_level=process_level)

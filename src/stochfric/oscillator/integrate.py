@@ -39,9 +39,9 @@ from typing import Any, Protocol, TypeVar
 import numpy as np
 import numpy.typing as npt
 
+from ..friction_process.model import BandLimitedProcessModel, TabulatedProcessModel
+from ..friction_process.spectral import generate_process_batch
 from ..io_utils import package_versions
-from ..process.model import BandLimitedProcessModel, TabulatedProcessModel
-from ..process.spectral import generate_process_batch
 from ..random import SeedLike, as_seed_sequence, child_seed
 from ..random import philox as _ph
 from . import accurate as _acc
@@ -109,7 +109,7 @@ class _SpectralBatch:
     ``model.generate(p, rng)`` draws them, computed in compiled code
     (:func:`stochfric.random.philox.pcg64_uniform_for_children`); the realisations of all
     trajectories of one pressure are evaluated by one call of
-    :func:`stochfric.process.spectral.generate_process_batch`.  Bit for bit the numbers of
+    :func:`stochfric.friction_process.spectral.generate_process_batch`.  Bit for bit the numbers of
     ``model.generate`` per trajectory (tested), at ~1 µs instead of ~160 µs per trajectory.
     """
 

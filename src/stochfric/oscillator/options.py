@@ -85,7 +85,7 @@ class WhiteStream(StrEnum):
 
 class WhiteIntensity(StrEnum):
     """σ_ζ rules of the white-noise model (docs/oscillator.md): the process model's σ_ζ rule
-    (:class:`~stochfric.process.model_base.SigmaZetaRule`) or the printed-(4.31) reproduction mode."""
+    (:class:`~stochfric.friction_process.model_base.SigmaZetaRule`) or the printed-(4.31) reproduction mode."""
 
     #: σ_ζ = σ_μ(p), the thesis's rule, consistent Itô model
     SIGMA_MU = "sigma_mu"

@@ -3,7 +3,7 @@
 A :class:`Preset` is the case data of method §6: the oscillator (m, c, v0), the nominal contact
 area A that turns N into the pressure p = N/A (eq. 4.13), the stick-slip range of N, the thesis's
 study settings, the time grid, and the friction-process model of the surface pairing
-(:mod:`stochfric.process.presets`: Tables 3.3/3.6).  SI units: kg, N/m, m/s, m², N.
+(:mod:`stochfric.friction_process.presets`: Tables 3.3/3.6).  SI units: kg, N/m, m/s, m², N.
 """
 
 from __future__ import annotations
@@ -15,8 +15,8 @@ from enum import StrEnum
 from types import MappingProxyType
 from typing import Any
 
-from ..process.model import BandLimitedProcessModel, ModelFunction
-from ..process.presets import (
+from ..friction_process.model import BandLimitedProcessModel, ModelFunction
+from ..friction_process.presets import (
     BRAKE_PSD_LEVEL_FIT,
     SHEET_PSD_LEVEL_FIT,
     ProcessLevel,
@@ -170,7 +170,7 @@ class Preset:
 
     def process_with_level(self, level: ProcessLevel | str) -> Any:
         """The preset's process model under the process-level rule ``level``
-        (:func:`stochfric.process.presets.process_with_level`)."""
+        (:func:`stochfric.friction_process.presets.process_with_level`)."""
         return process_with_level(self.process, self.recorded_psd_level_fit, level)
 
 
@@ -179,7 +179,7 @@ def brake() -> Preset:
 
     m = 2 kg, c = 10⁶ N/m, v0 = 1 m/s → ω0 ≈ 707 rad/s, γ0 ≈ 1.414·10⁻³;
     A_pad = 0.016 m², stick-slip range N = 500 … 20000 N (p ≈ 0.031 … 1.25 MPa);
-    process: :func:`stochfric.process.presets.brake_process` (Table 3.3 fits).
+    process: :func:`stochfric.friction_process.presets.brake_process` (Table 3.3 fits).
     """
     return Preset(
         name="brake",
@@ -209,7 +209,7 @@ def sheet() -> Preset:
 
     m = 1 kg, c = 10⁵ N/m, v0 = 1 m/s → ω0 ≈ 316 rad/s, γ0 ≈ 3.16·10⁻³;
     A = 10⁻³ m², stick-slip range N = 100 … 2000 N (p = 0.1 … 2 MPa);
-    process: :func:`stochfric.process.presets.sheet_process` (Table 3.6 fits).
+    process: :func:`stochfric.friction_process.presets.sheet_process` (Table 3.6 fits).
     """
     return Preset(
         name="sheet",

@@ -14,11 +14,11 @@ import numpy as np
 
 from stochfric.arrays import FloatArray
 from stochfric.contact.asperity import ContactError
+from stochfric.friction_process.model_base import SigmaZetaRule
+from stochfric.friction_process.tabulated import PressureRule, VarianceRule
 from stochfric.process.checks import WINDOW_TILES
 from stochfric.process.ensemble import SurrogateOptions
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
-from stochfric.process.model_base import SigmaZetaRule
-from stochfric.process.tabulated import PressureRule, VarianceRule
 from stochfric.surface.quilting import quilt_applicable
 from stochfric.surface.statistics import curvature_gaussianity
 from stochfric.surface.summits import find_summits

@@ -22,14 +22,14 @@ import xarray as xr
 
 from stochfric.arrays import FloatArray
 from stochfric.contact.validity import ValidityWarning
+from stochfric.friction_process.model_base import SigmaZetaRule
+from stochfric.friction_process.tabulated import TabulatedProcessModel
 from stochfric.io_utils import package_versions, write_netcdf_atomic
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.checks import ErgodicityCheck, ProcessCheck, SurrogateCheck, WindowScatterCheck
 from stochfric.process.credibility import Credibility
 from stochfric.process.ensemble import ContactSamples, PathContact
 from stochfric.process.fit import ModelFit
-from stochfric.process.model_base import SigmaZetaRule
-from stochfric.process.tabulated import TabulatedProcessModel
 
 __all__ = ["EnsembleStatistics", "PathMoments", "PathSpectra", "StatisticalContactAnalysis", "SurrogateChecks"]
 

@@ -22,9 +22,9 @@ from scipy import stats as sps
 from stochfric.arrays import FloatArray
 from stochfric.contact.asperity import ContactError, asperity_sums, bowden_tabor_mu
 from stochfric.contact.materials import Material
+from stochfric.friction_process.model_base import FrictionProcessModel
+from stochfric.friction_process.spectral import one_sided_psd
 from stochfric.process.ensemble import ContactSamples, summit_statistics
-from stochfric.process.model_base import FrictionProcessModel
-from stochfric.process.spectral import one_sided_psd
 from stochfric.random import SeedLike, as_seed_sequence, spawn_generators
 from stochfric.surface.io import Surface
 from stochfric.surface.quilting import COPY_NCC_LIMIT, COPY_PIECE_LIMIT, copy_metrics, quilt_heights

@@ -19,7 +19,7 @@ from scipy.optimize import OptimizeWarning, curve_fit
 
 from stochfric.arrays import FloatArray
 from stochfric.contact.validity import NON_INTERACTION_AREA_FRACTION
-from stochfric.process.model_function import ModelFunction
+from stochfric.friction_process.model_function import ModelFunction
 
 __all__ = [
     "DEFAULT_MAX_AREA_FRACTION",
@@ -60,7 +60,7 @@ class ModelFit:
     rule: dict[str, Any] = field(default_factory=dict)
 
     def model_function(self) -> ModelFunction:
-        """The fit as a :class:`~stochfric.process.model_function.ModelFunction`."""
+        """The fit as a :class:`~stochfric.friction_process.model_function.ModelFunction`."""
         return ModelFunction(a=self.a, b=self.b, c=self.c)
 
     def __call__(self, p_pa: npt.ArrayLike) -> FloatArray:

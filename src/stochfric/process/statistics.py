@@ -20,6 +20,16 @@ from stochfric.arrays import FloatArray
 from stochfric.contact.asperity import ContactError, asperity_sums, bowden_tabor_mu
 from stochfric.contact.materials import Material
 from stochfric.contact.validity import contact_validity
+from stochfric.friction_process.spectra import (
+    autocorrelation,
+    correlation_length,
+    correlation_length_interval,
+    integral_correlation_length,
+    mean_psd,
+    psd_level,
+)
+from stochfric.friction_process.spectral import one_sided_psd
+from stochfric.friction_process.tabulated import TabulatedProcessModel
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import (
     EnsembleStatistics,
@@ -52,16 +62,6 @@ from stochfric.process.estimators import linear_fit, mean_and_std_errors, mu_pdf
 from stochfric.process.fit import ModelFit, fit_mask, fit_model_function
 from stochfric.process.memory import check_memory, sample_arrays_bytes, workers_that_fit
 from stochfric.process.parallel import default_workers
-from stochfric.process.spectra import (
-    autocorrelation,
-    correlation_length,
-    correlation_length_interval,
-    integral_correlation_length,
-    mean_psd,
-    psd_level,
-)
-from stochfric.process.spectral import one_sided_psd
-from stochfric.process.tabulated import TabulatedProcessModel
 from stochfric.progress import Progress, StagedProgress
 from stochfric.random import as_seed_sequence, seed_entropy, spawn_seed_sequences
 from stochfric.surface.io import Surface

@@ -7,7 +7,7 @@ name: ``eta``, ``forcing_q``) accept ``"START:STOP:NUM"`` (inclusive), ``"a,b,c"
 Forces are in newtons (docs/glossary.md: units).
 
 The choices are the library's enums (:mod:`stochfric.oscillator.options`,
-:class:`~stochfric.process.presets.ProcessLevel`).  Two modelling choices of method §5 are fields of
+:class:`~stochfric.friction_process.presets.ProcessLevel`).  Two modelling choices of method §5 are fields of
 every study: ``path_coordinate`` (where the contact-analysis process is read: ``"mass"`` = the
 thesis's global coordinate of the mass, ``"relative"`` = the relative path) and ``white_intensity``
 (the σ_ζ rule of the white-noise model: ``"sigma_mu"`` = the thesis's σ_ζ = σ_μ(p),
@@ -28,9 +28,9 @@ from typing import Annotated, Any, Literal, TypeVar
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
 
+from ..friction_process.presets import ProcessLevel
 from ..oscillator.options import Integrator, Model, PathCoordinate, WhiteIntensity
 from ..oscillator.presets import PresetName
-from ..process.presets import ProcessLevel
 from .grids import STICK_WINDOW, parse_grid
 
 Grid = Annotated[tuple[float, ...], BeforeValidator(parse_grid)]

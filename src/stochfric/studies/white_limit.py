@@ -5,7 +5,7 @@ tends, as ℓ → 0 at fixed S0, to white noise in the path of level S0/2 per un
 in time, to white noise of intensity (S0/2)/|v_rel| (docs/method.md §5.1a).  This study measures
 what the product's contact model (:func:`~stochfric.oscillator.integrate.simulate`,
 ``model="contact"``) does along that limit: for each ℓ it builds the preset's process rescaled in
-path (:func:`~stochfric.process.rescaled.rescaled_process`: ζ_ℓ(x) = √(ℓ0/ℓ) ζ0(x ℓ0/ℓ), S0 fixed,
+path (:func:`~stochfric.friction_process.rescaled.rescaled_process`: ζ_ℓ(x) = √(ℓ0/ℓ) ζ0(x ℓ0/ℓ), S0 fixed,
 σ² ∝ 1/ℓ), runs R runs at two time steps Δτ and Δτ/``refine`` with the same realisations (the same
 seed), and reports E[X_gh] and σ(X_gh) of the X_gh in the stick window with bootstrap standard
 errors over runs, the paired difference between the two time steps (convergence in Δτ), and the
@@ -32,11 +32,11 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from ..friction_process.rescaled import band_correlation_length, low_frequency_psd, rescaled_process
 from ..io_utils import package_versions, write_json_atomic, write_netcdf_atomic
 from ..oscillator.case import CaseError, case_setup
 from ..oscillator.integrate import simulate
 from ..oscillator.options import ExecutionOptions, Model, NoiseOptions, PathCoordinate
-from ..process.rescaled import band_correlation_length, low_frequency_psd, rescaled_process
 from ..random import BOOTSTRAP_KEY, child_generator, child_seed
 from .grids import window_mask
 from .summary import OPTIONAL, to_json

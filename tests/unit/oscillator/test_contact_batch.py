@@ -15,13 +15,13 @@ from typing import Any
 import numpy as np
 import pytest
 
+from stochfric.friction_process.model import ModelFunction, TabulatedProcessModel
+from stochfric.friction_process.spectral import generate_process, generate_process_batch
 from stochfric.oscillator.friction_laws import pressure_law
 from stochfric.oscillator.integrate import simulate, trajectory_seed
 from stochfric.oscillator.options import ExecutionOptions, IntegrationOptions, NoiseOptions, OutputOptions
 from stochfric.oscillator.parameters import PhysicalParameters
 from stochfric.oscillator.presets import brake, sheet
-from stochfric.process.model import ModelFunction, TabulatedProcessModel
-from stochfric.process.spectral import generate_process, generate_process_batch
 from stochfric.random import philox as P
 
 

@@ -10,6 +10,8 @@ import pytest
 
 from stochfric.contact.asperity import ContactError, asperity_sums, default_approach_m
 from stochfric.contact.materials import get_material
+from stochfric.friction_process.model_base import SigmaZetaRule
+from stochfric.friction_process.tabulated import PressureRule, VarianceRule
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.ensemble import (
     SurrogateOptions,
@@ -19,8 +21,6 @@ from stochfric.process.ensemble import (
     window_contact,
     window_starts,
 )
-from stochfric.process.model_base import SigmaZetaRule
-from stochfric.process.tabulated import PressureRule, VarianceRule
 from stochfric.surface.io import Surface, default_surface_path, read_surface, surface_from_array
 from stochfric.surface.preprocess import prepare
 from stochfric.surface.summits import find_summits, summits_of

@@ -15,7 +15,7 @@ import numpy as np
 import numpy.typing as npt
 
 from stochfric.arrays import FloatArray
-from stochfric.process.spectral import one_sided_psd
+from stochfric.friction_process.spectral import one_sided_psd
 
 __all__ = [
     "LOW_FREQUENCY_LIMIT",

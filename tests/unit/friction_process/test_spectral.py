@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from stochfric.process import spectral
-from stochfric.process.spectral import (
+from stochfric.friction_process import spectral
+from stochfric.friction_process.spectral import (
     band_limited_frequencies,
     generate_process,
     nyquist_frequency,

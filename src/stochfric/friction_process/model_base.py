@@ -3,9 +3,9 @@
 :class:`FrictionProcessModel` is what the oscillator needs from a model; :class:`ProcessModelBase`
 is the implementation the model kinds share (statistics over pressure from the fitted model
 functions, the band f_k = k/ℓ < 1/(2Δx) and its grid, realisations by the spectral representation
-2.48/4.32, JSON files).  The kinds: :class:`~stochfric.process.band_limited.BandLimitedProcessModel`
-and :class:`~stochfric.process.tabulated.TabulatedProcessModel`; any of them is loaded through
-:func:`stochfric.process.model.load_process_model`.
+2.48/4.32, JSON files).  The kinds: :class:`~stochfric.friction_process.band_limited.BandLimitedProcessModel`
+and :class:`~stochfric.friction_process.tabulated.TabulatedProcessModel`; any of them is loaded through
+:func:`stochfric.friction_process.model.load_process_model`.
 """
 
 from __future__ import annotations
@@ -20,13 +20,13 @@ from typing import Any, Protocol, Self
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from stochfric.io_utils import write_json_atomic
-from stochfric.process.model_function import ModelFunction, checked_pressure
-from stochfric.process.spectral import (
+from stochfric.friction_process.model_function import ModelFunction, checked_pressure
+from stochfric.friction_process.spectral import (
     band_limited_frequencies,
     generate_process,
     nyquist_frequency,
 )
+from stochfric.io_utils import write_json_atomic
 from stochfric.random import SeedLike
 from stochfric.validation import positive
 
@@ -238,7 +238,7 @@ class ProcessModelBase:
 
         Zero-mean part only; the friction coefficient is μ = E[μ](p) + μ̂_SD (eq. 3.22).
         Draws K = len(frequencies()) phases from ``rng`` (see
-        :func:`stochfric.process.spectral.generate_process`).
+        :func:`stochfric.friction_process.spectral.generate_process`).
         """
         f = self.frequencies()
         return generate_process(f, self.spectrum(f, p_pa), self.dx, self.length, rng)

@@ -2,7 +2,7 @@
 steel sheet (§3.3), and the ``psd_level`` reproduction mode of their process level.
 
 Values from method §4d (model-function fits, thesis Tables 3.3 and 3.6, p in Pa).  Each model is a
-:class:`~stochfric.process.model.BandLimitedProcessModel` whose spectrum has variance σ_μ(p)²
+:class:`~stochfric.friction_process.model.BandLimitedProcessModel` whose spectrum has variance σ_μ(p)²
 exactly (method §4d).  Recorded but **not used** by the default process: the thesis's fits of the
 mean PSD level E[S](p) (third rows of Tables 3.3/3.6), whose normalisation the thesis does not
 state (method §7.8); only the ``psd_level`` reproduction mode reads them.  The oscillator cases
@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from stochfric.process.model import BandLimitedProcessModel, ModelFunction, SigmaZetaRule
+from stochfric.friction_process.model import BandLimitedProcessModel, ModelFunction, SigmaZetaRule
 from stochfric.random import SeedLike
 
 __all__ = [

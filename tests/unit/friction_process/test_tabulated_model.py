@@ -9,11 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from stochfric.oscillator.integrate import simulate
-from stochfric.oscillator.options import IntegrationOptions
-from stochfric.oscillator.parameters import PhysicalParameters
-from stochfric.oscillator.presets import brake
-from stochfric.process.model import (
+from stochfric.friction_process.model import (
     BandLimitedProcessModel,
     ModelFunction,
     TabulatedProcessModel,
@@ -21,7 +17,11 @@ from stochfric.process.model import (
     low_frequency_level,
     process_model_from_dict,
 )
-from stochfric.process.spectral import one_sided_psd
+from stochfric.friction_process.spectral import one_sided_psd
+from stochfric.oscillator.integrate import simulate
+from stochfric.oscillator.options import IntegrationOptions
+from stochfric.oscillator.parameters import PhysicalParameters
+from stochfric.oscillator.presets import brake
 
 DX = 1e-3
 LENGTH = 0.04  # 40 points, band k/ℓ for k = 1..19

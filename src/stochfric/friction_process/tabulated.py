@@ -16,9 +16,9 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from stochfric.process.model_base import ProcessModelBase, SigmaZetaRule, low_frequency_level
-from stochfric.process.model_function import ModelFunction, checked_pressure
-from stochfric.process.spectra import psd_level
+from stochfric.friction_process.model_base import ProcessModelBase, SigmaZetaRule, low_frequency_level
+from stochfric.friction_process.model_function import ModelFunction, checked_pressure
+from stochfric.friction_process.spectra import psd_level
 from stochfric.validation import finite_tuple, positive
 
 __all__ = ["PressureRule", "TabulatedProcessModel", "VarianceRule"]
@@ -190,7 +190,7 @@ class TabulatedProcessModel(ProcessModelBase):
         eq. (4.17) has a one-sided PSD 2σ_ζ at every f (see
         :meth:`BandLimitedProcessModel.sigma_zeta`), matched to the process's level at f → 0:
         σ_ζ = S(0)/2.  With :attr:`window_length_m` known, S(0) is
-        :func:`stochfric.process.spectra.psd_level` of the model spectrum (bins f ≤ 1/(4ℓ),
+        :func:`stochfric.friction_process.spectra.psd_level` of the model spectrum (bins f ≤ 1/(4ℓ),
         window response divided out), which does not depend on the window shift of the
         analysis; without it, the mean over the lowest quarter of the band.
         """

@@ -14,15 +14,15 @@ import json
 import os
 from typing import Any
 
-from stochfric.process.band_limited import BandLimitedProcessModel, SpectrumShape
-from stochfric.process.model_base import (
+from stochfric.friction_process.band_limited import BandLimitedProcessModel, SpectrumShape
+from stochfric.friction_process.model_base import (
     LOW_FREQUENCY_FRACTION,
     FrictionProcessModel,
     SigmaZetaRule,
     low_frequency_level,
 )
-from stochfric.process.model_function import ModelFunction
-from stochfric.process.tabulated import PressureRule, TabulatedProcessModel, VarianceRule
+from stochfric.friction_process.model_function import ModelFunction
+from stochfric.friction_process.tabulated import PressureRule, TabulatedProcessModel, VarianceRule
 
 __all__ = [
     "LOW_FREQUENCY_FRACTION",

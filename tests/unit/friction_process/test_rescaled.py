@@ -7,15 +7,15 @@ import dataclasses
 import numpy as np
 import pytest
 
-from stochfric.oscillator.presets import brake, sheet
-from stochfric.process.band_limited import BandLimitedProcessModel
-from stochfric.process.rescaled import (
+from stochfric.friction_process.band_limited import BandLimitedProcessModel
+from stochfric.friction_process.rescaled import (
     FftBandLimitedProcessModel,
     band_correlation_length,
     low_frequency_psd,
     rescaled_process,
 )
-from stochfric.process.spectral import one_sided_psd
+from stochfric.friction_process.spectral import one_sided_psd
+from stochfric.oscillator.presets import brake, sheet
 
 P = 1.7e5  # Pa (brake 2720 N on 0.016 m²)
 

@@ -5,9 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from stochfric.process.checks import ergodicity_check
-from stochfric.process.estimators import linear_fit, mean_and_std_errors
-from stochfric.process.spectra import (
+from stochfric.friction_process.spectra import (
     autocorrelation,
     correlation_length,
     integral_correlation_length,
@@ -15,6 +13,8 @@ from stochfric.process.spectra import (
     normalise,
     psd_level,
 )
+from stochfric.process.checks import ergodicity_check
+from stochfric.process.estimators import linear_fit, mean_and_std_errors
 
 
 def test_normalise_and_acf_of_white_noise() -> None:

@@ -9,13 +9,13 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from stochfric.oscillator.options import IntegrationOptions
-from stochfric.process.model import (
+from stochfric.friction_process.model import (
     BandLimitedProcessModel,
     FrictionProcessModel,
     ModelFunction,
     process_model_from_dict,
 )
+from stochfric.oscillator.options import IntegrationOptions
 
 
 def _model(**changes: object) -> BandLimitedProcessModel:

@@ -1,7 +1,7 @@
 """The band-limited friction process with model-function statistics (method §4d/e).
 
 S(f; p) flat or falling linearly over the band, scaled so that its variance is σ_μ(p)² exactly;
-the thesis's presets (:mod:`stochfric.process.presets`) are of this kind.
+the thesis's presets (:mod:`stochfric.friction_process.presets`) are of this kind.
 """
 
 from __future__ import annotations
@@ -12,8 +12,8 @@ from typing import Any, Literal, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from stochfric.process.model_base import ProcessModelBase, SigmaZetaRule, low_frequency_level
-from stochfric.process.model_function import ModelFunction
+from stochfric.friction_process.model_base import ProcessModelBase, SigmaZetaRule, low_frequency_level
+from stochfric.friction_process.model_function import ModelFunction
 from stochfric.validation import finite
 
 __all__ = ["BandLimitedProcessModel", "SpectrumShape"]
