@@ -27,7 +27,7 @@ from stochfric.random import spawn_generators
 from stochfric.surface.io import Surface, read_surface
 from stochfric.surface.preprocess import prepare
 from stochfric.surface.quilting import quilt_parameters
-from stochfric.surface.synthesis import similar_surface
+from stochfric.surface.surrogates import similar_surface
 
 PLU = Path("/work/shared/data/topographies/plu-1.plu")
 

@@ -35,7 +35,7 @@ from stochfric.surface.io import Surface, read_surface
 from stochfric.surface.preprocess import Preparation, prepare
 from stochfric.surface.quilting import copy_metrics, quilt_heights, quilt_parameters
 from stochfric.surface.summits import find_summits
-from stochfric.surface.synthesis import similar_surface
+from stochfric.surface.surrogates import similar_surface
 
 DATA = Path("/work/shared/data/topographies")
 ROUGH = ("al3d-1.al3d", "mnt-1.mnt", "opd-1.opd", "plu-1.plu", "sur-2.sur", "x3p-2.x3p")

@@ -37,6 +37,10 @@ API: dict[str, str] = {
     "Preparation": "stochfric.surface.preprocess",
     "prepare_with_report": "stochfric.surface.preprocess",
     "summits_of": "stochfric.surface.summits",
+    "load_scan": "stochfric.surface.scans",
+    "pool_scans": "stochfric.surface.scans",
+    "SurrogateMethod": "stochfric.surface.surrogates",
+    "register_surrogate": "stochfric.surface.surrogates",
     # contact of one surface (§2)
     "load_material": "stochfric.contact.materials",
     "Material": "stochfric.contact.materials",
@@ -46,6 +50,8 @@ API: dict[str, str] = {
     "AnalysisConfig": "stochfric.process.analysis_config",
     "analyse": "stochfric.process.statistics",
     "StatisticalContactAnalysis": "stochfric.process.analysis_result",
+    "analyse_scans": "stochfric.process.pipeline",
+    "ScanAnalysis": "stochfric.process.pipeline",
     "load_process_model": "stochfric.friction_process.model",
     # the friction oscillator (§5)
     "get_preset": "stochfric.oscillator.presets",

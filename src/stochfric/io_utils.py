@@ -20,8 +20,10 @@ from collections.abc import Callable, Collection, Iterator
 from pathlib import Path
 from typing import Any, Literal
 
+from .errors import InputError
 
-class OutputPathError(ValueError):
+
+class OutputPathError(InputError):
     """An output path that cannot be written; the message names the option and what to change."""
 
 
@@ -121,7 +123,7 @@ def format_bytes(n: float) -> str:
     return f"{n:.3g} PB"  # pragma: no cover
 
 
-class MemoryRequestError(ValueError):
+class MemoryRequestError(InputError):
     """A request that would not fit into memory; the message gives the estimate and what to change."""
 
 

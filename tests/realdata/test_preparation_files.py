@@ -22,23 +22,23 @@ EXPECTED = {
 def test_rough_files_are_prepared_by_the_stated_rules(name: str, shared_file: Callable[[str], Path]) -> None:
     rep = preparation_report(read_surface(shared_file(name), fill_undefined=True))
     degree, outliers, quantised = EXPECTED[name]
-    assert rep["form"]["degree"] == degree
-    assert rep["outliers"]["count"] == outliers
-    assert len(rep["outliers"]["positions"]) == min(outliers, 100)
-    assert rep["quantisation"]["quantised"] is quantised
-    assert rep["rough_surface"]["rough"] is True
-    assert rep["undefined"]["fraction"] < 0.001
+    assert rep.form["degree"] == degree
+    assert rep.outliers["count"] == outliers
+    assert len(rep.outliers["positions"]) == min(outliers, 100)
+    assert rep.quantisation["quantised"] is quantised
+    assert rep.rough_surface["rough"] is True
+    assert rep.undefined["fraction"] < 0.001
 
 
 def test_default_surface_is_unchanged_by_the_new_steps(shared_file: Callable[[str], Path]) -> None:
     s = read_surface(shared_file("al3d-1.al3d"))
     rep = preparation_report(s)
-    assert rep["form"]["applied"] == "plane" and rep["outliers"]["count"] == 0
-    assert rep["form"]["sq_after_m"] == pytest.approx(0.2898e-6, rel=1e-3)
+    assert rep.form["applied"] == "plane" and rep.outliers["count"] == 0
+    assert rep.form["sq_after_m"] == pytest.approx(0.2898e-6, rel=1e-3)
 
 
 def test_plu1_ties_are_measured(shared_file: Callable[[str], Path]) -> None:
-    q = preparation_report(read_surface(shared_file("plu-1.plu")))["quantisation"]
+    q = preparation_report(read_surface(shared_file("plu-1.plu"))).quantisation
     assert q["tie_fraction_y"] == pytest.approx(0.453, abs=0.005)
     assert q["quantum_m"] == pytest.approx(3.91e-9, rel=0.01)
 

@@ -1,17 +1,23 @@
-"""Data flows one way: surface → contact → process → oscillator → studies → report → cli.
+"""Data flows one way: friction_process → surface → contact → process → oscillator → studies → report → cli.
 
 Every import of the package is read from the source with :mod:`ast` and a module may import its own
-layer or a lower one, never a higher one.  Read as imports: ``import`` and ``from … import`` statements
+layer or a lower one, never a higher one; and no module imports itself through others (the graph of the
+imports has no cycle).  Read as imports: ``import`` and ``from … import`` statements
 (module level and inside functions, absolute and relative; ``from X import name`` is an import of
 ``X.name`` where that is a module or package, and ``from stochfric import name`` / ``stochfric.name``
 of the home module of the API name), and ``importlib.import_module`` / ``__import__`` calls, whose
 names must be string literals.  The foundation modules (units, arrays, random, validation, io_utils,
-plotting, progress) sit below every layer and import none of them.
+plotting, progress, vector_width, errors) sit below every layer and import none of them.
+The friction-process models (``friction_process``: model files, spectral representation, the thesis's
+process presets) sit on floor 1, below the surface: the oscillator needs them, not the surface analysis,
+so that ``import stochfric.oscillator`` loads no module of ``surface``, ``contact`` or ``process``.
 """
 
 from __future__ import annotations
 
 import ast
+import subprocess
+import sys
 from pathlib import Path
 
 import pytest
@@ -21,7 +27,7 @@ PACKAGE = Path(__file__).resolve().parents[2] / "src" / "stochfric"
 #: Layer of each top-level module or sub-package of stochfric, lowest first.
 LAYERS: dict[str, int] = {
     "units": 0, "random": 0, "validation": 0, "io_utils": 0, "plotting": 0, "progress": 0, "__init__": 0, "data": 0,
-    "vector_width": 0, "arrays": 0,
+    "vector_width": 0, "arrays": 0, "errors": 0,
     "friction_process": 1,
     "surface": 2,
     "contact": 3,
@@ -45,7 +51,7 @@ class UncheckableImport(AssertionError):
 
 
 def _layer_of(module: str) -> int:
-    """Layer of a dotted module name inside stochfric (``stochfric.friction_process.model`` → 3)."""
+    """Layer of a dotted module name inside stochfric (``stochfric.contact.asperity`` → 3)."""
     parts = module.split(".")
     assert parts[0] == "stochfric", module
     if len(parts) == 1:
@@ -267,3 +273,141 @@ def test_the_checker_passes_imports_of_the_same_or_a_lower_layer(tmp_path: Path)
     ]
     assert not _upward(path, root)
     assert not _upward(root / "__init__.py", root)  # the facade's variable name is resolved where it is used
+
+
+# --- no circles: the graph of the package's imports --------------------------------------------------
+
+
+def _file_of(module: str, root: Path) -> Path | None:
+    """The file of a dotted stochfric module: ``a/b.py``, or ``a/b/__init__.py`` for a package."""
+    path = root.parent.joinpath(*module.split("."))
+    if path.with_suffix(".py").is_file():
+        return path.with_suffix(".py")
+    if (path / "__init__.py").is_file():
+        return path / "__init__.py"
+    return None
+
+
+def _graph(root: Path = PACKAGE) -> dict[Path, set[Path]]:
+    """Each file of the package → the files of the package it imports (:func:`_imports`: module level and
+    inside functions, relative and dynamic; an imported package is its ``__init__.py``; the parent
+    packages Python imports on the way are not edges).  Self-imports are left out."""
+    graph: dict[Path, set[Path]] = {}
+    for path in sorted(root.rglob("*.py")):
+        targets = {_file_of(module, root) for module, _ in _imports(path, root)}
+        graph[path] = {t for t in targets if t is not None and t != path}
+    return graph
+
+
+def _cycles(graph: dict[Path, set[Path]]) -> list[list[Path]]:
+    """One cycle (``[a, b, …, a]``) per strongly connected component of more than one file (Tarjan)."""
+    index: dict[Path, int] = {}
+    low: dict[Path, int] = {}
+    stack: list[Path] = []
+    on_stack: set[Path] = set()
+    components: list[set[Path]] = []
+
+    def connect(v: Path) -> None:  # recursion depth ≤ number of files (≈ 100)
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on_stack.add(v)
+        for w in sorted(graph.get(v, ())):
+            if w not in index:
+                connect(w)
+                low[v] = min(low[v], low[w])
+            elif w in on_stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            component = set()
+            while True:
+                w = stack.pop()
+                on_stack.discard(w)
+                component.add(w)
+                if w == v:
+                    break
+            if len(component) > 1:
+                components.append(component)
+
+    for v in sorted(graph):
+        if v not in index:
+            connect(v)
+    return [_cycle_in(graph, component) for component in components]
+
+
+def _cycle_in(graph: dict[Path, set[Path]], component: set[Path]) -> list[Path]:
+    """A shortest cycle through the component's first file (breadth-first inside the component)."""
+    start = min(component)
+    previous: dict[Path, Path] = {}
+    frontier = [start]
+    while frontier:
+        following = []
+        for v in frontier:
+            for w in sorted(graph[v] & component):
+                if w == start:
+                    path = [v]
+                    while path[-1] != start:
+                        path.append(previous[path[-1]])
+                    return [start, *reversed(path[:-1]), start]
+                if w not in previous:
+                    previous[w] = v
+                    following.append(w)
+        frontier = following
+    raise AssertionError(f"no cycle through {start} in its strongly connected component")
+
+
+def _closure(graph: dict[Path, set[Path]], starts: list[Path]) -> set[Path]:
+    """Every file reachable from ``starts`` through the import graph (``starts`` included)."""
+    seen = set(starts)
+    todo = list(starts)
+    while todo:
+        for w in graph[todo.pop()] - seen:
+            seen.add(w)
+            todo.append(w)
+    return seen
+
+
+def _shown(path: Path, root: Path = PACKAGE) -> str:
+    return str(path.relative_to(root.parent))
+
+
+def test_the_imports_have_no_cycle() -> None:
+    """No file imports itself through others: each floor is a tree of modules, a cycle is broken by moving
+    what both need (a local import inside a function is still an import here)."""
+    cycles = _cycles(_graph())
+    assert not cycles, "import cycles: " + "; ".join(" -> ".join(_shown(p) for p in c) for c in cycles)
+
+
+#: The floors below the oscillator that it must not need: a simulation reads no surface.
+NOT_BELOW_THE_OSCILLATOR = ("stochfric.surface", "stochfric.contact", "stochfric.process")
+
+
+def test_the_oscillator_imports_no_surface_contact_or_analysis_module_statically() -> None:
+    oscillator = sorted((PACKAGE / "oscillator").rglob("*.py"))
+    reached = {".".join(p.relative_to(PACKAGE.parent).with_suffix("").parts) for p in _closure(_graph(), oscillator)}
+    bad = sorted(m for m in reached for pkg in NOT_BELOW_THE_OSCILLATOR if m == pkg or m.startswith(pkg + "."))
+    assert not bad, f"stochfric/oscillator/ imports (transitively) {bad}"
+
+
+def test_importing_the_oscillator_loads_no_surface_contact_or_analysis_module() -> None:
+    code = ("import sys, stochfric.oscillator\n"
+            f"print('\\n'.join(m for m in sorted(sys.modules) for p in {NOT_BELOW_THE_OSCILLATOR!r} "
+            "if m == p or m.startswith(p + '.')))")
+    done = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=300, check=False)
+    assert done.returncode == 0, done.stderr
+    loaded = done.stdout.split()
+    assert not loaded, f"import stochfric.oscillator loads {loaded}"
+
+
+def test_the_cycle_finder_sees_a_cycle_through_local_and_package_imports(tmp_path: Path) -> None:
+    root = _tree(tmp_path)
+    a = _write(root, "studies/a.py", "from . import b\n")
+    b = _write(root, "studies/b.py", "def f():\n    from .c import g\n")
+    c = _write(root, "studies/c.py", "import stochfric.studies\n")
+    init = _write(root, "studies/__init__.py", "from .a import x\n")
+    _write(root, "studies/d.py", "from .a import x\nfrom . import d\n")  # imports a, and itself: no cycle
+    graph = _graph(root)
+    assert graph[c] == {init} and graph[root / "studies" / "d.py"] == {a}
+    assert _cycles(graph) == [[init, a, b, c, init]]  # from the first file of the component
+    c.write_text("from stochfric import units\n", encoding="utf-8")
+    assert _cycles(_graph(root)) == []
+    assert _closure(_graph(root), [a]) == {a, b, c, root / "units.py"}

@@ -2,24 +2,43 @@
 
 Commands live one per concern in this package (``simulate``, ``surface``/``contact``,
 ``friction-process``, ``study``/``run``/``reproduce``) and are added by their ``register``.
+Every error the package raises on purpose derives from :class:`~stochfric.errors.StochfricError`;
+one that a command lets through ends here, in :class:`StochfricGroup`, as one line ``error: …`` on
+stderr and exit status 2 (:func:`~stochfric.cli.options.fail`), never a traceback.
 """
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
+from typer.core import TyperGroup
 
 from .. import __version__
-from .options import write_failed
+from ..errors import StochfricError
+from .options import fail, write_failed
 from .process import register as register_process_commands
 from .simulate import register as register_simulate_command
 from .studies import register as register_study_commands
 from .surface import register as register_surface_commands
 
-__all__ = ["app", "main"]
+__all__ = ["StochfricGroup", "app", "main"]
+
+
+class StochfricGroup(TyperGroup):
+    """The command group of :data:`app`: a :class:`~stochfric.errors.StochfricError` from any command ends
+    with :func:`~stochfric.cli.options.fail` (``error: <message>`` on stderr, status 2), so that a command
+    need not list the package's errors it may meet."""
+
+    def invoke(self, ctx: Any) -> Any:  # a click Context (typer vendors click: no one import path for its type)
+        try:
+            return super().invoke(ctx)
+        except StochfricError as exc:
+            raise fail(str(exc)) from None
+
 
 app = typer.Typer(
+    cls=StochfricGroup,
     name="stochfric",
     help="Stochastic friction from measured surfaces, and what it does to friction-induced "
     "vibration (after N. Gaus, KIT 2013).",

@@ -1,8 +1,11 @@
 """What the commands share: the choices offered on the command line, the flags of the library's
 field names, and the one-line error exit.
 
-Each choice is one :class:`~enum.StrEnum` (typer shows its values and refuses others).  The choices
-of a simulation and a study are the library's own (:mod:`stochfric.oscillator.options`,
+Each fixed choice is one :class:`~enum.StrEnum` (typer shows its values and refuses others); a choice
+whose names live in a registry of the library that Python code may extend is a :class:`RegistryChoice`,
+which reads the registry when the command runs (the contact models of :mod:`stochfric.contact.models`:
+``--method``).  The choices of a simulation and a study are the library's own
+(:mod:`stochfric.oscillator.options`,
 :class:`~stochfric.oscillator.presets.PresetName`, :class:`~stochfric.friction_process.presets.ProcessLevel`,
 :class:`~stochfric.friction_process.model_base.SigmaZetaRule`); the ones below belong to the command line's
 own steps.  Errors of the library name their inputs by field name in backquotes (```normal_force```);
@@ -15,7 +18,8 @@ import functools
 import inspect
 import re
 import typing
-from collections.abc import Callable
+from collections.abc import Callable, Iterable, Mapping
+from dataclasses import dataclass, field
 from enum import StrEnum
 from typing import Any, TypeVar
 
@@ -29,18 +33,44 @@ F = TypeVar("F", bound=Callable[..., Any])
 GROUP: Any = None
 
 __all__ = [
-    "FLAGS", "GROUP", "AmplitudeChoice", "LawChoice", "MethodChoice", "SummitRuleChoice",
-    "SurrogateChoice", "fail", "flag_of", "in_flags", "option_group",
+    "FLAGS", "GROUP", "LawChoice", "RegistryChoice",
+    "fail", "flag_of", "in_flags", "option_group",
 ]  # fmt: skip
 
 # simulate (method §5): the named friction laws of oscillator.friction_laws
 LawChoice = StrEnum("LawChoice", [(name, name) for name in FRICTION_LAWS])  # type: ignore[misc]
-# surface, contact (method §1–§2)
-SummitRuleChoice = StrEnum("SummitRuleChoice", [("thesis", "thesis"), ("eight", "8-neighbour")])
-MethodChoice = StrEnum("MethodChoice", "asperity halfspace")
-# friction-process (method §3–§4)
-SurrogateChoice = StrEnum("SurrogateChoice", "auto phase iaaft quilt")  # process.analysis_config
-AmplitudeChoice = StrEnum("AmplitudeChoice", "tukey hann raw")  # surface.synthesis.amplitude_spectrum
+
+
+@dataclass(frozen=True)
+class RegistryChoice:
+    """A choice among the names of a library registry, read when the command runs (so a name
+    registered from Python after the import is offered), given to ``typer.Option(parser=...)``.
+
+    ``names`` returns the registry's current names; ``aliases`` maps accepted older spellings to
+    them.  Called with the value on the command line it returns the registered name (an alias
+    resolved); any other value is refused with the names (typer's usage error, exit status 2).
+    """
+
+    names: Callable[[], Iterable[str]]
+    aliases: Mapping[str, str] = field(default_factory=dict)
+
+    def choices(self) -> tuple[str, ...]:
+        """The names accepted now: the registered ones, then the aliases."""
+        return (*self.names(), *self.aliases)
+
+    def listing(self) -> str:
+        """``"a, b (aliases: old = a)"``: the names for a help or error text."""
+        text = ", ".join(self.names())
+        if self.aliases:
+            text += " (aliases: " + ", ".join(f"{old} = {new}" for old, new in self.aliases.items()) + ")"
+        return text
+
+    def __call__(self, value: Any) -> str:
+        name = self.aliases.get(str(value), str(value))
+        if name in tuple(self.names()):
+            return name
+        raise typer.BadParameter(f"{str(value)!r} is not one of {self.listing()}")
+
 
 #: The flag of each library field whose flag is not ``--`` + the field name with dashes (the case of
 #: ``simulate``: :mod:`stochfric.oscillator.case`; the study configs: :mod:`stochfric.studies.config`).

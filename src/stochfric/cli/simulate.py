@@ -60,7 +60,7 @@ def _simulation_memory_bytes(runs: int, tau_end: float, dt: float, *, save_every
     events = int(2 * tau_end) + 16
     per_run = 8 * (2 * events + 1 + 9) + (2 * 24 * (nsteps // save_every + 1) if trajectories else 0)
     batch = min(runs, 256 * (workers or os.cpu_count() or 1)) * 8 * (
-        (nsteps if model == "white" else 0) + (process_points if model == "contact" else 0))
+        (nsteps if model == Model.WHITE else 0) + (process_points if model == Model.CONTACT else 0))
     return float(runs) * per_run + batch
 
 
@@ -230,7 +230,7 @@ def simulate(
             workers=workers, show_progress=not json_out)
     except CaseError as exc:
         raise fail(in_flags(str(exc))) from None
-    except (ParameterError, ValueError) as exc:
+    except ValueError as exc:  # the package's input errors (stochfric.errors.InputError) are ValueErrors
         raise fail(str(exc)) from None
     summary = _write_outputs(result, case, model, out, plot)
     if json_out:
@@ -324,8 +324,8 @@ def _print_summary(result: Any, summary: dict[str, Any], out: Path | None, plot:
         line += f"  N={p.normal_force:.6g} N"
     if p.pressure_pa is not None:
         line += f"  p={p.pressure_pa / 1e6:.4g} MPa"
-    if result.model != "deterministic":
-        line += f"  σ_ζ={result.sigma_zeta[0]:.4g}" if result.model == "white" else ""
+    if result.model != Model.DETERMINISTIC:
+        line += f"  σ_ζ={result.sigma_zeta[0]:.4g}" if result.model == Model.WHITE else ""
         if result.settings.get("white_increment") == "thesis":
             line += f" (thesis mode: σ_ζ,eff={result.settings['sigma_zeta_effective'][0]:.4g})"
     con.print(line + f"  τ_end={result.tau_end:g} Δτ={result.dt:g} runs={result.runs} "

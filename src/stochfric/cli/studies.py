@@ -30,7 +30,7 @@ from ..studies import executors, run_config
 from ..studies.base import StudyResult
 from ..studies.damping import DampingSummary
 from ..studies.errors import StudyError
-from ..studies.executors import SweepInterrupted
+from ..studies.executors import ExecutorKind, SweepInterrupted
 from ..studies.kinds import study_kind
 from .options import GROUP, fail, flag_of, option_group
 from .white_limit import white_limit_command
@@ -57,7 +57,8 @@ ForcingQOpt = Annotated[str | None, typer.Option(
 EtaOpt = Annotated[str | None, typer.Option(
     "--eta", help="η = Ω/ω0 grid START:STOP:NUM or list (default: forcing 0:3:61, lyapunov 0.1:3:30).")]
 PhaseRunsOpt = Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for the phase diagrams (0: none).")]
-ExecOpt = Annotated[str, typer.Option("--executor", help="serial | processes (local) ; see --scheduler.")]
+ExecOpt = Annotated[str, typer.Option(
+    "--executor", help=f"{ExecutorKind.SERIAL} | {ExecutorKind.PROCESSES} (local) ; see --scheduler.")]
 WorkersOpt = Annotated[int | None, typer.Option("--workers", help="Processes (or threads for serial).")]
 SchedOpt = Annotated[str | None, typer.Option("--scheduler", help="Dask scheduler address (uses Dask).")]
 CkptOpt = Annotated[Path | None, typer.Option("--checkpoint", help="Checkpoint directory (resume).")]
@@ -205,7 +206,7 @@ def forced_options(q: ForcingQOpt = None, eta: EtaOpt = None, damping_ratio: For
 class ExecutionOptions:
     """Where a study command runs and what it writes (never changes the numbers)."""
 
-    executor: str
+    executor: str  # an ExecutorKind's name as given (make_executor refuses another with one line)
     workers: int | None
     scheduler: str | None
     checkpoint: Path | None
@@ -215,8 +216,8 @@ class ExecutionOptions:
 
 
 def execution_options(
-    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None, checkpoint: CkptOpt = None,
-    out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
+    executor: ExecOpt = ExecutorKind.SERIAL, workers: WorkersOpt = None, scheduler: SchedOpt = None,
+    checkpoint: CkptOpt = None, out: OutOpt = None, report: ReportOpt = None, json_out: JsonOpt = False,
 ) -> ExecutionOptions:
     """The execution and output options of a study command."""
     return ExecutionOptions(executor, workers, scheduler, checkpoint, out, report, json_out)
@@ -253,7 +254,7 @@ def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:
             files += [str(p) for p in res.save(out)]
         if report is not None:
             files.append(str(report_html.write_report([res], report)))
-    except (StudyError, ValueError, OSError) as exc:
+    except (ValueError, OSError) as exc:  # StudyError and the package's other input errors are ValueErrors
         raise fail(str(exc)) from None
     except KeyboardInterrupt as exc:
         raise _interrupted(exc, f"{cfg.kind} ({cfg.preset})", checkpoint) from None
@@ -391,7 +392,7 @@ def run_command(
         rf = run_config.load_run_file(file)
         ckpt = Path(rf.execution.checkpoint) if rf.execution.checkpoint else None
         _check_dirs(out=rf.output.dir, checkpoint=ckpt)
-        ex = executors.make_executor(rf.execution.executor if rf.execution.scheduler is None else "dask",
+        ex = executors.make_executor(rf.execution.executor if rf.execution.scheduler is None else ExecutorKind.DASK,
                            workers=rf.execution.workers, scheduler=rf.execution.scheduler)
         results = []
         out = Path(rf.output.dir)
@@ -405,7 +406,7 @@ def run_command(
                 prog.end(res.stats.computed, res.stats.loaded)
                 results.append(res)
         index = report_html.write_report(results, out) if rf.output.report else None
-    except (StudyError, ValueError, OSError) as exc:
+    except (ValueError, OSError) as exc:  # StudyError and the package's other input errors are ValueErrors
         raise fail(str(exc)) from None
     except KeyboardInterrupt as exc:
         raise _interrupted(exc, what, ckpt) from None
@@ -427,7 +428,7 @@ def reproduce_command(
                                                         "in the README).")] = False,
     out: Annotated[Path, typer.Option("--out", help="Output directory.")] = Path("reproduce"),
     seed: SeedOpt = 2013,
-    executor: ExecOpt = "serial", workers: WorkersOpt = None, scheduler: SchedOpt = None,
+    executor: ExecOpt = ExecutorKind.SERIAL, workers: WorkersOpt = None, scheduler: SchedOpt = None,
     json_out: JsonOpt = False,
 ) -> None:
     """All studies of thesis chapter 4 for brake and sheet, results and DIR/index.html."""
@@ -446,7 +447,7 @@ def reproduce_command(
             results, timings = reproduce_mod.reproduce(out, quick=quick, seed=seed, executor=ex, progress=on_tasks,
                                          study_done=lambda res: prog.end(res.stats.computed, res.stats.loaded),
                                          report=report_html.write_report)
-    except (StudyError, ValueError, OSError) as exc:
+    except (ValueError, OSError) as exc:  # StudyError and the package's other input errors are ValueErrors
         raise fail(str(exc)) from None
     except KeyboardInterrupt as exc:
         raise _interrupted(exc, what, out / "checkpoints") from None

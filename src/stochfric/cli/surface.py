@@ -17,29 +17,32 @@ import numpy as np
 import numpy.typing as npt
 import typer
 
-from stochfric.cli.options import GROUP, MethodChoice, SummitRuleChoice, fail, option_group, write_failed
-from stochfric.contact.asperity import ContactError, ContactResult, asperity_contact
+from stochfric.cli.options import GROUP, RegistryChoice, fail, option_group, write_failed
+from stochfric.contact.asperity import ContactError, ContactResult
 from stochfric.contact.figures import write_contact_figures
-from stochfric.contact.halfspace import halfspace_contact
-from stochfric.contact.materials import Material, MaterialError, load_material, material_names
+from stochfric.contact.materials import Material, load_material, material_names
+from stochfric.contact.models import ALIASES, CONTACT_MODELS, ContactProblem, contact_model, contact_model_names
 from stochfric.contact.validity import plasticity_validity, result_validity
+from stochfric.errors import StochfricError
 from stochfric.io_utils import OutputPathError, check_output_path
 from stochfric.surface.figures import write_surface_figures
-from stochfric.surface.io import Surface, SurfaceError, default_surface_path, read_surface
+from stochfric.surface.io import Surface, SurfaceError
 from stochfric.surface.prepare_checks import MAX_UNDEFINED_DEFAULT, OUTLIER_K, OUTLIER_SQ
-from stochfric.surface.preprocess import Preparation, prepare_with_report
+from stochfric.surface.preprocess import Preparation
+from stochfric.surface.scans import PreparedScan, load_scan
 from stochfric.surface.statistics import (
     height_moments,
     plasticity_index,
     plasticity_verdict,
     surface_statistics,
 )
-from stochfric.surface.summits import Summits, summits_of
+from stochfric.surface.summits import DEFAULT_SUMMIT_RULE, SUMMIT_RULES, Summits
 from stochfric.units import MICROMETRE
 
 __all__ = ["parse_approach_um", "parse_size_um", "register"]
 
-_INPUT_ERRORS = (SurfaceError, ContactError, MaterialError)
+#: ``--method``: the contact models of :mod:`stochfric.contact.models`, read when the command runs.
+CONTACT_METHOD = RegistryChoice(contact_model_names, ALIASES)
 
 
 # ------------------------------------------------------------------ parsing helpers
@@ -106,6 +109,10 @@ class SurfaceOptions:
     max_undefined: float = MAX_UNDEFINED_DEFAULT
     rough_check: bool = True
 
+    def physical_size_m(self) -> tuple[float, float] | None:
+        """``--size-um`` in metres (None when not given)."""
+        return parse_size_um(self.size_um) if self.size_um is not None else None
+
     def preparation(self) -> Preparation:
         """Every preparation step (docs/surface_contact.md, "Preparation"); SurfaceError for invalid
         values."""
@@ -115,9 +122,9 @@ class SurfaceOptions:
                            quantised=self.quantised, max_undefined=self.max_undefined,
                            rough_check=self.rough_check)  # fmt: skip
 
-    def load(self, file: Path | None) -> tuple[Surface, Surface, Surface, Summits, Summits, dict[str, Any]]:
-        """Read ``file`` (default: the shipped surface), prepare it and find the summits: raw, fine and
-        coarse surface, fine and coarse summits, and the record of the preparation."""
+    def load(self, file: Path | None) -> PreparedScan:
+        """Read ``file`` (default: the shipped surface), prepare it and find the summits
+        (:func:`stochfric.surface.scans.load_scan`)."""
         return _load_and_prepare(file, size_um=self.size_um, height_unit=self.height_unit,
                                  fill_undefined=self.fill_undefined, preparation=self.preparation(),
                                  summit_rule=self.summit_rule)
@@ -131,27 +138,10 @@ def _load_and_prepare(
     fill_undefined: bool,
     preparation: Preparation,
     summit_rule: str,
-) -> tuple[Surface, Surface, Surface, Summits, Summits, dict[str, Any]]:
-    path = default_surface_path() if file is None else file
+) -> PreparedScan:
     size = parse_size_um(size_um) if size_um is not None else None
-    raw = read_surface(path, physical_size_m=size, height_unit=height_unit, fill_undefined=fill_undefined)
-    fine, coarse, report = prepare_with_report(raw, preparation)
-    fine_summits = summits_of(fine, rule=summit_rule)
-    coarse_summits = fine_summits if coarse is fine else summits_of(coarse, rule=summit_rule)
-    record: dict[str, Any] = {
-        "file": str(path),
-        "default_surface": file is None,
-        "sha256": raw.info.get("sha256"),
-        "reader": raw.info.get("reader"),
-        **preparation.settings(),
-        "detrend": report["form"]["applied"],
-        "detrend_requested": preparation.detrend,
-        "fill_undefined": fill_undefined,
-        "n_undefined_filled": raw.n_undefined_filled,
-        "summit_rule": summit_rule,
-        "preparation_report": report,
-    }
-    return raw, fine, coarse, fine_summits, coarse_summits, record
+    return load_scan(file, preparation=preparation, summit_rule=summit_rule, physical_size_m=size,
+                     height_unit=height_unit, fill_undefined=fill_undefined)
 
 
 def _gamma(material: Material, stats: dict[str, Any]) -> float | None:
@@ -252,9 +242,12 @@ FillOpt = Annotated[
     bool,
     typer.Option("--fill-undefined", help="Fill undefined points by harmonic interpolation (else refuse)."),
 ]
+#: ``--summit-rule``: a rule of the registry (read when the command runs).
+SUMMIT_RULE_CHOICE = RegistryChoice(names=lambda: tuple(SUMMIT_RULES))
 RuleOpt = Annotated[
-    SummitRuleChoice,
-    typer.Option("--summit-rule", help="thesis (2 neighbours each side in x, y) or 8-neighbour."),
+    str,
+    typer.Option("--summit-rule", parser=SUMMIT_RULE_CHOICE, metavar="RULE",
+                 help="; ".join(f"{r.name} ({r.summary})" for r in SUMMIT_RULES.values()) + "."),
 ]
 SizeOpt = Annotated[
     str | None,
@@ -271,7 +264,7 @@ def surface_options(
     step: StepOpt = 1,
     detrend: DetrendOpt = "auto",
     fill_undefined: FillOpt = False,
-    summit_rule: RuleOpt = SummitRuleChoice.thesis,
+    summit_rule: RuleOpt = DEFAULT_SUMMIT_RULE,
     size_um: SizeOpt = None,
     height_unit: UnitOpt = None,
     cutoff_um: CutoffOpt = None,
@@ -284,7 +277,7 @@ def surface_options(
 ) -> SurfaceOptions:
     """The reading and preparation options of a command (:func:`~stochfric.cli.options.option_group`)."""
     return SurfaceOptions(median_radius=median_radius, step=step, detrend=detrend, fill_undefined=fill_undefined,
-                          summit_rule=SummitRuleChoice(summit_rule).value, size_um=size_um, height_unit=height_unit,
+                          summit_rule=summit_rule, size_um=size_um, height_unit=height_unit,
                           cutoff_um=cutoff_um, outliers=outliers, outlier_k=outlier_k, outlier_sq=outlier_sq,
                           quantised=quantised, max_undefined=max_undefined, rough_check=rough_check)
 
@@ -292,6 +285,12 @@ def surface_options(
 PlotOpt = Annotated[Path | None, typer.Option("--plot", help="Write PNG figures into this directory.")]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print the result as JSON.")]
 
+
+_METHOD_HELP = (
+    "Contact model: " + "; ".join(f"{m.name} ({m.summary})" for m in CONTACT_MODELS.values())
+    + ". The earlier names " + " and ".join(f"{old} (= {new})" for old, new in ALIASES.items())
+    + " are accepted; a model registered in stochfric.contact.models is offered too."
+)
 
 # ------------------------------------------------------------------ commands
 
@@ -320,7 +319,9 @@ def surface_command(
     try:
         prep = surf.preparation()
         mat = load_material(material) if material is not None else None
-        raw, fine, coarse, fs, cs, record = surf.load(file)
+        scan = surf.load(file)
+        raw, fine, coarse, fs, cs, record = (scan.raw, scan.fine, scan.coarse, scan.fine_summits,
+                                             scan.coarse_summits, scan.record())
         if cs.count == 0:
             raise SurfaceError(
                 f"no summit found on the {coarse.nb_grid_pts[0]}×{coarse.nb_grid_pts[1]} "
@@ -357,7 +358,7 @@ def surface_command(
                 )
             ]
             payload["figures"] = figures
-    except _INPUT_ERRORS as exc:
+    except StochfricError as exc:
         raise fail(str(exc)) from None
     except OSError as exc:  # disk full while writing a figure or the NetCDF: the previous files stay
         raise write_failed(exc) from None
@@ -369,12 +370,12 @@ def surface_command(
         f"prepared  detrend={record['detrend']} median_radius={prep.median_radius} step={prep.step} "
         f"summit_rule={surf.summit_rule} filled={raw.n_undefined_filled}"
     )
-    rep = record["preparation_report"]
-    sq_deg = ", ".join(f"{v / um:.4g}" for v in rep["form"]["sq_by_degree_m"])
+    rep = scan.report
+    sq_deg = ", ".join(f"{v / um:.4g}" for v in rep.form["sq_by_degree_m"])
     typer.echo(
-        f"form      {rep['form']['requested']} -> {rep['form']['applied']} (Sq after degree 1, 2, 3: {sq_deg} µm); "
-        f"outliers replaced {rep['outliers']['count']}; tied pairs {100 * rep['quantisation']['tie_fraction']:.3g} %; "
-        f"undefined {100 * rep['undefined']['fraction']:.3g} %"
+        f"form      {rep.form['requested']} -> {rep.form['applied']} (Sq after degree 1, 2, 3: {sq_deg} µm); "
+        f"outliers replaced {rep.outliers['count']}; tied pairs {100 * rep.quantisation['tie_fraction']:.3g} %; "
+        f"undefined {100 * rep.undefined['fraction']:.3g} %"
     )
     for label, st in (("fine", fine_stats), ("coarse", coarse_stats)):
         typer.echo(
@@ -414,17 +415,14 @@ def contact_command(
         ),
     ] = None,
     method: Annotated[
-        MethodChoice,
-        typer.Option(
-            "--method",
-            help="asperity (GW/Hertz sums) or halfspace (boundary elements at the GW loads: equal-load comparison).",
-        ),
-    ] = MethodChoice.asperity,
+        str,
+        typer.Option("--method", parser=CONTACT_METHOD, metavar="MODEL", help=_METHOD_HELP),
+    ] = "gw",
     bem_refine: Annotated[
         int,
         typer.Option(
             "--bem-refine",
-            help="halfspace: solve on a K-times finer grid (cubic-spline interpolation); 1 = the analysed grid.",
+            help="bem: solve on a K-times finer grid (cubic-spline interpolation); 1 = the analysed grid.",
             min=1,
             max=4,
         ),
@@ -433,7 +431,7 @@ def contact_command(
         int | None,
         typer.Option(
             "--bem-frame",
-            help="halfspace: border frame [points] lowered out of reach; default the summit rule's "
+            help="bem: border frame [points] lowered out of reach; default the summit rule's "
             "margin (2 thesis, 1 8-neighbour).",
             min=0,
         ),
@@ -454,20 +452,18 @@ def contact_command(
     try:
         mat = load_material(material)
         approach = parse_approach_um(approach_um) if approach_um is not None else None
-        _raw, fine, coarse, _fs, cs, record = surf.load(file)
+        scan = surf.load(file)
+        fine, coarse, cs, record = scan.fine, scan.coarse, scan.coarse_summits, scan.record()
         record["approach"] = ("given" if approach is not None
                               else "default: contacts rule (20 summits .. A_c/A_nom = 0.1)")
-        gw = asperity_contact(coarse, cs, mat, approach, preparation=record)
-        results: list[ContactResult] = [gw]
-        main = gw
-        if method is MethodChoice.halfspace:
-            main = halfspace_contact(
-                coarse, mat, normal_force_n=gw.normal_force_n, summits=cs, frame_points=bem_frame,
-                refine=bem_refine, preparation=dict(gw.preparation),
-            )  # fmt: skip
-            results = [gw, main]
+        model = contact_model(method).configured(frame_points=bem_frame, refine=bem_refine)
+        problem = ContactProblem(surface=coarse, summits=cs, material=mat, approach_m=approach, preparation=record)
+        main = model.contact(problem)
+        gw = problem.asperity  # the GW result: the validity checks, and the loads of a load-controlled model
+        equal_load = model.control == "load"
+        results: list[ContactResult] = [gw] if main is gw else [gw, main]
         payload = main.to_dict()
-        if main is not gw:
+        if equal_load:
             payload["asperity"] = _equal_load_record(gw, main)
         gamma = _summit_gamma(mat, cs)
         payload["plasticity_index"] = gamma
@@ -478,14 +474,14 @@ def contact_command(
             payload["output"] = str(main.to_netcdf(output))
         if plot is not None:
             payload["figures"] = [str(p) for p in write_contact_figures(plot, results)]
-    except _INPUT_ERRORS as exc:
+    except StochfricError as exc:
         raise fail(str(exc)) from None
     except OSError as exc:  # disk full while writing a figure or the NetCDF: the previous files stay
         raise write_failed(exc) from None
     if _echo_result(payload, as_json):
         return
     typer.echo(f"surface   {record['file']}  ({coarse.nb_grid_pts[0]}x{coarse.nb_grid_pts[1]})")
-    _print_contact(payload, mat, gw, main)
+    _print_contact(payload, mat, gw, main, equal_load=equal_load)
 
 
 def _equal_load_record(gw: ContactResult, main: ContactResult) -> dict[str, Any]:
@@ -505,14 +501,16 @@ def _equal_load_record(gw: ContactResult, main: ContactResult) -> dict[str, Any]
     }
 
 
-def _print_contact(payload: dict[str, Any], mat: Material, gw: ContactResult, main: ContactResult) -> None:
+def _print_contact(
+    payload: dict[str, Any], mat: Material, gw: ContactResult, main: ContactResult, *, equal_load: bool
+) -> None:
     """The contact result as text (lengths in µm, pressures in MPa): material, one row per approach,
-    the equal-load ratios of a half-space result, the files written."""
+    the equal-load ratios of a load-controlled model (the half-space), the files written."""
     um = MICROMETRE
     typer.echo(
         f"material  {mat.name}: E* = {mat.e_star_pa / 1e9:.4g} GPa, "
         f"τ_max = {mat.shear_strength_pa / 1e6:.4g} MPa; method {main.method}"
-        + (" (equal load: u is the half-space's approach at the GW force)" if main is not gw else "")
+        + (" (equal load: u is the half-space's approach at the GW force)" if equal_load else "")
     )
     typer.echo(f"{'u [µm]':>9} {'A_c [m²]':>11} {'A_c/A_nom':>10} {'p [MPa]':>10} {'contacts':>9} {'μ':>7}")
     for k in range(main.approach_m.size):
@@ -521,7 +519,7 @@ def _print_contact(payload: dict[str, Any], mat: Material, gw: ContactResult, ma
             f"{main.area_fraction[k]:10.4g} {main.pressure_pa[k] / 1e6:10.4g} "
             f"{int(main.n_contacts[k]):9d} {main.mu[k]:7.4g}"
         )
-    if main is not gw:
+    if equal_load:
         ratio = payload["asperity"]["area_ratio_halfspace_to_asperity"]
         typer.echo("equal load: A_c(BEM)/A_c(GW) = mu(BEM)/mu(GW): " + " ".join(_fmt(r, 1.0) for r in ratio))
         typer.echo("GW mu:  " + " ".join(f"{v:.4g}" for v in gw.mu))

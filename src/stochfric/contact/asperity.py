@@ -11,6 +11,7 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import dataclass, field
+from enum import StrEnum
 from pathlib import Path
 from typing import Any
 
@@ -20,12 +21,14 @@ import numpy.typing as npt
 from stochfric.arrays import FloatArray
 from stochfric.contact.materials import Material
 from stochfric.contact.validity import MIN_CONTACTS, NON_INTERACTION_AREA_FRACTION
+from stochfric.errors import InputError
 from stochfric.io_utils import write_netcdf_atomic
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import Summits
 
 __all__ = [
     "APPROACH_RULES",
+    "ApproachRule",
     "BowdenTabor",
     "ContactError",
     "ContactResult",
@@ -60,7 +63,7 @@ _VARIABLES: dict[str, tuple[str, str]] = {
 }
 
 
-class ContactError(ValueError):
+class ContactError(InputError):
     """Invalid contact-analysis input (no summit, bad approach range, missing solver)."""
 
 
@@ -76,14 +79,23 @@ def _as_approach(approach_m: npt.ArrayLike) -> FloatArray:
     return u
 
 
-APPROACH_RULES: tuple[str, ...] = ("contacts", "sigma")
+class ApproachRule(StrEnum):
+    """How :func:`default_approach_m` chooses the default approach range: ``contacts`` (from 20
+    touching summits to A_c/A_nom = max_area_fraction or half the summits touching) or ``sigma``
+    (σ_S/4 … 3σ_S, stretched to the highest summit; the thesis's proportion)."""
+
+    CONTACTS = "contacts"
+    SIGMA = "sigma"
+
+
+APPROACH_RULES: tuple[str, ...] = tuple(ApproachRule)
 
 
 def default_approach_m(
     summits: Summits,
     num: int = DEFAULT_APPROACH_NUM,
     *,
-    rule: str = "contacts",
+    rule: str = ApproachRule.CONTACTS,
     max_area_fraction: float = NON_INTERACTION_AREA_FRACTION,
 ) -> FloatArray:
     """Default approaches [m] from the surface's own summits, ``num`` points, by ``rule``.
@@ -118,7 +130,7 @@ def default_approach_m(
     if not sigma > 0.0:
         raise ContactError("all summits have the same height (σ_S = 0); give an explicit range")
     n = int(num)
-    if rule == "sigma":
+    if rule == ApproachRule.SIGMA:
         lo, hi = DEFAULT_APPROACH_SIGMA
         u_top = max(hi * sigma, float(z.max() - z.mean()))
         return np.linspace(u_top * lo / hi, u_top, n)

@@ -14,6 +14,7 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
+from stochfric.errors import InputError
 from stochfric.units import GIGAPASCAL, MEGAPASCAL
 
 __all__ = [
@@ -30,7 +31,7 @@ __all__ = [
 HARDNESS_FACTOR = 5.6
 
 
-class MaterialError(ValueError):
+class MaterialError(InputError):
     """A material parameter is invalid or a material name is unknown."""
 
 

@@ -12,6 +12,7 @@ from typing import Any, Literal, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from stochfric.errors import ProcessModelError
 from stochfric.friction_process.model_base import ProcessModelBase, SigmaZetaRule, low_frequency_level
 from stochfric.friction_process.model_function import ModelFunction
 from stochfric.validation import finite
@@ -72,12 +73,12 @@ class BandLimitedProcessModel(ProcessModelBase):
     def __post_init__(self) -> None:
         self._check_common()
         if self.spectrum_shape not in _SPECTRUM_SHAPES:
-            raise ValueError(
+            raise ProcessModelError(
                 f"spectrum_shape must be one of {_SPECTRUM_SHAPES}, got {self.spectrum_shape!r}"
             )
-        ratio = finite("falling_ratio", self.falling_ratio)
+        ratio = finite("falling_ratio", self.falling_ratio, error=ProcessModelError)
         if not 0.0 <= ratio <= 1.0:
-            raise ValueError(f"falling_ratio must lie in [0, 1], got {self.falling_ratio!r}")
+            raise ProcessModelError(f"falling_ratio must lie in [0, 1], got {self.falling_ratio!r}")
         object.__setattr__(self, "falling_ratio", ratio)
 
     def sigma_zeta(self, p_pa: float) -> float:

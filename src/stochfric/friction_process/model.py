@@ -14,6 +14,7 @@ import json
 import os
 from typing import Any
 
+from stochfric.errors import ProcessModelError
 from stochfric.friction_process.band_limited import BandLimitedProcessModel, SpectrumShape
 from stochfric.friction_process.model_base import (
     LOW_FREQUENCY_FRACTION,
@@ -47,29 +48,31 @@ def process_model_from_dict(data: dict[str, Any]) -> FrictionProcessModel:
         return BandLimitedProcessModel.from_dict(data)
     if kind == "tabulated":
         return TabulatedProcessModel.from_dict(data)
-    raise ValueError(f"unknown process model kind {kind!r}; known: ['band_limited', 'tabulated']")
+    raise ProcessModelError(f"unknown process model kind {kind!r}; known: ['band_limited', 'tabulated']")
 
 
 def load_process_model(path: str | os.PathLike[str]) -> FrictionProcessModel:
     """Load any friction-process model file written by a model's ``save`` (JSON).
 
-    Raises ``ValueError`` with the file name for a file that is not a process model.
+    Raises :class:`~stochfric.errors.ProcessModelError` (a ``ValueError``) with the file name for a file
+    that is not a process model.
     """
     try:
         with open(path, encoding="utf-8") as fh:
             data = json.load(fh)
     except (OSError, json.JSONDecodeError) as exc:
-        raise ValueError(f"cannot read friction-process model {path}: {exc}") from None
+        raise ProcessModelError(f"cannot read friction-process model {path}: {exc}") from None
     except UnicodeDecodeError as exc:
-        raise ValueError(f"{path} is not a friction-process model file (not UTF-8 text: byte {exc.start}, "
+        raise ProcessModelError(f"{path} is not a friction-process model file (not UTF-8 text: byte {exc.start}, "
                          f"{exc.reason})") from None
     if not isinstance(data, dict):
-        raise ValueError(f"{path} is not a friction-process model file")
+        raise ProcessModelError(f"{path} is not a friction-process model file")
     try:
         return process_model_from_dict(data)
     except KeyError as exc:
-        raise ValueError(f"{path} is not a valid friction-process model: the field {exc} is missing") from None
+        raise ProcessModelError(f"{path} is not a valid friction-process model: the field {exc} is missing") from None
     except (TypeError, AttributeError) as exc:
-        raise ValueError(f"{path} is not a valid friction-process model: a field has the wrong type ({exc})") from None
+        raise ProcessModelError(
+            f"{path} is not a valid friction-process model: a field has the wrong type ({exc})") from None
     except ValueError as exc:
-        raise ValueError(f"{path}: {exc}") from None
+        raise ProcessModelError(f"{path}: {exc}") from None

@@ -20,6 +20,7 @@ from typing import Any, Protocol, Self
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from stochfric.errors import ProcessModelError
 from stochfric.friction_process.model_function import ModelFunction, checked_pressure
 from stochfric.friction_process.spectral import (
     band_limited_frequencies,
@@ -142,21 +143,21 @@ class ProcessModelBase:
     def _check_common(self) -> None:
         """Validate and normalise name, model functions, Δx, ℓ and the σ_ζ rule."""
         if not isinstance(self.name, str) or not self.name:
-            raise ValueError(f"name must be a non-empty string, got {self.name!r}")
+            raise ProcessModelError(f"name must be a non-empty string, got {self.name!r}")
         for attr in ("mu_mean", "mu_std"):
             if not isinstance(getattr(self, attr), ModelFunction):
                 raise TypeError(f"{attr} must be a ModelFunction, got {getattr(self, attr)!r}")
-        dx = positive("dx", self.dx, "m")
-        length = positive("length", self.length, "m")
+        dx = positive("dx", self.dx, "m", error=ProcessModelError)
+        length = positive("length", self.length, "m", error=ProcessModelError)
         object.__setattr__(self, "dx", dx)
         object.__setattr__(self, "length", length)
         if length <= 2.0 * dx:
-            raise ValueError(
+            raise ProcessModelError(
                 f"length {length!r} m must exceed 2·dx = {2 * dx!r} m so that the band "
                 "k/length < 1/(2·dx) holds at least one frequency"
             )
         if self.sigma_zeta_rule not in tuple(SigmaZetaRule):
-            raise ValueError(
+            raise ProcessModelError(
                 f"sigma_zeta_rule must be one of {[str(r) for r in SigmaZetaRule]}, got {self.sigma_zeta_rule!r}"
             )
         object.__setattr__(self, "sigma_zeta_rule", SigmaZetaRule(self.sigma_zeta_rule))
@@ -166,10 +167,10 @@ class ProcessModelBase:
         """Refuse a dict of another kind or schema version (:meth:`from_dict`)."""
         found = data.get("kind", kind)
         if found != kind:
-            raise ValueError(f"not a {kind.replace('_', '-')} process model: kind = {found!r}")
+            raise ProcessModelError(f"not a {kind.replace('_', '-')} process model: kind = {found!r}")
         version = data.get("schema_version", SCHEMA_VERSION)
         if version != SCHEMA_VERSION:
-            raise ValueError(
+            raise ProcessModelError(
                 f"unsupported schema_version {version!r} (this version reads {SCHEMA_VERSION}); "
                 "rerun `stochfric friction-process` to write the model anew"
             )

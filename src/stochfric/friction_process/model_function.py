@@ -12,6 +12,7 @@ from typing import Any, overload
 import numpy as np
 from numpy.typing import NDArray
 
+from stochfric.errors import ProcessModelError
 from stochfric.validation import finite
 
 __all__ = ["ModelFunction", "checked_pressure"]
@@ -40,7 +41,8 @@ class ModelFunction:
 
     def __post_init__(self) -> None:
         for name in ("a", "b", "c"):
-            object.__setattr__(self, name, finite(f"ModelFunction.{name}", getattr(self, name)))
+            value = finite(f"ModelFunction.{name}", getattr(self, name), error=ProcessModelError)
+            object.__setattr__(self, name, value)
 
     @overload
     def __call__(self, p_pa: float) -> float: ...

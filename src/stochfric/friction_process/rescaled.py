@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from stochfric.errors import ProcessModelError
 from stochfric.friction_process.band_limited import BandLimitedProcessModel
 from stochfric.friction_process.model_function import ModelFunction
 from stochfric.random import SeedLike, as_generator
@@ -47,7 +48,8 @@ class FftBandLimitedProcessModel(BandLimitedProcessModel):
     def __post_init__(self) -> None:
         super().__post_init__()
         if not self.grid_is_periodic:
-            raise ValueError(f"an FFT process needs length = n·dx; got length {self.length!r} m, dx {self.dx!r} m")
+            raise ProcessModelError(
+                f"an FFT process needs length = n·dx; got length {self.length!r} m, dx {self.dx!r} m")
 
     def generate(self, p_pa: float, rng: np.random.Generator | SeedLike) -> NDArray[np.float64]:
         """One realisation of μ̂ on :meth:`grid` (eq. 2.48/4.32) by an inverse real FFT."""
@@ -102,11 +104,11 @@ def rescaled_process(
     ell = float(correlation_length_m)
     lmin = float(min_length_m)
     if not (math.isfinite(ell) and ell > 0.0):
-        raise ValueError(f"correlation length must be a positive number [m], got {correlation_length_m!r}")
+        raise ProcessModelError(f"correlation length must be a positive number [m], got {correlation_length_m!r}")
     if not (math.isfinite(lmin) and lmin > 0.0):
-        raise ValueError(f"process length must be a positive number [m], got {min_length_m!r}")
+        raise ProcessModelError(f"process length must be a positive number [m], got {min_length_m!r}")
     if not (math.isfinite(level_factor) and level_factor > 0.0):
-        raise ValueError(f"level factor must be a positive number, got {level_factor!r}")
+        raise ProcessModelError(f"level factor must be a positive number, got {level_factor!r}")
     shape, ratio = model.spectrum_shape, model.falling_ratio
     per_k = 4.0 * ell * _shape_sum_for(2, shape, ratio) / 2.0  # length per harmonic (exact for flat)
     k = max(1, math.ceil(lmin / per_k))
@@ -114,7 +116,7 @@ def rescaled_process(
         k += 1
     n = 2 * k + 1
     if n > MAX_POINTS:
-        raise ValueError(
+        raise ProcessModelError(
             f"a process of correlation length {ell:.3g} m over {lmin:.3g} m needs {n} grid points "
             f"(at most {MAX_POINTS}); choose a larger correlation length or a shorter process"
         )

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from stochfric.errors import ProcessModelError
 from stochfric.friction_process.model_base import ProcessModelBase, SigmaZetaRule, low_frequency_level
 from stochfric.friction_process.model_function import ModelFunction, checked_pressure
 from stochfric.friction_process.spectra import psd_level
@@ -110,32 +111,34 @@ class TabulatedProcessModel(ProcessModelBase):
 
     def __post_init__(self) -> None:
         if self.window_length_m is not None:
-            object.__setattr__(self, "window_length_m", positive("window_length_m", self.window_length_m, "m"))
+            window = positive("window_length_m", self.window_length_m, "m", error=ProcessModelError)
+            object.__setattr__(self, "window_length_m", window)
         self._check_common()
         if self.psd_level is not None and not isinstance(self.psd_level, ModelFunction):
             raise TypeError(f"psd_level must be a ModelFunction or None, got {self.psd_level!r}")
-        p = finite_tuple("pressures_pa", self.pressures_pa)
-        f = finite_tuple("table_frequencies", self.table_frequencies)
+        p = finite_tuple("pressures_pa", self.pressures_pa, error=ProcessModelError)
+        f = finite_tuple("table_frequencies", self.table_frequencies, error=ProcessModelError)
         if min(p) <= 0.0 or any(b <= a for a, b in itertools.pairwise(p)):
-            raise ValueError("pressures_pa must be > 0 Pa and strictly increasing")
+            raise ProcessModelError("pressures_pa must be > 0 Pa and strictly increasing")
         if min(f) <= 0.0 or any(b <= a for a, b in itertools.pairwise(f)):
-            raise ValueError("table_frequencies must be > 0 [1/m] and strictly increasing")
+            raise ProcessModelError("table_frequencies must be > 0 [1/m] and strictly increasing")
         try:
             table = np.asarray(self.table_psd, dtype=np.float64)
         except (TypeError, ValueError):
-            raise ValueError("table_psd must be a (pressures × frequencies) table of numbers") from None
+            raise ProcessModelError("table_psd must be a (pressures × frequencies) table of numbers") from None
         if table.shape != (len(p), len(f)):
-            raise ValueError(
+            raise ProcessModelError(
                 f"table_psd has shape {table.shape}, expected ({len(p)}, {len(f)}) = (pressures, frequencies)"
             )
         if not (np.all(np.isfinite(table)) and np.all(table >= 0.0)):
-            raise ValueError("table_psd must be finite and >= 0 [m]")
+            raise ProcessModelError("table_psd must be finite and >= 0 [m]")
         object.__setattr__(self, "pressures_pa", p)
         object.__setattr__(self, "table_frequencies", f)
         object.__setattr__(self, "table_psd", tuple(tuple(float(v) for v in row) for row in table))
         for attr, rule in (("pressure_rule", PressureRule), ("variance_rule", VarianceRule)):
             if getattr(self, attr) not in tuple(rule):
-                raise ValueError(f"{attr} must be one of {tuple(str(r) for r in rule)}, got {getattr(self, attr)!r}")
+                raise ProcessModelError(
+                    f"{attr} must be one of {tuple(str(r) for r in rule)}, got {getattr(self, attr)!r}")
             object.__setattr__(self, attr, rule(getattr(self, attr)))
 
     # --- the spectrum ------------------------------------------------------------------
@@ -227,7 +230,7 @@ class TabulatedProcessModel(ProcessModelBase):
         required = ("name", "mu_mean", "mu_std", "dx", "length", "pressures_pa", "table_frequencies", "table_psd")
         missing = [k for k in required if k not in data]
         if missing:
-            raise ValueError(f"a process model of kind 'tabulated' needs the field(s) {', '.join(missing)}")
+            raise ProcessModelError(f"a process model of kind 'tabulated' needs the field(s) {', '.join(missing)}")
         level = data.get("psd_level")
         return cls(
             **cls._head_fields(data),

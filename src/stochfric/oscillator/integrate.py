@@ -640,10 +640,11 @@ class _BatchRunner:
     out: _k.KernelOutput
 
     def __post_init__(self) -> None:
-        self.noise = {"deterministic": _k.NOISE_NONE, "white": _k.NOISE_WHITE,
-                      "contact": _k.NOISE_PROCESS}[self.model]
+        noise: dict[str, int] = {options.Model.DETERMINISTIC: _k.NOISE_NONE, options.Model.WHITE: _k.NOISE_WHITE,
+                                 options.Model.CONTACT: _k.NOISE_PROCESS}
+        self.noise = noise[self.model]
         self.scheme = _k.SCHEME_MILSTEIN if self.integrator == "milstein" else _k.SCHEME_EULER
-        contact = self.model == "contact" and self.process is not None
+        contact = self.model == options.Model.CONTACT and self.process is not None
         self.n_proc = round(self.process.length / self.process.dx) if contact else 1  # type: ignore[union-attr]
         self.rows = pack_rows(self.plan.params, self.plan.laws, self.plan.sigma_eff,
                               self.process.dx if contact else 1.0)  # type: ignore[union-attr]
@@ -823,12 +824,12 @@ def _post_warnings(
             "stick_count is exact but only the first X_gh were stored — raise max_events",
         ))
     stamp = tuple(getattr(process, "not_credible", ())) if process is not None else ()
-    if stamp and model != "deterministic":
+    if stamp and model != options.Model.DETERMINISTIC:
         out.append(SimulationWarning(
             "process-not-credible",
             f"the friction-process model was written with --accept-not-credible: {'; '.join(stamp)}",
         ))
-    if model == "contact" and process is not None:
+    if model == options.Model.CONTACT and process is not None:
         # 'position' (reproduction mode) reads the process at x1, periodically continued; in the
         # path coordinates the process never repeats (independent segments, _BatchRunner)
         if path_mode == _k.PATH_POSITION and not getattr(process, "grid_is_periodic", True):

@@ -26,10 +26,11 @@ from dataclasses import asdict, dataclass, field
 from functools import partial
 from typing import Any
 
+from stochfric.errors import InputError
 from stochfric.validation import non_negative, positive
 
 
-class ParameterError(ValueError):
+class ParameterError(InputError):
     """An oscillator parameter is invalid; the message says which one and why."""
 
 

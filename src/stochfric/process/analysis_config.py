@@ -13,23 +13,20 @@ from typing import Any
 import numpy as np
 
 from stochfric.arrays import FloatArray
-from stochfric.contact.asperity import ContactError
+from stochfric.errors import AnalysisError
 from stochfric.friction_process.model_base import SigmaZetaRule
 from stochfric.friction_process.tabulated import PressureRule, VarianceRule
 from stochfric.process.checks import WINDOW_TILES
 from stochfric.process.ensemble import SurrogateOptions
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
-from stochfric.surface.quilting import quilt_applicable
+from stochfric.surface.quilting import QUILT_METHOD
 from stochfric.surface.statistics import curvature_gaussianity
-from stochfric.surface.summits import find_summits
-from stochfric.surface.synthesis import DEFAULT_AMPLITUDE
+from stochfric.surface.summits import DEFAULT_SUMMIT_RULE, SUMMIT_RULES, find_summits
+from stochfric.surface.surrogates import AUTO_SURROGATE, SURROGATES, surrogate_method
+from stochfric.surface.synthesis import AMPLITUDE_METHODS, DEFAULT_AMPLITUDE, PHASE_METHOD, AmplitudeEstimate
 from stochfric.validation import count
 
-__all__ = ["AUTO_SURROGATE", "AnalysisConfig"]
-
-
-#: The surrogate setting that picks the method from the map (:meth:`AnalysisConfig.surrogate_for`).
-AUTO_SURROGATE = "auto"
+__all__ = ["AUTO_SURROGATE", "AnalysisConfig"]  # AUTO_SURROGATE: stochfric.surface.surrogates
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -54,7 +51,7 @@ class AnalysisConfig:
     window_shift_points: int = 16
     surrogate: str = AUTO_SURROGATE
     amplitude: str = DEFAULT_AMPLITUDE
-    summit_rule: str = "thesis"
+    summit_rule: str = DEFAULT_SUMMIT_RULE
     iaaft_tol: float = 1e-3
     max_area_fraction: float = DEFAULT_MAX_AREA_FRACTION
     pressure_rule: PressureRule = PressureRule.NEAREST
@@ -73,30 +70,37 @@ class AnalysisConfig:
         ):
             v = getattr(self, name)
             if not isinstance(v, bool) and isinstance(v, int | np.integer) and v < low:
-                raise ContactError(f"{name} must be >= {low} ({why}), got {v}")
+                raise AnalysisError(f"{name} must be >= {low} ({why}), got {v}")
         for name in ("realizations", "long_surfaces", "window_shift_points", "pdf_bins", "check_realizations",
                      "window_tiles"):
-            object.__setattr__(self, name, count(name, getattr(self, name), error=ContactError))
-        object.__setattr__(self, "length_factor", count("length_factor", self.length_factor, 2, error=ContactError))
+            object.__setattr__(self, name, count(name, getattr(self, name), error=AnalysisError))
+        object.__setattr__(self, "length_factor", count("length_factor", self.length_factor, 2, error=AnalysisError))
         if self.window_tiles < 2:
-            raise ContactError(f"window_tiles must be >= 2 (at least 2 x 2 windows), got {self.window_tiles}")
+            raise AnalysisError(f"window_tiles must be >= 2 (at least 2 x 2 windows), got {self.window_tiles}")
         if not 0.0 < self.max_area_fraction <= 1.0:
-            raise ContactError(f"max_area_fraction must lie in (0, 1], got {self.max_area_fraction!r}")
+            raise AnalysisError(f"max_area_fraction must lie in (0, 1], got {self.max_area_fraction!r}")
         if self.sigma_zeta_rule not in tuple(SigmaZetaRule):
-            raise ContactError(f"sigma_zeta_rule must be one of {[str(r) for r in SigmaZetaRule]}, "
+            raise AnalysisError(f"sigma_zeta_rule must be one of {[str(r) for r in SigmaZetaRule]}, "
                                f"got {self.sigma_zeta_rule!r}")
         object.__setattr__(self, "sigma_zeta_rule", SigmaZetaRule(self.sigma_zeta_rule))
         for name, rule in (("pressure_rule", PressureRule), ("variance_rule", VarianceRule)):
             if getattr(self, name) not in tuple(rule):
-                raise ContactError(f"{name} must be one of {[str(r) for r in rule]}, got {getattr(self, name)!r}")
+                raise AnalysisError(f"{name} must be one of {[str(r) for r in rule]}, got {getattr(self, name)!r}")
             object.__setattr__(self, name, rule(getattr(self, name)))
-        self.surrogate_options  # noqa: B018 - validates surrogate and amplitude (ContactError)
+        if self.surrogate != AUTO_SURROGATE and self.surrogate not in SURROGATES:
+            raise AnalysisError(f"unknown surrogate method {self.surrogate!r}; use {AUTO_SURROGATE!r} or one of "
+                               f"{', '.join(SURROGATES)}")
+        if self.amplitude not in AMPLITUDE_METHODS:
+            raise AnalysisError(f"amplitude must be one of {AMPLITUDE_METHODS}, got {self.amplitude!r}")
+        object.__setattr__(self, "amplitude", AmplitudeEstimate(self.amplitude))
+        if self.summit_rule not in SUMMIT_RULES:
+            raise AnalysisError(f"unknown summit rule {self.summit_rule!r}; use one of {', '.join(SUMMIT_RULES)}")
 
     @property
     def surrogate_options(self) -> SurrogateOptions:
         """The surrogate settings (``surrogate``, ``amplitude``, ``iaaft_tol``, ``summit_rule``) as one
         object; ``"auto"`` stands here as ``"quilt"`` until :meth:`surrogate_for` resolves it for a map."""
-        method = "quilt" if self.surrogate == AUTO_SURROGATE else self.surrogate
+        method = QUILT_METHOD if self.surrogate == AUTO_SURROGATE else self.surrogate
         return SurrogateOptions(method=method, amplitude=self.amplitude, iaaft_tol=self.iaaft_tol,
                                 rule=self.summit_rule)
 
@@ -110,18 +114,19 @@ class AnalysisConfig:
             return opts, f"{self.surrogate} (chosen by the user)"
         counts = [find_summits(h, (1.0, 1.0), rule=self.summit_rule).count for h in heights]
         tests = [curvature_gaussianity(h, n) for h, n in zip(heights, counts, strict=True)]
-        kurt = ", ".join(f"{t['laplacian_kurtosis']:.3g}" for t in tests)
-        if all(t["gaussian"] for t in tests):
-            return replace(opts, method="phase"), (
-                f"phase (auto: Gaussian curvature, Laplacian kurtosis {kurt} within "
-                f"{tests[0]['limit']:g}·√(24/n_s) of 3: random phases are exact)")
-        verdicts = [quilt_applicable(h, rule=self.summit_rule) for h in heights]
+        kurt = ", ".join(f"{t.laplacian_kurtosis:.3g}" for t in tests)
+        if all(t.gaussian for t in tests):
+            return replace(opts, method=PHASE_METHOD), (
+                f"{PHASE_METHOD} (auto: Gaussian curvature, Laplacian kurtosis {kurt} within "
+                f"{tests[0].limit:g}·√(24/n_s) of 3: random phases are exact)")
+        quilt = surrogate_method(QUILT_METHOD)
+        verdicts = [quilt.applicable(h, rule=self.summit_rule) for h in heights]
         if all(ok for ok, _ in verdicts):
-            return opts, (f"quilt (auto: non-Gaussian curvature, Laplacian kurtosis {kurt}; "
+            return opts, (f"{QUILT_METHOD} (auto: non-Gaussian curvature, Laplacian kurtosis {kurt}; "
                           + "; ".join(r for _, r in verdicts) + ")")
         why = next(r for ok, r in verdicts if not ok)
-        return replace(opts, method="phase"), (
-            f"phase (auto: non-Gaussian curvature, Laplacian kurtosis {kurt}, but cannot quilt: {why})")
+        return replace(opts, method=PHASE_METHOD), (
+            f"{PHASE_METHOD} (auto: non-Gaussian curvature, Laplacian kurtosis {kurt}, but cannot quilt: {why})")
 
     def to_dict(self) -> dict[str, Any]:
         """Plain dictionary (JSON / netCDF attributes)."""

@@ -26,7 +26,14 @@ from stochfric.friction_process.model_base import SigmaZetaRule
 from stochfric.friction_process.tabulated import TabulatedProcessModel
 from stochfric.io_utils import package_versions, write_netcdf_atomic
 from stochfric.process.analysis_config import AnalysisConfig
-from stochfric.process.checks import ErgodicityCheck, ProcessCheck, SurrogateCheck, WindowScatterCheck
+from stochfric.process.checks import (
+    CopyCheck,
+    ErgodicityCheck,
+    ProcessCheck,
+    ScanScatter,
+    SurrogateCheck,
+    WindowScatterCheck,
+)
 from stochfric.process.credibility import Credibility
 from stochfric.process.ensemble import ContactSamples, PathContact
 from stochfric.process.fit import ModelFit
@@ -59,9 +66,9 @@ class SurrogateChecks:
     #: The measured-window check (None when the map is too small for 2 × 2 windows).
     window_check: WindowScatterCheck | None
     #: Between-scan, within-scan and ensemble scatter of μ (:func:`~stochfric.process.statistics.analyse`).
-    scan_scatter: dict[str, Any]
+    scan_scatter: ScanScatter
     #: Overlap of the first surrogates with the map and each other (:func:`~stochfric.process.checks.copy_check`).
-    copy_check: dict[str, Any] = field(default_factory=dict)
+    copy_check: CopyCheck | None = None
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -189,10 +196,10 @@ class StatisticalContactAnalysis(EnsembleStatistics, SurrogateChecks, PathMoment
             "ergodicity": self.ergodicity.to_dict(),
             "surrogate_check": self.surrogate_check.to_dict(),
             "window_check": None if self.window_check is None else self.window_check.to_dict(),
-            "scan_scatter": self.scan_scatter,
+            "scan_scatter": self.scan_scatter.to_dict(),
             "credibility": self.credibility.to_dict(),
             "surrogate_choice": self.surrogate_choice,
-            "copy_check": self.copy_check,
+            "copy_check": self.copy_check.to_dict() if self.copy_check is not None else {},
             "sigma_zeta": self.sigma_zeta_table(),
             "process_check": self.process_check.to_dict(),
             "model": self.model.to_dict(),
@@ -264,10 +271,11 @@ class StatisticalContactAnalysis(EnsembleStatistics, SurrogateChecks, PathMoment
             "surrogate_check": json.dumps(self.surrogate_check.to_dict(), sort_keys=True),
             "window_check": json.dumps(None if self.window_check is None else self.window_check.to_dict(),
                                        sort_keys=True),
-            "scan_scatter": json.dumps(self.scan_scatter, sort_keys=True),
+            "scan_scatter": json.dumps(self.scan_scatter.to_dict(), sort_keys=True),
             "credibility": json.dumps(self.credibility.to_dict(), sort_keys=True),
             "surrogate_choice": self.surrogate_choice,
-            "copy_check": json.dumps(self.copy_check, sort_keys=True),
+            "copy_check": json.dumps(self.copy_check.to_dict() if self.copy_check is not None else {},
+                                     sort_keys=True),
             "contact_fraction_fit": json.dumps(self.contact_fraction_fit, sort_keys=True),
             "window_shift_m": self.path.window_shift_m,
             "window_length_m": self.path.window_length_m,

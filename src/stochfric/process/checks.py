@@ -20,15 +20,16 @@ import numpy.typing as npt
 from scipy import stats as sps
 
 from stochfric.arrays import FloatArray
-from stochfric.contact.asperity import ContactError, asperity_sums, bowden_tabor_mu
+from stochfric.contact.asperity import asperity_sums, bowden_tabor_mu
 from stochfric.contact.materials import Material
+from stochfric.errors import AnalysisError
 from stochfric.friction_process.model_base import FrictionProcessModel
 from stochfric.friction_process.spectral import one_sided_psd
-from stochfric.process.ensemble import ContactSamples, summit_statistics
+from stochfric.process.ensemble import ContactSamples, SurrogateOptions, summit_statistics
 from stochfric.random import SeedLike, as_seed_sequence, spawn_generators
 from stochfric.surface.io import Surface
-from stochfric.surface.quilting import COPY_NCC_LIMIT, COPY_PIECE_LIMIT, copy_metrics, quilt_heights
-from stochfric.surface.summits import find_summits
+from stochfric.surface.quilting import COPY_NCC_LIMIT, COPY_PIECE_LIMIT, copy_metrics
+from stochfric.surface.summits import DEFAULT_SUMMIT_RULE, find_summits
 
 __all__ = [
     "COPY_CHECK_SURROGATES",
@@ -37,8 +38,10 @@ __all__ = [
     "WINDOW_CHECK_ALPHA",
     "WINDOW_MIN_SUMMITS",
     "WINDOW_TILES",
+    "CopyCheck",
     "ErgodicityCheck",
     "ProcessCheck",
+    "ScanScatter",
     "SurrogateCheck",
     "WindowScatterCheck",
     "check_generated_process",
@@ -79,10 +82,15 @@ class _ZVerdict:
     consistent: bool
     max_abs_z: float
 
+    @property
+    def verdict(self) -> str:
+        """``"consistent …"`` or ``"NOT consistent …"``."""
+        verdict = "consistent" + self.SUBJECT
+        return verdict if self.consistent else "NOT " + verdict
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary: the fields, the verdict and the rule."""
-        verdict = "consistent" + self.SUBJECT
-        return {**_json_fields(self), "verdict": verdict if self.consistent else "NOT " + verdict, "rule": self.RULE}
+        return {**_json_fields(self), "verdict": self.verdict, "rule": self.RULE}
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -131,7 +139,7 @@ def ergodicity_check(blocks_mu: npt.ArrayLike, *, alpha: float = ERGODICITY_ALPH
     if mu.ndim != 3 or mu.shape[0] < 3 or mu.shape[1] < 2:
         raise ValueError("need μ of shape (surfaces >= 3, windows per surface >= 2, approaches)")
     if not np.all(np.isfinite(mu)):
-        raise ContactError("a window carries no load at some approach (μ undefined); use larger approaches")
+        raise AnalysisError("a window carries no load at some approach (μ undefined); use larger approaches")
     k_count, j_count, n_u = mu.shape
     z_mean, z_std, p_mean, path_sd, ens_sd = [], [], [], [], []
     for u in range(n_u):
@@ -197,6 +205,11 @@ class SurrogateCheck:
     amplitude: str
     per_scan_z: tuple[dict[str, float], ...] = ()
 
+    @property
+    def max_abs_mu_z(self) -> float | None:
+        """The largest |z| of the measured map's μ(u) against the ensemble (None without approaches)."""
+        return float(np.nanmax(np.abs(self.mu_z))) if self.mu_z else None
+
     def failures(self) -> list[str]:
         """Names of the quantities with |z| ≥ limit (μ as ``mu(u_k)``)."""
         out = [n for n, v in self.z.items() if not abs(v) < self.limit]
@@ -205,7 +218,7 @@ class SurrogateCheck:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary: the fields, the largest |z| of μ, the failures and the rule."""
-        return {**_json_fields(self), "max_abs_mu_z": float(np.nanmax(np.abs(self.mu_z))) if self.mu_z else None,
+        return {**_json_fields(self), "max_abs_mu_z": self.max_abs_mu_z,
                 "failures": self.failures(),
                 "rule": "z = (measured - ensemble mean) / ensemble sd; credible if every |z| < limit"}
 
@@ -217,7 +230,8 @@ def _worst(z: FloatArray) -> FloatArray:
 
 
 def surrogate_check(
-    surface: Surface | Sequence[Surface], material: Material, ensemble: ContactSamples, *, rule: str = "thesis"
+    surface: Surface | Sequence[Surface], material: Material, ensemble: ContactSamples, *,
+    rule: str = DEFAULT_SUMMIT_RULE,
 ) -> SurrogateCheck:
     """Compare the measured ``surface`` with its surrogate ``ensemble`` (:func:`ensemble_contact`).
 
@@ -274,42 +288,74 @@ def surrogate_check(
 COPY_CHECK_SURROGATES = 4
 
 
+@dataclass(frozen=True, kw_only=True)
+class CopyCheck:
+    """Are the surrogates new surfaces?  (:func:`copy_check`): the largest normalised cross-correlation
+    of the first surrogates with the map and between pairs of them, the largest verbatim piece of the
+    map (methods that resample it), their limits and the verdict."""
+
+    surrogates: int
+    max_ncc_with_map: float | None
+    largest_piece_fraction: float | None
+    max_ncc_between_surrogates: float | None
+    ncc_limit: float = COPY_NCC_LIMIT
+    piece_limit: float = COPY_PIECE_LIMIT
+    is_copy: bool
+    rule: str = ("first realisations made again from their seeds; largest NCC over all shifts (>= 1/4 overlap) "
+                 "with the map and between pairs of surrogates, largest verbatim piece of the map (quilt); a copy "
+                 "above the limits")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON form (the fields by name)."""
+        return _json_fields(self)
+
+
+@dataclass(frozen=True, kw_only=True)
+class ScanScatter:
+    """Scatter of μ(u) between pooled scans beside the scatter within a scan and the ensemble's
+    (:func:`~stochfric.process.statistics.analyse`); lists over the approaches, None where undefined."""
+
+    scans: int
+    #: μ of each whole scan (scans × U).
+    scan_mu: list[list[float | None]]
+    between_scan_std: list[float | None]
+    within_scan_window_std: list[float | None]
+    ensemble_std: list[float | None]
+    rule: str = ("between: sd over scans of mu of each whole scan; within: sd over the disjoint windows of one "
+                 "scan, mean over scans; ensemble: sd of mu over the surrogates of original size")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON form (the fields by name)."""
+        return _json_fields(self)
+
+
 def copy_check(
-    scans: Sequence[Surface], options: Any, seeds: Sequence[np.random.SeedSequence], *,
+    scans: Sequence[Surface], options: SurrogateOptions, seeds: Sequence[np.random.SeedSequence], *,
     count: int = COPY_CHECK_SURROGATES,
-) -> dict[str, Any]:
+) -> CopyCheck:
     """Are the surrogates new surfaces?  The first ``count`` realisations are made again from their
     own seed streams (``seeds[r]``, scan ``r mod S``, the same numbers as in the ensemble) and
     compared with their scan and with each other (:func:`stochfric.surface.quilting.copy_metrics`:
-    the largest normalised cross-correlation over all shifts and, for quilts, the largest verbatim
+    the largest normalised cross-correlation over all shifts and, for a method that resamples the
+    map (:attr:`~stochfric.surface.surrogates.SurrogateMethod.resamples`), the largest verbatim
     piece of the map).  ``is_copy`` when any exceeds its limit."""
     n = min(int(count), len(seeds))
+    method, settings = options.surrogate, options.settings
     maps, rows = [], []
     for r in range(n):
         scan = scans[r % len(scans)]
         gen = np.random.Generator(np.random.PCG64(seeds[r]))
-        if options.method == "quilt":
-            res = quilt_heights(scan.heights_m, gen)
-            m = copy_metrics(res.heights, scan.heights_m, source=res)
-            maps.append(res.heights)
-        else:
-            h = options.similar(scan, gen).heights_m
-            m = copy_metrics(h, scan.heights_m)
-            maps.append(h)
-        rows.append(m)
+        h, source = method.copy_sample(scan.heights_m, gen, settings)
+        rows.append(copy_metrics(h, scan.heights_m, source=source))
+        maps.append(h)
     pairs = [copy_metrics(maps[a], maps[a + 1]) for a in range(0, n - 1, 2)]
-    return {
-        "surrogates": n,
-        "max_ncc_with_map": max((m.max_ncc for m in rows), default=None),
-        "largest_piece_fraction": max((m.largest_piece_fraction for m in rows), default=None),
-        "max_ncc_between_surrogates": max((m.max_ncc for m in pairs), default=None),
-        "ncc_limit": COPY_NCC_LIMIT,
-        "piece_limit": COPY_PIECE_LIMIT,
-        "is_copy": any(m.is_copy for m in rows) or any(m.is_copy for m in pairs),
-        "rule": "first realisations made again from their seeds; largest NCC over all shifts (>= 1/4 overlap) with "
-        "the map and between pairs of surrogates, largest verbatim piece of the map (quilt); a copy above the "
-        "limits",
-    }
+    return CopyCheck(
+        surrogates=n,
+        max_ncc_with_map=max((m.max_ncc for m in rows), default=None),
+        largest_piece_fraction=max((m.largest_piece_fraction for m in rows), default=None),
+        max_ncc_between_surrogates=max((m.max_ncc for m in pairs), default=None),
+        is_copy=any(m.is_copy for m in rows) or any(m.is_copy for m in pairs),
+    )
 
 
 #: Family-wise false-alarm probability of the measured-window check (two-sided, Bonferroni over U).
@@ -390,7 +436,7 @@ def window_scatter_check(
         a = m[:, k][np.isfinite(m[:, k])]
         b = s[:, k][np.isfinite(s[:, k])]
         if a.size < 3 or b.size < 4:
-            raise ContactError(
+            raise AnalysisError(
                 "a window of the measured-window check carries no load at some approach; use larger approaches"
             )
         sa, sb = float(a.std(ddof=1)), float(b.std(ddof=1))

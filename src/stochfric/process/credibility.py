@@ -16,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 from stochfric.contact.validity import ValidityWarning
+from stochfric.process.checks import CopyCheck
 
 __all__ = ["MIN_FIT_POINTS", "MU_PHYSICAL_RANGE", "NOT_CREDIBLE_EXIT", "Credibility", "assess_credibility"]
 
@@ -62,7 +63,7 @@ def assess_credibility(
     surrogate_failures: list[str],
     window_ok: bool | None,
     window_max_z: float | None,
-    copies: dict[str, Any] | None = None,
+    copies: CopyCheck | None = None,
     mu_means: list[npt.ArrayLike],
     area_fractions: list[npt.ArrayLike],
     fit_mask: npt.ArrayLike,
@@ -88,12 +89,12 @@ def assess_credibility(
             f"{name}: mu scatters across disjoint windows of the measurement unlike the same windows of the "
             f"surrogates (max |z| {window_max_z:.2f}); the surrogates do not carry the measured scatter",
         ))  # fmt: skip
-    if copies and copies.get("is_copy"):
+    if copies is not None and copies.is_copy:
         out.append(ValidityWarning(
             "surrogate-copies-map",
-            f"{name}: a surrogate reproduces the map (largest NCC with it {copies['max_ncc_with_map']:.3g}, limit "
-            f"{copies['ncc_limit']:g}; largest verbatim piece {copies['largest_piece_fraction']:.3g} of the map, limit "
-            f"{copies['piece_limit']:g}): the ensemble is not one of new surfaces",
+            f"{name}: a surrogate reproduces the map (largest NCC with it {copies.max_ncc_with_map:.3g}, limit "
+            f"{copies.ncc_limit:g}; largest verbatim piece {copies.largest_piece_fraction:.3g} of the map, limit "
+            f"{copies.piece_limit:g}): the ensemble is not one of new surfaces",
         ))  # fmt: skip
     lo, hi = MU_PHYSICAL_RANGE
     for label, mu in zip(("path", "ensemble"), mu_means, strict=False):

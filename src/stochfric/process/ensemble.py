@@ -20,19 +20,20 @@ import numpy as np
 import numpy.typing as npt
 
 from stochfric.arrays import FloatArray
-from stochfric.contact.asperity import BowdenTabor, ContactError, IntArray, asperity_sums
+from stochfric.contact.asperity import BowdenTabor, IntArray, asperity_sums
 from stochfric.contact.materials import Material
+from stochfric.errors import AnalysisError
 from stochfric.process.parallel import map_indexed
 from stochfric.progress import Progress
 from stochfric.random import SeedLike, spawn_seed_sequences
 from stochfric.surface.io import Surface
-from stochfric.surface.summits import find_summits
-from stochfric.surface.synthesis import AMPLITUDE_METHODS, DEFAULT_AMPLITUDE, SURROGATE_METHODS, similar_surface
+from stochfric.surface.summits import DEFAULT_SUMMIT_RULE, SUMMIT_RULES, find_summits
+from stochfric.surface.surrogates import SURROGATES, SurrogateMethod, SurrogateSettings, similar_surface
+from stochfric.surface.synthesis import AMPLITUDE_METHODS, DEFAULT_AMPLITUDE, PHASE_METHOD, AmplitudeEstimate
 from stochfric.validation import count
 
 __all__ = [
     "DEFAULT_SHIFT_FRACTION",
-    "SUMMIT_MARGIN",
     "ContactSamples",
     "PathContact",
     "SurrogateKeywords",
@@ -52,8 +53,6 @@ __all__ = [
 #: The thesis's window shift relative to the window length: a_y = 0.3 mm of ℓ_Fl = 5.3 mm (§3.2.4).
 DEFAULT_SHIFT_FRACTION = 0.3 / 5.3
 
-#: Points a summit must lie inside the grid border, per summit rule.
-SUMMIT_MARGIN: dict[str, int] = {"thesis": 2, "8-neighbour": 1}
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -63,22 +62,33 @@ class SurrogateOptions:
     One home for the options shared by :func:`ensemble_contact`, :func:`path_contact` and the
     analysis settings (:class:`~stochfric.process.analysis_config.AnalysisConfig`).
 
-    ``method``: ``"phase"`` (random-phase) or ``"iaaft"`` surrogates
-    (:func:`~stochfric.surface.synthesis.similar_surface`); ``amplitude``: the amplitude estimate
-    of the measured map (``"hann"`` | ``"raw"``); ``iaaft_tol``: the IAAFT stopping tolerance;
-    ``rule``: the summit rule (``"thesis"`` | ``"8-neighbour"``).
+    ``method``: a registered surrogate method (:data:`~stochfric.surface.surrogates.SURROGATES`:
+    ``"phase"``, ``"iaaft"``, ``"quilt"``, …); ``amplitude``: the amplitude estimate of the measured
+    map (:class:`~stochfric.surface.synthesis.AmplitudeEstimate`); ``iaaft_tol``: the IAAFT stopping
+    tolerance; ``rule``: the summit rule (:data:`~stochfric.surface.summits.SUMMIT_RULES`).
     """
 
-    method: str = "phase"
+    method: str = PHASE_METHOD
     amplitude: str = DEFAULT_AMPLITUDE
     iaaft_tol: float = 1e-3
-    rule: str = "thesis"
+    rule: str = DEFAULT_SUMMIT_RULE
 
     def __post_init__(self) -> None:
-        if self.method not in SURROGATE_METHODS:
-            raise ContactError(f"unknown surrogate method {self.method!r}; use one of {', '.join(SURROGATE_METHODS)}")
+        if self.method not in SURROGATES:
+            raise AnalysisError(f"unknown surrogate method {self.method!r}; use one of {', '.join(SURROGATES)}")
         if self.amplitude not in AMPLITUDE_METHODS:
-            raise ContactError(f"amplitude must be one of {AMPLITUDE_METHODS}, got {self.amplitude!r}")
+            raise AnalysisError(f"amplitude must be one of {AMPLITUDE_METHODS}, got {self.amplitude!r}")
+        object.__setattr__(self, "amplitude", AmplitudeEstimate(self.amplitude))
+
+    @property
+    def surrogate(self) -> SurrogateMethod:
+        """The registered method ``method``."""
+        return SURROGATES[self.method]
+
+    @property
+    def settings(self) -> SurrogateSettings:
+        """The settings the method reads (amplitude estimate, IAAFT tolerance)."""
+        return SurrogateSettings(amplitude=self.amplitude, iaaft_tol=self.iaaft_tol)
 
     @classmethod
     def of(cls, options: SurrogateOptions | None = None, **keywords: Unpack[SurrogateKeywords]) -> SurrogateOptions:
@@ -125,14 +135,21 @@ class ContactSamples(BowdenTabor):
 
 
 
+def _margin(rule: str) -> int:
+    """Points a summit of ``rule`` lies at least inside the grid border (AnalysisError for an unknown rule)."""
+    if rule not in SUMMIT_RULES:
+        raise AnalysisError(f"unknown summit rule {rule!r}; use one of {', '.join(SUMMIT_RULES)}")
+    return SUMMIT_RULES[rule].margin
+
+
 def _check_count(name: str, value: int, low: int = 1) -> int:
-    return count(name, value, low, error=ContactError)
+    return count(name, value, low, error=AnalysisError)
 
 
 def _approach(approach_m: npt.ArrayLike) -> FloatArray:
     u = np.atleast_1d(np.asarray(approach_m, dtype=np.float64))
     if u.ndim != 1 or u.size == 0 or not np.all(np.isfinite(u)) or np.any(u <= 0.0):
-        raise ContactError("approaches must be a non-empty 1-D sequence of finite values > 0 m")
+        raise AnalysisError("approaches must be a non-empty 1-D sequence of finite values > 0 m")
     return u
 
 
@@ -159,7 +176,7 @@ def tile_grid(shape: tuple[int, int], tiles: int) -> list[tuple[int, int, int, i
     t = _check_count("tiles", tiles)
     wx, wy = nx // t, ny // t
     if min(wx, wy) < 5:
-        raise ContactError(f"{t} × {t} tiles of a {nx}×{ny} grid leave {wx}×{wy} points; use fewer tiles")
+        raise AnalysisError(f"{t} × {t} tiles of a {nx}×{ny} grid leave {wx}×{wy} points; use fewer tiles")
     return [(a * wx, (a + 1) * wx, b * wy, (b + 1) * wy) for a in range(t) for b in range(t)]
 
 
@@ -175,9 +192,7 @@ def tile_contact(
     summits at least the rule's margin inside it, with the same radii (as in :func:`window_contact`).
     A window without a summit gives zeros (μ undefined there).
     """
-    if rule not in SUMMIT_MARGIN:
-        raise ContactError(f"unknown summit rule {rule!r}; use one of {', '.join(SUMMIT_MARGIN)}")
-    m = SUMMIT_MARGIN[rule]
+    m = _margin(rule)
     s = find_summits(heights_m, spacing, rule=rule)
     boxes = tile_grid(heights_m.shape, tiles)
     area = np.zeros((len(boxes), u.size))
@@ -197,7 +212,7 @@ def _one_surface_with_stats(
 ) -> tuple[FloatArray, FloatArray, IntArray, FloatArray]:
     s = find_summits(heights, spacing, rule=rule)
     if s.count == 0:
-        raise ContactError(f"a {heights.shape[0]}×{heights.shape[1]} sample has no summit (rule {rule!r})")
+        raise AnalysisError(f"a {heights.shape[0]}×{heights.shape[1]} sample has no summit (rule {rule!r})")
     area, force, count = asperity_sums(s.heights_m, s.radius_m, u, e_star_pa=material.e_star_pa)
     return area, force, count, summit_statistics(s.heights_m, s.radius_m)
 
@@ -205,12 +220,12 @@ def _one_surface_with_stats(
 def _scans(surface: Surface | Sequence[Surface]) -> list[Surface]:
     scans = [surface] if isinstance(surface, Surface) else list(surface)
     if not scans:
-        raise ContactError("no surface given")
+        raise AnalysisError("no surface given")
     shape = scans[0].nb_grid_pts
     spacing = scans[0].grid_spacing_m
     for s in scans[1:]:
         if s.nb_grid_pts != shape or not np.allclose(s.grid_spacing_m, spacing, rtol=1e-9, atol=0.0):
-            raise ContactError(
+            raise AnalysisError(
                 f"pooled scans must share the grid: {s.source} has {s.nb_grid_pts} points at "
                 f"{s.grid_spacing_m} m, {scans[0].source} {shape} at {spacing} m"
             )
@@ -232,7 +247,7 @@ def ensemble_contact(
 ) -> ContactSamples:
     """Contact of R similar surfaces of original size over ``approach_m`` (method §4a).
 
-    Realisation r is :func:`~stochfric.surface.synthesis.similar_surface` of scan ``r mod S``
+    Realisation r is :func:`~stochfric.surface.surrogates.similar_surface` of scan ``r mod S``
     (``surface`` may be one map or S scans of one surface on the same grid) with the r-th child
     stream of ``seed`` and the surrogate ``options`` (:class:`SurrogateOptions`; its fields
     ``method``, ``amplitude``, ``iaaft_tol``, ``rule`` may also be given as keywords); each is
@@ -297,7 +312,7 @@ def window_starts(total_points: int, window_points: int, shift_points: int) -> I
     win = _check_count("window_points", window_points)
     shift = _check_count("shift_points", shift_points)
     if win > total:
-        raise ContactError(f"the window ({win} points) is longer than the surface ({total} points)")
+        raise AnalysisError(f"the window ({win} points) is longer than the surface ({total} points)")
     return np.arange(0, total - win + 1, shift, dtype=np.int64)
 
 
@@ -354,7 +369,7 @@ def window_contact(
     *,
     window_points: int,
     shift_points: int,
-    rule: str = "thesis",
+    rule: str = DEFAULT_SUMMIT_RULE,
     crop: bool = False,
 ) -> tuple[FloatArray, FloatArray, IntArray]:
     """GW contact of every window of a long surface (windows along y, axis 1), fast path.
@@ -362,15 +377,15 @@ def window_contact(
     Windows cover columns ``[s, s + window_points)`` for ``s`` in :func:`window_starts`; each is
     referenced to its own highest summit.  Returns ``(A_c, N, n_contacts)`` of shape (W, U).
     The summits of the long surface are found once: a window analysed on its own finds exactly
-    those whose column lies at least the rule's margin (:data:`SUMMIT_MARGIN`) inside it, with the
-    same radii, so every window is a contiguous slice of the column-sorted summits.
+    those whose column lies at least the rule's margin
+    (:attr:`~stochfric.surface.summits.SummitRule.margin`) inside it, with the same radii, so every
+    window is a contiguous slice of the column-sorted summits.
     ``crop=True`` is the reference (:func:`naive_window_contact`): crop each window and analyse it
     on its own; the fast path equals it to round-off.
     """
     z = np.asarray(heights_m, dtype=np.float64)
     u = _approach(approach_m)
-    if rule not in SUMMIT_MARGIN:
-        raise ContactError(f"unknown summit rule {rule!r}; use one of {', '.join(SUMMIT_MARGIN)}")
+    margin = _margin(rule)
     starts = window_starts(z.shape[1], window_points, shift_points)
     area = np.empty((starts.size, u.size))
     force = np.empty((starts.size, u.size))
@@ -381,7 +396,6 @@ def window_contact(
                 np.ascontiguousarray(z[:, s : s + window_points]), grid_spacing_m, material, u, rule
             )
         return area, force, count
-    margin = SUMMIT_MARGIN[rule]
     summits = find_summits(z, grid_spacing_m, rule=rule)
     order = np.argsort(summits.j, kind="stable")
     col = summits.j[order]
@@ -392,7 +406,7 @@ def window_contact(
     n_in = hi - lo
     if np.any(n_in == 0):
         bad = int(np.argmin(n_in))
-        raise ContactError(f"window {bad} (columns {int(starts[bad])}…) has no summit; use larger windows")
+        raise AnalysisError(f"window {bad} (columns {int(starts[bad])}…) has no summit; use larger windows")
     _window_sums(zs, beta, lo.astype(np.int64), hi.astype(np.int64), u, area, force, count)
     force *= (4.0 / 3.0) * material.e_star_pa
     return area, force, count

@@ -67,6 +67,11 @@ class ModelFit:
         """f(p) at pressures p [Pa] > 0."""
         return np.asarray(self.a * np.asarray(p_pa, dtype=np.float64) ** self.b + self.c)
 
+    @property
+    def n_points(self) -> int:
+        """Points the fit uses."""
+        return int(sum(self.used))
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (p in Pa)."""
 
@@ -80,7 +85,7 @@ class ModelFit:
             "a_se": num(self.a_se),
             "b_se": num(self.b_se),
             "c_se": num(self.c_se),
-            "n_points": int(sum(self.used)),
+            "n_points": self.n_points,
             "used": [bool(u) for u in self.used],
             "n_excluded": int(len(self.used) - sum(self.used)),
             "chi2_reduced": num(self.chi2_reduced),

@@ -7,16 +7,14 @@ request that does not fit, with the figures and what to change.
 
 from __future__ import annotations
 
-from stochfric.contact.asperity import ContactError
+from stochfric.errors import AnalysisError
 from stochfric.io_utils import available_memory_bytes, format_bytes
 
 __all__ = [
-    "IAAFT_ESTIMATE_ITERATIONS",
     "MEMORY_FIXED_BYTES",
     "MEMORY_PER_POINT_BYTES",
     "check_memory",
     "estimate_peak_memory_bytes",
-    "iaaft_cost_seconds",
     "sample_arrays_bytes",
     "workers_that_fit",
 ]
@@ -63,49 +61,22 @@ def check_memory(
 ) -> int:
     """Refuse, before any work, an analysis whose long surfaces do not fit in memory.
 
-    Returns the estimate [bytes]; raises :class:`ContactError` with the figures and what to change
+    Returns the estimate [bytes]; raises :class:`AnalysisError` with the figures and what to change
     when it exceeds the available memory (``available``; default
     :func:`stochfric.io_utils.available_memory_bytes`).
     """
     need = estimate_peak_memory_bytes(grid, length_factor) + int(samples_bytes)
     have = available_memory_bytes() if available is None else available
     if have is not None and samples_bytes > have // 2:
-        raise ContactError(
+        raise AnalysisError(
             f"the results of so many realisations / long surfaces need about {format_bytes(samples_bytes)} but "
             f"{format_bytes(have)} are available; use fewer --realizations or --long-surfaces (100 and 10 are the "
             "thesis's numbers; the statistics converge as 1/sqrt(R))"
         )
     if have is not None and need > have:
-        raise ContactError(
+        raise AnalysisError(
             f"the analysis needs about {format_bytes(need)} (long surfaces of {grid[0]} × {length_factor * grid[1]} "
             f"points) but {format_bytes(have)} are available; use a smaller --length-factor, coarsen the map "
             "(--step 2 or more), or crop it (--size-um with a cropped file)"
         )
     return need
-
-
-#: Iterations an IAAFT surrogate typically takes to settle at the default tolerance 1e-3 (measured on
-#: al3d-1, x3p-2 and plu-1: 37–100, original size and 10× long); the estimate uses the cap, 100.
-IAAFT_ESTIMATE_ITERATIONS = 100
-
-
-def iaaft_cost_seconds(grid: tuple[int, int], realizations: int, long_surfaces: int, length_factor: int) -> float:
-    """Estimated time of the IAAFT surrogates of an analysis [s], said before the work starts.
-
-    One iteration (a real 2-D FFT pair and the rank remap, a sort) is timed on a random field of
-    the grid's size on this machine, then scaled by the points of all surrogates (R maps, K long
-    surfaces of F lengths) and :data:`IAAFT_ESTIMATE_ITERATIONS`.
-    """
-    import time
-
-    import numpy as np
-
-    nx, ny = int(grid[0]), int(grid[1])
-    z = np.random.default_rng(0).standard_normal((nx, ny))
-    t0 = time.perf_counter()
-    spec = np.fft.rfft2(z)
-    back = np.fft.irfft2(spec, s=z.shape)
-    np.argsort(back, axis=None)
-    one = time.perf_counter() - t0
-    maps = int(realizations) + int(long_surfaces) * int(length_factor)
-    return one * maps * IAAFT_ESTIMATE_ITERATIONS

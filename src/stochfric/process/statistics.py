@@ -17,9 +17,10 @@ import numpy as np
 import numpy.typing as npt
 
 from stochfric.arrays import FloatArray
-from stochfric.contact.asperity import ContactError, asperity_sums, bowden_tabor_mu
+from stochfric.contact.asperity import asperity_sums, bowden_tabor_mu
 from stochfric.contact.materials import Material
 from stochfric.contact.validity import contact_validity
+from stochfric.errors import AnalysisError
 from stochfric.friction_process.spectra import (
     autocorrelation,
     correlation_length,
@@ -41,6 +42,7 @@ from stochfric.process.analysis_result import (
 from stochfric.process.checks import (
     WINDOW_MIN_SUMMITS,
     ProcessCheck,
+    ScanScatter,
     WindowScatterCheck,
     check_generated_process,
     copy_check,
@@ -93,7 +95,7 @@ def _full_map_mu(found: list[Summits], material: Material, u: FloatArray) -> Flo
     return np.stack(rows)
 
 
-def _scan_scatter(scan_mu: FloatArray, tile_mu: FloatArray, scans: int, ensemble_mu: FloatArray) -> dict[str, Any]:
+def _scan_scatter(scan_mu: FloatArray, tile_mu: FloatArray, scans: int, ensemble_mu: FloatArray) -> ScanScatter:
     """Between-scan scatter (sd over the scans of the whole-map μ) beside the within-scan scatter
     (sd over the disjoint windows of each scan, averaged over the scans) and the ensemble's scatter
     of whole maps (sd of μ over the surrogates of original size), per approach."""
@@ -107,15 +109,8 @@ def _scan_scatter(scan_mu: FloatArray, tile_mu: FloatArray, scans: int, ensemble
         within = np.nanmean(np.stack([t.std(axis=0, ddof=1) for t in np.split(tile_mu, scans)]), axis=0)
     else:
         within = np.full(n_u, np.nan)
-    return {
-        "scans": scans,
-        "scan_mu": [lst(r) for r in scan_mu],
-        "between_scan_std": lst(between),
-        "within_scan_window_std": lst(within),
-        "ensemble_std": lst(np.nanstd(ensemble_mu, axis=0, ddof=1)),
-        "rule": "between: sd over scans of mu of each whole scan; within: sd over the disjoint windows of one "
-        "scan, mean over scans; ensemble: sd of mu over the surrogates of original size",
-    }
+    return ScanScatter(scans=scans, scan_mu=[lst(r) for r in scan_mu], between_scan_std=lst(between),
+                       within_scan_window_std=lst(within), ensemble_std=lst(np.nanstd(ensemble_mu, axis=0, ddof=1)))
 
 
 class _Fits(NamedTuple):
@@ -150,7 +145,7 @@ def analyse(
     cfg = config if config is not None else AnalysisConfig()
     scans = [surface] if isinstance(surface, Surface) else list(surface)
     if not scans:
-        raise ContactError("no surface to analyse")
+        raise AnalysisError("no surface to analyse")
     u = np.asarray(approach_m, dtype=np.float64)
     long_workers = _long_surface_workers(scans[0], cfg, u.size, workers)
     root = as_seed_sequence(cfg.seed)
@@ -221,7 +216,7 @@ def _ensemble_statistics(ens: ContactSamples, pdf_bins: int) -> EnsembleStatisti
     pressure E[N]/A_nom and A_c/A_nom with its line fit, the PDFs of μ, per approach (§4a, Fig. 3.16–3.18a)."""
     mu = ens.mu
     if not np.all(np.isfinite(mu)):
-        raise ContactError("a realisation carries no load at some approach (μ undefined); use larger approaches")
+        raise AnalysisError("a realisation carries no load at some approach (μ undefined); use larger approaches")
     mean, std, mean_se, std_se = mean_and_std_errors(mu)
     pressure = ens.normal_force_n.mean(axis=0) / ens.nominal_area_m2
     fraction = ens.contact_area_m2.mean(axis=0) / ens.nominal_area_m2
@@ -236,7 +231,7 @@ def _ensemble_statistics(ens: ContactSamples, pdf_bins: int) -> EnsembleStatisti
 def _window_checks(
     scans: list[Surface], found: list[Summits], material: Material, u: FloatArray, tiles: int | None,
     ens: ContactSamples, rule: str,
-) -> tuple[WindowScatterCheck | None, dict[str, Any], list[str]]:
+) -> tuple[WindowScatterCheck | None, ScanScatter, list[str]]:
     """The measured-window check (None, with a note, when the map is too small for 2 × 2 windows)
     and the between- / within-scan scatter of μ."""
     notes: list[str] = []
@@ -396,7 +391,7 @@ def _process_check(
     try:
         return check_generated_process(model, check_p, realizations=cfg.check_realizations, seed=seed)
     except ValueError as exc:
-        raise ContactError(f"the fitted model cannot generate a process: {exc}") from None
+        raise AnalysisError(f"the fitted model cannot generate a process: {exc}") from None
 
 
 def _surface_info(scans: list[Surface]) -> dict[str, Any]:

@@ -26,6 +26,7 @@ import numpy as np
 
 from ..contact.figures import write_contact_figures
 from ..io_utils import package_versions, write_text_atomic
+from ..oscillator.options import Model
 from ..studies.base import StudyResult
 from ..studies.chapter3 import Chapter3
 from ..studies.damping import DampingSummary, DMaxRisk
@@ -311,9 +312,9 @@ def lyapunov_reading(summary: LyapunovSummary) -> tuple[str, str]:
         rows.append([m, c.get("ok"), c.get("diverging"), c.get("merged"), c.get("too-few-transitions"),
                      c.get("nonlinear"), sig.positive, sig.negative])
     # no η-sign string for the white model: its defined cells vanish as Δτ → 0 (docs/studies.md)
-    signs = "; ".join(f"{m} q = {q:g}: {line}" for m in summary.models if m != "white"
+    signs = "; ".join(f"{m} q = {q:g}: {line}" for m in summary.models if m != Model.WHITE
                       for q, line in zip(summary.forcing_q, lyapunov_signs(summary, m), strict=True))
-    white = f", white noise {summary.sde_integrator} at Δτ = {summary.dt:g}" if "white" in summary.models else ""
+    white = f", white noise {summary.sde_integrator} at Δτ = {summary.dt:g}" if Model.WHITE in summary.models else ""
     txt = ("Exponent per slip→stick transition from the linear regime (twin check; NaN = undefined, with the "
            "reason counted; diverging = the separation grew ≥ 100-fold before the check failed, the value a lower "
            "bound). Cells positive / negative by more than 2 standard errors: " + ", ".join(
@@ -323,8 +324,8 @@ def lyapunov_reading(summary: LyapunovSummary) -> tuple[str, str]:
            f"{summary.integrator} ({summary.integrator_mode}{white})"
            + ((". Sign over η (η = " + ", ".join(f"{e:g}" for e in summary.eta) + "; + / − beyond 2 SE, "
                "0 within, . undefined, ~ the forces differ): " + signs) if signs else "")
-           + (f". White noise: no sign is read ({_defined_cells(summary, 'white')} cells have a defined exponent "
-              "here; such cells vanish as Δτ → 0, docs/studies.md)" if "white" in summary.models else "")
+           + (f". White noise: no sign is read ({_defined_cells(summary, Model.WHITE)} cells have a defined exponent "
+              "here; such cells vanish as Δτ → 0, docs/studies.md)" if Model.WHITE in summary.models else "")
            + ". For the contact model the path offset of "
            "the two runs is a neutral direction, so a positive value is no evidence of chaos by itself.")
     return _table(["model", "ok", "diverging (lower bound)", "merged (w = 0)", "too few transitions",
@@ -343,11 +344,11 @@ def normal_force_reading(summary: NormalForceSummary) -> tuple[str, str]:
                              s.x_gh_std_se[m][ni][di], 100 * s.vark[m][ni][di], 100 * s.vark_se[m][ni][di],
                              s.n_events[m][ni][di]])
     txt = ""
-    if "white" in s.models and "contact" in s.models:
+    if Model.WHITE in s.models and Model.CONTACT in s.models:
         parts = []
         for di, d in enumerate(s.damping_ratio):
             for ni, nf in enumerate(s.normal_force_n):
-                sw, sc = s.x_gh_std["white"][ni][di], s.x_gh_std["contact"][ni][di]
+                sw, sc = s.x_gh_std[Model.WHITE][ni][di], s.x_gh_std[Model.CONTACT][ni][di]
                 if math.isfinite(sw) and math.isfinite(sc) and sw > 0:
                     rc = s.sigma_ratio_contact_white[ni][di] if s.sigma_ratio_contact_white else None
                     iv = (f" [{_fmt(rc.low, '.2g')}, {_fmt(rc.high, '.2g')}]"
@@ -358,8 +359,8 @@ def normal_force_reading(summary: NormalForceSummary) -> tuple[str, str]:
     return _table(["model", "D", "N [N]", "E[X_gh]", "SE", "σ", "SE", "VarK %", "SE %", "events"], rows), txt
 
 
-_WITH = {"deterministic": "deterministically", "white": "with white noise",
-         "contact": "with the contact-analysis process"}
+_WITH: dict[str, str] = {Model.DETERMINISTIC: "deterministically", Model.WHITE: "with white noise",
+                         Model.CONTACT: "with the contact-analysis process"}
 
 
 def _limit_words(v: float | None, grid: Sequence[float], interval: Sequence[Any] | None = None,
@@ -426,7 +427,7 @@ def damping_headline(summary: DampingSummary) -> str:
     stoch = list(risk)
     nf = summary.phase.normal_force_n if summary.phase else forces[(len(forces) - 1) // 2]
     i = min(range(len(forces)), key=lambda k: abs(forces[k] - nf))
-    parts = [f"{_limit_words(det[i], grid)} {_WITH['deterministic']}"] if det is not None else []
+    parts = [f"{_limit_words(det[i], grid)} {_WITH[Model.DETERMINISTIC]}"] if det is not None else []
     head = f"{summary.preset}, N = {forces[i]:g} N: "
     if not stoch:
         return head + ", ".join(parts) + "."
@@ -520,8 +521,8 @@ def forcing_headline(summary: ForcingSummary) -> str:
 def lyapunov_headline(summary: LyapunovSummary) -> str:
     """One line: how many cells have a positive largest Lyapunov exponent beyond 2 SE, per model."""
     return (f"{summary.preset}, Lyapunov exponent on the stick line: cells with λ > 0 by more than 2 SE: "
-            + ", ".join(f"{m} {summary.significance[m].positive}" for m in summary.models if m != "white")
-            + (" (white noise: not defined as Δτ → 0)" if "white" in summary.models else "") + ".")
+            + ", ".join(f"{m} {summary.significance[m].positive}" for m in summary.models if m != Model.WHITE)
+            + (" (white noise: not defined as Δτ → 0)" if Model.WHITE in summary.models else "") + ".")
 
 
 #: what each simulation warning class means for the results, and what to do about it
@@ -593,9 +594,9 @@ def contact_section(directory: Path, ch3: Chapter3) -> str:
     rows = [[res.approach_m[k] / um, res.contact_area_m2[k], res.area_fraction[k], res.pressure_pa[k] / 1e6,
              int(res.n_contacts[k]), res.mu[k]] for k in range(res.approach_m.size)]
     out = [f"<p>Surface {html.escape(Path(path).name)} (shipped, see data/NOTICE.md): grid "
-           f"{stats['grid'][0]}×{stats['grid'][1]}, Sq = {stats['sq_m'] / um:.4g} µm, {stats['n_summits']} summits, "
-           f"σ_S = {_fmt((stats['summit_height_std_m'] or math.nan) / um)} µm, β̄ = "
-           f"{_fmt((stats['summit_radius_mean_m'] or math.nan) / um)} µm; material {html.escape(mat.name)} "
+           f"{stats.grid[0]}×{stats.grid[1]}, Sq = {stats.sq_m / um:.4g} µm, {stats.n_summits} summits, "
+           f"σ_S = {_fmt(stats.summit_height_std_m / um)} µm, β̄ = "
+           f"{_fmt(stats.summit_radius_mean_m / um)} µm; material {html.escape(mat.name)} "
            f"(E* = {mat.e_star_pa / 1e9:.3g} GPa, τ_max = {mat.shear_strength_pa / 1e6:.3g} MPa).</p>",
            _table(["u [µm]", "A_c [m²]", "A_c/A_nom", "p [MPa]", "contacts", "μ (3.16)"], rows)]
     out += [_figure(p, f"Surface / contact analysis: {p.stem.replace('_', ' ')} (method §1–2, thesis Fig. 3.9–3.11)",

@@ -20,71 +20,70 @@ def friction_process_section(directory: Path, ch3: Chapter3) -> str:
     seed = ch3.seed
     model_path, nc_path = ch3.model_path, ch3.statistics_path
     figs = write_process_figures(a, directory / "friction_process" / "figures")
-    d: dict[str, Any] = a.to_json_dict()
 
     def f(v: Any, spec: str = ".4g") -> str:
         return "—" if v is None or not math.isfinite(float(v)) else format(float(v), spec)
 
     rows = "".join(
-        f"<tr><td>{f(d['pressure_pa'][k] / 1e6)}</td><td>{f(d['mu_mean'][k], '.4f')}</td>"
-        f"<td>{f(d['mu_std'][k], '.4f')}</td>"
-        f"<td>{f((d['correlation_length_m'][k] or math.nan) * 1e6)}</td>"
-        f"<td>{f(d['psd_level_m'][k], '.3g')}</td></tr>"
-        for k in range(len(d["pressure_pa"]))
+        f"<tr><td>{f(a.pressure_pa[k] / 1e6)}</td><td>{f(a.mu_mean[k], '.4f')}</td>"
+        f"<td>{f(a.mu_std[k], '.4f')}</td>"
+        f"<td>{f(a.correlation_length_m[k] * 1e6)}</td>"
+        f"<td>{f(a.psd_level[k], '.3g')}</td></tr>"
+        for k in range(len(a.pressure_pa))
     )
     fits = "".join(
-        f"<tr><td>{label}</td><td>{f(d['fit'][key]['a'])} ± {f(d['fit'][key]['a_se'], '.2g')}</td>"
-        f"<td>{f(d['fit'][key]['b'])} ± {f(d['fit'][key]['b_se'], '.2g')}</td>"
-        f"<td>{f(d['fit'][key]['c'])} ± {f(d['fit'][key]['c_se'], '.2g')}</td></tr>"
+        f"<tr><td>{label}</td><td>{f(a.fits[key].a)} ± {f(a.fits[key].a_se, '.2g')}</td>"
+        f"<td>{f(a.fits[key].b)} ± {f(a.fits[key].b_se, '.2g')}</td>"
+        f"<td>{f(a.fits[key].c)} ± {f(a.fits[key].c_se, '.2g')}</td></tr>"
         for key, label in (("mu_mean", "E[μ]"), ("mu_std", "σ_μ"), ("psd_level", "E[S] [m]"))
     )
-    erg = d["ergodicity"]
-    sc = d["surrogate_check"]
+    erg = a.ergodicity
+    sc = a.surrogate_check
     names = (("summit_count", "summit count", 1.0, ".0f"), ("summit_radius_mean_m", "mean summit radius β̄ [µm]",
              1e6, ".3g"), ("summit_height_std_m", "σ<sub>S</sub> [nm]", 1e9, ".3g"))
     sc_rows = "".join(
-        f"<tr><td>{label}</td><td>{f(sc['measured'][key] * scale, spec)}</td>"
-        f"<td>{f(sc['ensemble_mean'][key] * scale, spec)} ± {f(sc['ensemble_std'][key] * scale, '.2g')}</td>"
-        f"<td>{f(sc['z'][key], '+.2f')}</td></tr>"
+        f"<tr><td>{label}</td><td>{f(sc.measured[key] * scale, spec)}</td>"
+        f"<td>{f(sc.ensemble_mean[key] * scale, spec)} ± {f(sc.ensemble_std[key] * scale, '.2g')}</td>"
+        f"<td>{f(sc.z[key], '+.2f')}</td></tr>"
         for key, label, scale, spec in names
     )
-    mu_z = [v for v in sc["mu_z"] if v is not None]
+    mu_z = [v for v in sc.mu_z if math.isfinite(v)]
     sc_rows += (
         f"<tr><td>μ(u), {len(mu_z)} approaches</td><td colspan='2'>measured map's own μ(u) vs the "
         f"ensemble</td><td>max |z| = {f(max((abs(v) for v in mu_z), default=math.nan), '.2f')}</td></tr>"
     )
-    verdict = "credible" if sc["credible"] else "NOT credible (" + ", ".join(sc["failures"]) + ")"
-    wc = d.get("window_check")
+    verdict = "credible" if sc.credible else "NOT credible (" + ", ".join(sc.failures()) + ")"
+    wc = a.window_check
     if wc is None:
         window_html = "<p><b>Measured windows:</b> not checked (too few summits for 2 × 2 windows).</p>"
     else:
-        k = max(range(len(wc["z"])), key=lambda i: abs(wc["z"][i]))
+        k = max(range(len(wc.z)), key=lambda i: abs(wc.z[i]))
         window_html = (
-            f"<p><b>Do the surrogates scatter like the measurement?</b> σ of μ over {wc['measured_windows']} "
-            f"disjoint windows of {f(wc['window_size_m'][0] * 1e6, '.3g')} × {f(wc['window_size_m'][1] * 1e6, '.3g')}"
-            f" µm cut from the measured map vs over {wc['surrogate_windows']} such windows of the surrogates; at the "
-            f"worst approach u<sub>{k}</sub>: {f(wc['measured_std'][k], '.3g')} "
-            f"[{f(wc['measured_std_ci95'][k][0], '.3g')}, {f(wc['measured_std_ci95'][k][1], '.3g')}] vs "
-            f"{f(wc['surrogate_std'][k], '.3g')}; max |z| = {f(wc['max_abs_z'], '.2f')} (threshold "
-            f"{f(wc['threshold'], '.2f')}) → <b>{html.escape(str(wc['verdict']))}</b>.</p>"
+            f"<p><b>Do the surrogates scatter like the measurement?</b> σ of μ over {wc.measured_windows} "
+            f"disjoint windows of {f(wc.window_size_m[0] * 1e6, '.3g')} × {f(wc.window_size_m[1] * 1e6, '.3g')}"
+            f" µm cut from the measured map vs over {wc.surrogate_windows} such windows of the surrogates; at the "
+            f"worst approach u<sub>{k}</sub>: {f(wc.measured_std[k], '.3g')} "
+            f"[{f(wc.measured_std_ci95[k][0], '.3g')}, {f(wc.measured_std_ci95[k][1], '.3g')}] vs "
+            f"{f(wc.surrogate_std[k], '.3g')}; max |z| = {f(wc.max_abs_z, '.2f')} (threshold "
+            f"{f(wc.threshold, '.2f')}) → <b>{html.escape(wc.verdict)}</b>.</p>"
         )
-    cc = d.get("copy_check") or {}
-    if cc:
+    cc = a.copy_check
+    if cc is not None:
         window_html += (
             f"<p><b>Are the surrogates new surfaces?</b> Largest normalised cross-correlation over all shifts of "
-            f"{cc['surrogates']} surrogates with the map: {f(cc['max_ncc_with_map'], '.2f')}, between surrogates: "
-            f"{f(cc['max_ncc_between_surrogates'], '.2f')} (limit {f(cc['ncc_limit'], 'g')}); largest verbatim piece "
-            f"of the map: {f(100 * (cc['largest_piece_fraction'] or 0.0), '.2g')} % (limit "
-            f"{f(100 * cc['piece_limit'], 'g')} %) → {'a COPY' if cc['is_copy'] else 'new surfaces'}.</p>"
+            f"{cc.surrogates} surrogates with the map: {f(cc.max_ncc_with_map, '.2f')}, between surrogates: "
+            f"{f(cc.max_ncc_between_surrogates, '.2f')} (limit {f(cc.ncc_limit, 'g')}); largest verbatim piece "
+            f"of the map: {f(100 * (cc.largest_piece_fraction or 0.0), '.2g')} % (limit "
+            f"{f(100 * cc.piece_limit, 'g')} %) → {'a COPY' if cc.is_copy else 'new surfaces'}.</p>"
         )
-    cr = d["credibility"]
-    gate = ("credible: the model would be written" if cr["credible"] else
-            "NOT credible (" + ", ".join(r["code"] for r in cr["reasons"]) + "): `friction-process` would exit 3 "
+    cr = a.credibility
+    gate = ("credible: the model would be written" if cr.credible else
+            "NOT credible (" + ", ".join(cr.codes()) + "): `friction-process` would exit 3 "
             "and write no model file without --accept-not-credible")
     parts = [
         f"<p><b>Do the surrogates resemble the measured map?</b> Amplitude estimate "
-        f"<code>{html.escape(str(sc['amplitude']))}</code> (edge jump of the non-periodic map removed), "
-        f"z = (measured − ensemble mean)/ensemble sd, credible if every |z| &lt; {f(sc['limit'], '.0f')}: "
+        f"<code>{html.escape(str(sc.amplitude))}</code> (edge jump of the non-periodic map removed), "
+        f"z = (measured − ensemble mean)/ensemble sd, credible if every |z| &lt; {f(sc.limit, '.0f')}: "
         f"<b>{html.escape(verdict)}</b>.</p>"
         "<table><tr><th></th><th>measured map</th><th>surrogates (mean ± sd)</th><th>z</th></tr>"
         + sc_rows + "</table>",
@@ -93,8 +92,8 @@ def friction_process_section(directory: Path, ch3: Chapter3) -> str:
         f"<p>Statistical contact analysis (method §3–§4) of the shipped surface, brake-pad material, "
         f"{cfg.realizations} random-phase realisations, {cfg.long_surfaces} long surfaces × "
         f"{cfg.length_factor} lengths, seed {seed}. Ergodicity (non-overlapping windows along each long "
-        f"surface vs across the independent surfaces): max |z| = {f(erg['max_abs_z'], '.2f')} "
-        f"(threshold {f(erg['threshold'], '.2f')}) → {html.escape(str(erg['verdict']))}. "
+        f"surface vs across the independent surfaces): max |z| = {f(erg.max_abs_z, '.2f')} "
+        f"(threshold {f(erg.threshold, '.2f')}) → {html.escape(erg.verdict)}. "
         f"Model file <code>{html.escape(model_path.relative_to(directory).as_posix())}</code>, statistics "
         f"<code>{html.escape(Path(nc_path).relative_to(directory).as_posix())}</code> "
         "(use with <code>stochfric simulate --model contact --process FILE</code>).</p>",

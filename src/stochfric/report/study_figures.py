@@ -16,10 +16,11 @@ import xarray as xr
 from matplotlib.ticker import MaxNLocator
 
 from ..io_utils import write_atomic
+from ..oscillator.options import Model
 from ..plotting import new_subplots
 
 Figure = tuple[Path, str]
-_COLORS = {"deterministic": "k", "white": "tab:blue", "contact": "tab:red"}
+_COLORS: dict[str, str] = {Model.DETERMINISTIC: "k", Model.WHITE: "tab:blue", Model.CONTACT: "tab:red"}
 #: diverging colour map of the M_diff panels; its low end is red, so M_diff < 0 (more stick-slip than the
 #: deterministic run) is red
 MDIFF_CMAP = "RdBu"
@@ -106,7 +107,7 @@ def damping_phase_figure(ds: xr.Dataset, directory: str | Path, prefix: str = "d
         if g0 is not None:
             ax.axhline(g0, color="0.5", lw=0.7, ls=":")
         nrun = int(np.isfinite(tr[0, :, 0, 1]).sum()) if tr.size else 0
-        ax.set_title(f"{m}, N = {nf:g} N" + (f" ({nrun} runs per D)" if m != "deterministic" else ""), fontsize=9)
+        ax.set_title(f"{m}, N = {nf:g} N" + (f" ({nrun} runs per D)" if m != Model.DETERMINISTIC else ""), fontsize=9)
         ax.set_xlabel("x1")
         ax.set_ylabel("x2")
         tidy_x_ticks(ax)
@@ -192,7 +193,7 @@ def _probability_map(ds: xr.Dataset, d: Path, prefix: str, models: list[str], dd
     3 × len(N) overlapping curves and bands)."""
     fig, axes = new_subplots(1, len(models), figsize=(4.2 * len(models), 3.6), squeeze=False, sharey=True,
                              layout="constrained")
-    dd_det = ds["d_max_sample_extreme"].sel(model="deterministic").values if "deterministic" in models else None
+    dd_det = ds["d_max_sample_extreme"].sel(model=Model.DETERMINISTIC).values if Model.DETERMINISTIC in models else None
     risk = "d_max_risk" in ds
     a0 = float(ds["risk_level"].values[0]) if risk else float("nan")
     pc = None
@@ -202,7 +203,7 @@ def _probability_map(ds: xr.Dataset, d: Path, prefix: str, models: list[str], dd
         pc = ax.pcolormesh(dd, nn, p, shading="nearest", cmap="Greys", vmin=0, vmax=1)
         if dd_det is not None:
             ax.plot(dd_det, nn, "o-", color="tab:orange", ms=3, lw=1.2, label=r"$D_\mathrm{max}^d$")
-        if m != "deterministic" and risk:
+        if m != Model.DETERMINISTIC and risk:
             v, lo, hi = (_risk(ds, k, m) for k in ("d_max_risk", "d_max_risk_low", "d_max_risk_high"))
             col = _COLORS.get(m, "k")
             ax.plot(v, nn, "s--", color=col, ms=3, lw=1.2, label=r"$D_\mathrm{max}$" + f"({_pct(a0)})")
@@ -229,13 +230,13 @@ def _risk_figure(ds: xr.Dataset, d: Path, prefix: str, models: list[str], dd: An
     """P(stick-slip | D) with its Clopper–Pearson band at the phase force (else the middle force), one panel per
     stochastic model; each risk level α dashed, D_max(α) marked at height α with its interval (an open upper end
     drawn to the grid end with ▷), D_H and D_max^d as vertical lines."""
-    stoch = [m for m in models if m != "deterministic"] or models
+    stoch = [m for m in models if m != Model.DETERMINISTIC] or models
     nf = float(ds["phase_normal_force_n"].values) if "phase_normal_force_n" in ds else float(nn[(nn.size - 1) // 2])
     i = int(np.argmin(np.abs(nn - nf)))
     alphas = [float(a) for a in ds["risk_level"].values]
     conf = json.loads(ds.attrs.get("config_json", "{}")).get("confidence", 0.95)
     fig, axes = new_subplots(1, len(stoch), figsize=(4.6 * len(stoch), 3.6), squeeze=False, sharey=True)
-    det = float(ds["d_max_sample_extreme"].sel(model="deterministic").values[i]) if "deterministic" in models \
+    det = float(ds["d_max_sample_extreme"].sel(model=Model.DETERMINISTIC).values[i]) if Model.DETERMINISTIC in models \
         else np.nan
     grey = ("0.25", "0.55", "0.75")
     for j, m in enumerate(stoch):
@@ -291,7 +292,7 @@ def _dmax_figure(ds: xr.Dataset, d: Path, prefix: str, models: list[str], dd: An
     labelled: set[tuple[int, str]] = set()
     a0 = float(ds["risk_level"].values[0])
     for k, m in enumerate(models):
-        det = m == "deterministic"
+        det = m == Model.DETERMINISTIC
         y = ds["d_max_sample_extreme"].sel(model=m).values if det else _risk(ds, "d_max_risk", m)
         lo = y if det else _risk(ds, "d_max_risk_low", m)
         hi = y if det else _risk(ds, "d_max_risk_high", m)
@@ -349,7 +350,7 @@ def forcing_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "forcin
     models = [str(m) for m in ds["model"].values]
     eta = ds["eta"].values
     qs = ds["forcing_q"].values
-    stoch = [m for m in models if m != "deterministic"]
+    stoch = [m for m in models if m != Model.DETERMINISTIC]
     fig, axes = new_subplots(len(qs), max(1, len(stoch)), figsize=(5 * max(1, len(stoch)), 3.4 * len(qs)),
                              squeeze=False)
     for i, q in enumerate(qs):
@@ -360,9 +361,9 @@ def forcing_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "forcin
                 v = x[k].ravel()
                 v = v[np.isfinite(v)]
                 ax.plot(np.full(v.size, e), v, ".", color="0.6", ms=2)
-            if "deterministic" in models:
-                xd = ds["x_gh"].sel(model="deterministic", forcing_q=q).where(
-                    ds["in_window"].sel(model="deterministic", forcing_q=q) > 0).values
+            if Model.DETERMINISTIC in models:
+                xd = ds["x_gh"].sel(model=Model.DETERMINISTIC, forcing_q=q).where(
+                    ds["in_window"].sel(model=Model.DETERMINISTIC, forcing_q=q) > 0).values
                 for k, e in enumerate(eta):
                     v = xd[k, 0]
                     v = v[np.isfinite(v)]
@@ -437,7 +438,7 @@ def lyapunov_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "lyapu
             ax.axhline(0, color="0.5", lw=0.8)
             ax.set_xlim(float(np.min(eta)) - 0.05, float(np.max(eta)) + 0.05)
             ax.set_xlabel("η")
-            ax.set_ylabel("λ" if m == "deterministic" else "E[Λ]")
+            ax.set_ylabel("λ" if m == Model.DETERMINISTIC else "E[Λ]")
             if i == 0 and j == 0:
                 _legend(ax, 7)
     integ = str(ds.attrs.get("integrator", "euler"))
@@ -482,7 +483,7 @@ def normal_force_figures(ds: xr.Dataset, directory: str | Path, prefix: str = "n
                 x = ds["x_gh"].sel(at).where(ds["in_window"].sel(at) > 0)
                 v = x.isel(damping_ratio=di).values.ravel()
                 v = v[np.isfinite(v)]
-                if m == "deterministic":
+                if m == Model.DETERMINISTIC:
                     for xv in np.unique(np.round(v, 12))[:5]:
                         ax.axvline(xv, color="k", lw=1)
                         drawn = True

@@ -29,11 +29,12 @@ from ..io_utils import package_versions, write_netcdf_atomic, write_text_atomic
 from ..oscillator.case import CaseSetup
 from ..progress import Progress
 from . import tasks as task_module
+from .config import StudyConfig
 from .errors import StudyError
 from .executors import Executor, SweepStats, run_tasks
 from .grids import pad_events
 from .store import CheckpointStore
-from .summary import StudySummary, WarningCount, to_json
+from .summary import StudySummary, WarningCount, summary_class, to_json
 from .tasks import TaskSpec, model_choices, setup_for, warnings_of
 
 #: Version of a study's saved summary and dataset (2: seeds by cell, D_max(α), converged forced studies,
@@ -41,12 +42,14 @@ from .tasks import TaskSpec, model_choices, setup_for, warnings_of
 STUDY_SCHEMA = "stochfric.study/2"
 
 S = TypeVar("S", bound=StudySummary)
+C = TypeVar("C", bound=StudyConfig)
 
 
 @dataclass
 class StudyResult(Generic[S]):
     """A finished study: ``dataset`` (labelled arrays, units, provenance) and its typed ``summary``
-    (the study kind's summary class, :mod:`~stochfric.studies.kinds`)."""
+    (the study kind's summary class, :func:`~stochfric.studies.summary.summary_class`; the kinds'
+    registry is :mod:`~stochfric.studies.kinds`)."""
 
     kind: str
     dataset: xr.Dataset
@@ -73,8 +76,6 @@ class StudyResult(Generic[S]):
         """The result :meth:`save` wrote to ``directory`` (``<kind>.nc``, ``<kind>.json``), its summary
         read into the kind's summary class.  A result of another schema (:data:`STUDY_SCHEMA`: written by
         an older stochfric) is refused with one line saying to rerun; :class:`StudyError`."""
-        from .kinds import study_kind
-
         d = Path(directory)
         path = d / f"{kind}.json"
         data = json.loads(path.read_text(encoding="utf-8"))
@@ -84,7 +85,7 @@ class StudyResult(Generic[S]):
                              f"one reads {STUDY_SCHEMA}): rerun the study (stochfric study {kind} …, or stochfric "
                              "reproduce)")
         try:
-            summary = study_kind(kind).summary.from_json(data)
+            summary = summary_class(kind).from_json(data)
         except (KeyError, TypeError, ValueError) as exc:
             raise StudyError(f"{path} is not a {kind} study summary of {STUDY_SCHEMA} ({exc!r}): rerun the "
                              "study") from None
@@ -106,7 +107,7 @@ class StudyResult(Generic[S]):
 
 
 def provenance_attrs(
-    kind: str, config: Any, setup: Any, root_entropy: int, executor: Executor | None
+    kind: str, config: StudyConfig, setup: CaseSetup, root_entropy: int, executor: Executor | None
 ) -> dict[str, str]:
     """Dataset attributes: config, case, seed, versions (JSON strings)."""
     return {
@@ -134,7 +135,7 @@ def provenance_attrs(
 
 def sweep(
     kind: str,
-    config: Any,
+    config: StudyConfig,
     tasks: list[Any],
     executor: Executor | None,
     checkpoint: str | Path | None,
@@ -152,18 +153,19 @@ def warning_counts(warns: Sequence[dict[str, str]]) -> list[WarningCount]:
     return [WarningCount(c, sum(w["code"] == c for w in warns)) for c in codes]
 
 
-class Study:
+class Study(Generic[C]):
     """Base of the four studies of method §6: axes, tasks, sweep, assemble (see the module docstring).
 
-    ``self.config`` is the validated config, ``self.setup`` its case setup (preset, process model,
+    ``self.config`` is the validated config (the kind's :class:`~stochfric.studies.config.StudyConfig`
+    subclass ``C``), ``self.setup`` its case setup (preset, process model,
     τ_end, Δτ); ``default_tau_end`` replaces the preset's τ_end when the config sets none.
     """
 
     kind: ClassVar[str]
     default_tau_end: ClassVar[float | None] = None
 
-    def __init__(self, config: Any) -> None:
-        self.config = config
+    def __init__(self, config: C) -> None:
+        self.config: C = config
         self.setup: CaseSetup = setup_for(config, tau_end=self.default_tau_end)
 
     # --- to be given by a study ---------------------------------------------------------
@@ -201,7 +203,7 @@ class Study:
                                     params=params, **fields)
 
     @classmethod
-    def study(cls, config: Any, *, executor: Executor | None = None, checkpoint: str | None = None,
+    def study(cls, config: C, *, executor: Executor | None = None, checkpoint: str | None = None,
               progress: Progress | None = None) -> StudyResult[Any]:
         """Run the study of ``config``: ``cls(config).run(…)`` (the functions ``damping_study`` etc.)."""
         return cls(config).run(executor=executor, checkpoint=checkpoint, progress=progress)
@@ -258,10 +260,10 @@ class Study:
         return {"schema": STUDY_SCHEMA, "study": self.kind, "preset": setup.preset.name,
                 "process_source": setup.process_source, "runs": cfg.runs, "seed": cfg.seed,
                 "tau_end": setup.tau_end, "dt": setup.dt, "models": list(cfg.models),
-                "path_coordinate": choices["path_coordinate"], "white_intensity": choices["white_intensity"],
-                "white_increment": choices["white_increment"], "process_level": choices["process_level"],
-                "white_model": choices.get("white_model"), "sigma_zeta": choices["sigma_zeta"],
-                "sigma_zeta_effective": choices["sigma_zeta_effective"], "warnings": warning_counts(warns),
+                "path_coordinate": choices.path_coordinate, "white_intensity": choices.white_intensity,
+                "white_increment": choices.white_increment, "process_level": choices.process_level,
+                "white_model": choices.white_model, "sigma_zeta": choices.sigma_zeta,
+                "sigma_zeta_effective": choices.sigma_zeta_effective, "warnings": warning_counts(warns),
                 "versions": package_versions()}
 
     def dataset(self, data: dict[str, Any], coords: dict[str, Any], executor: Executor | None,

@@ -19,14 +19,15 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-from ..contact.asperity import ContactResult, asperity_contact, default_approach_m
+from ..contact.asperity import ApproachRule, ContactResult, asperity_contact, default_approach_m
 from ..contact.materials import Material, load_material
 from ..process.ensemble import default_window_shift_points
 from ..process.statistics import AnalysisConfig, StatisticalContactAnalysis, analyse
 from ..surface.io import Surface, default_surface_path, read_surface
 from ..surface.preprocess import Preparation, prepare
-from ..surface.statistics import surface_statistics
-from ..surface.summits import Summits, summits_of
+from ..surface.statistics import SurfaceStatistics, surface_statistics
+from ..surface.summits import DEFAULT_SUMMIT_RULE, Summits, summits_of
+from ..surface.synthesis import PHASE_METHOD
 
 __all__ = ["CHAPTER3_SEED", "Chapter3", "chapter3_analysis"]
 
@@ -44,7 +45,7 @@ class Chapter3:
     fine_summits: Summits
     coarse_summits: Summits
     preparation: Preparation
-    surface_stats: dict[str, Any]
+    surface_stats: SurfaceStatistics
     material: Material
     contact: ContactResult
     analysis: StatisticalContactAnalysis
@@ -60,14 +61,14 @@ def chapter3_analysis(directory: str | Path, *, quick: bool = False, seed: int =
     path = default_surface_path()
     prep = Preparation(detrend="plane", median_radius=0, step=1)
     fine, coarse = prepare(read_surface(path), prep)
-    fs = summits_of(fine, rule="thesis")
-    cs = fs if coarse is fine else summits_of(coarse, rule="thesis")
+    fs = summits_of(fine, rule=DEFAULT_SUMMIT_RULE)
+    cs = fs if coarse is fine else summits_of(coarse, rule=DEFAULT_SUMMIT_RULE)
     material = load_material("brake-pad")
-    u = default_approach_m(cs, rule="sigma")  # the thesis's ratio 1:12 in σ_S (reproduction mode)
+    u = default_approach_m(cs, rule=ApproachRule.SIGMA)  # the thesis's ratio 1:12 in σ_S (reproduction mode)
     contact = asperity_contact(coarse, cs, material, u, preparation=prep.to_dict())
     cfg = AnalysisConfig(
         realizations=30 if quick else 100, long_surfaces=4 if quick else 10,
-        window_shift_points=default_window_shift_points(coarse.nb_grid_pts[1]), surrogate="phase", seed=seed,
+        window_shift_points=default_window_shift_points(coarse.nb_grid_pts[1]), surrogate=PHASE_METHOD, seed=seed,
     )  # fmt: skip
     analysis = analyse(coarse, material, u, cfg, name="shipped surface (al3d-1)")
     out = Path(directory) / "friction_process"
@@ -79,7 +80,7 @@ def chapter3_analysis(directory: str | Path, *, quick: bool = False, seed: int =
         fine_summits=fs,
         coarse_summits=cs,
         preparation=prep,
-        surface_stats=surface_statistics(coarse, cs).to_dict(),
+        surface_stats=surface_statistics(coarse, cs),
         material=material,
         contact=contact,
         analysis=analysis,

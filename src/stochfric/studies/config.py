@@ -236,7 +236,7 @@ class _ForcedConfig(StudyConfig):
         return v
 
 
-def integrator_record(config: Any) -> dict[str, str]:
+def integrator_record(config: StudyConfig) -> dict[str, str]:
     """The integrators a forced study ran with, for its JSON and dataset attributes: ``integrator``
     (deterministic, contact), ``sde_integrator`` (white noise) and ``integrator_mode``: ``converged``
     (``accurate``) or ``reproduction`` (``euler`` at a fixed Δτ, the thesis's scheme)."""

@@ -52,6 +52,7 @@ import numpy as np
 import numpy.typing as npt
 import xarray as xr
 
+from ..oscillator.options import Model
 from ..oscillator.reference import hopf_damping
 from ..random import BOOTSTRAP_KEY, child_generator
 from .base import Progress, Study, StudyResult, sweep
@@ -177,7 +178,7 @@ class PhaseSummary:
 
 
 @dataclass(frozen=True, kw_only=True)
-class DampingSummary(StudySummary):
+class DampingSummary(StudySummary, kind="damping"):
     """The damping study's summary (module docstring).
 
     Grid: ``normal_force_n`` [N], ``damping_ratio`` [-]; ``d_hopf`` [-] per force; σ_ζ, σ_ζ,eff [-] per
@@ -238,7 +239,7 @@ def sample_extremes(models: Sequence[str], damping: Array, k: Array, n_runs: npt
     dmax, dlo, dhi = (np.full((nm, nn), np.nan) for _ in range(3))
     for mi, model in enumerate(models):
         for ni in range(nn):
-            if model == "deterministic":
+            if model == Model.DETERMINISTIC:
                 v = d_max_deterministic(damping, k[mi, ni] > 0)
                 dmax[mi, ni] = v
                 dlo[mi, ni] = v
@@ -261,7 +262,7 @@ def risk_limits(models: Sequence[str], damping: Array, k: Array, n_runs: npt.NDA
     for mi, model in enumerate(models):
         for ni in range(nn):
             for ai, a in enumerate(risk_levels):
-                if model == "deterministic":
+                if model == Model.DETERMINISTIC:
                     for f in ("value", "low", "high"):
                         rk[f][mi, ni, ai] = d_max[mi, ni]
                     rk["high_open"][mi, ni, ai] = int(math.isfinite(d_max[mi, ni])
@@ -372,10 +373,10 @@ def _limit_variables(sig: Array, extreme: tuple[Array, Array, Array], rk: dict[s
 def _add_m_diff(data: dict[str, Any], coords: dict[str, Any], models: list[str], m_mean: Array) -> None:
     """M_diff = M_d − E[M_s] (4.41) and M_quot = E[M_s]/M_d (4.42) per stochastic model, where the
     deterministic model ran."""
-    if "deterministic" not in models:
+    if Model.DETERMINISTIC not in models:
         return
-    md = m_mean[models.index("deterministic")]
-    stoch = [m for m in models if m != "deterministic"]
+    md = m_mean[models.index(Model.DETERMINISTIC)]
+    stoch = [m for m in models if m != Model.DETERMINISTIC]
     if not stoch:
         return
     ms = np.stack([m_mean[models.index(m)] for m in stoch])
@@ -398,7 +399,7 @@ def _offset_progress(progress: Progress | None, offset: int, total: int) -> Call
     return report
 
 
-class DampingStudy(Study):
+class DampingStudy(Study[DampingConfig]):
     """One task per (model, N): all D of that N batched into one simulate call (the grid); after
     the grid one phase-diagram task per model (:meth:`phase_tasks`), whose D may depend on the grid."""
 
@@ -555,10 +556,10 @@ class DampingStudy(Study):
     def summarise(self, ds: xr.Dataset, warns: list[dict[str, str]]) -> DampingSummary:
         """The :class:`DampingSummary` of the study's dataset."""
         config, setup, models = self.config, self.setup, list(self.config.models)
-        stoch = [m for m in models if m != "deterministic"]
+        stoch = [m for m in models if m != Model.DETERMINISTIC]
         ex = "d_max_sample_extreme"
-        det = ds[ex].sel(model="deterministic").values if "deterministic" in models else None
-        det_next = ds[f"{ex}_high"].sel(model="deterministic").values if "deterministic" in models else None
+        det = ds[ex].sel(model=Model.DETERMINISTIC).values if Model.DETERMINISTIC in models else None
+        det_next = ds[f"{ex}_high"].sel(model=Model.DETERMINISTIC).values if Model.DETERMINISTIC in models else None
 
         def per_model(name: str) -> dict[str, Table]:
             return {m: ds[name].sel(model=m).values.tolist() for m in models}
@@ -615,7 +616,7 @@ def _risk_entries(ds: xr.Dataset, model: str, risk_levels: Sequence[float], n_fo
             for i in range(n_forces)]
 
 
-def _phase_summary(ds: xr.Dataset, models: list[str], save_every: int) -> PhaseSummary:
+def _phase_summary(ds: xr.Dataset, models: Sequence[str], save_every: int) -> PhaseSummary:
     """The :class:`PhaseSummary` of the dataset's phase-diagram variables."""
     return PhaseSummary(
         normal_force_n=float(ds["phase_normal_force_n"].values),

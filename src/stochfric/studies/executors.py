@@ -24,6 +24,7 @@ from abc import ABC, abstractmethod
 from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import FIRST_COMPLETED, Future, ProcessPoolExecutor, wait
 from dataclasses import dataclass
+from enum import StrEnum
 from multiprocessing import get_context
 from pathlib import Path
 from typing import Any
@@ -36,6 +37,15 @@ from .tasks import TaskSpec, execute_task
 
 TaskResult = dict[str, npt.NDArray[Any]]
 TaskFunction = Callable[[TaskSpec, int | None], TaskResult]
+
+
+class ExecutorKind(StrEnum):
+    """Where a study's tasks run (:func:`make_executor`): one after the other in this process, in local
+    worker processes, or on a Dask cluster.  Never changes the numbers."""
+
+    SERIAL = "serial"
+    PROCESSES = "processes"
+    DASK = "dask"
 
 
 class Executor(ABC):
@@ -55,7 +65,7 @@ class Executor(ABC):
 class SerialExecutor(Executor):
     """One task after the other in this process; each task uses ``threads`` threads."""
 
-    name = "serial"
+    name = ExecutorKind.SERIAL
 
     def __init__(self, threads: int | None = None) -> None:
         self.threads = threads
@@ -114,7 +124,7 @@ class ProcessExecutor(Executor):
     when this process dies (:func:`_exit_with_parent`); on Ctrl-C they are terminated at once.
     """
 
-    name = "processes"
+    name = ExecutorKind.PROCESSES
 
     def __init__(self, workers: int | None = None) -> None:
         n = workers if workers is not None else (os.cpu_count() or 1)
@@ -154,7 +164,7 @@ class DaskExecutor(Executor):
     Needs ``dask[distributed]`` (``pip install 'stochfric[dask]'``).
     """
 
-    name = "dask"
+    name = ExecutorKind.DASK
 
     def __init__(self, address: str | None = None, client: Any = None) -> None:
         if address is None and client is None:
@@ -194,17 +204,21 @@ class DaskExecutor(Executor):
         return {"executor": self.name, "address": self.address}
 
 
-def make_executor(kind: str = "serial", *, workers: int | None = None, scheduler: str | None = None) -> Executor:
-    """``serial`` | ``processes`` | ``dask`` (``scheduler`` given implies ``dask``)."""
+def make_executor(kind: ExecutorKind | str = ExecutorKind.SERIAL, *, workers: int | None = None,
+                  scheduler: str | None = None) -> Executor:
+    """The executor of an :class:`ExecutorKind` (or its name; ``scheduler`` given implies ``dask``)."""
     if scheduler is not None:
         return DaskExecutor(address=scheduler)
-    if kind == "serial":
+    try:
+        chosen = ExecutorKind(kind)
+    except ValueError:
+        *rest, last = ExecutorKind
+        raise StudyError(f"unknown executor {kind!r}; choose {', '.join(rest)} or {last}") from None
+    if chosen is ExecutorKind.SERIAL:
         return SerialExecutor(threads=workers)
-    if kind == "processes":
+    if chosen is ExecutorKind.PROCESSES:
         return ProcessExecutor(workers=workers)
-    if kind == "dask":
-        raise StudyError("the dask executor needs --scheduler ADDRESS")
-    raise StudyError(f"unknown executor {kind!r}; choose serial, processes or dask")
+    raise StudyError("the dask executor needs --scheduler ADDRESS")
 
 
 @dataclass

@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from ..oscillator.options import Model
 from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
 from .base import Study, StudyResult
 from .config import ForcingConfig, integrator_record
@@ -29,7 +30,7 @@ from .tasks import TaskSpec
 
 
 @dataclass(frozen=True, kw_only=True)
-class ForcingSummary(ForcedSummary):
+class ForcingSummary(ForcedSummary, kind="forcing"):
     """The forcing study's summary (module docstring).
 
     Case: ``normal_force_n`` [N], σ_ζ and σ_ζ,eff [-] at that force; the forcing amplitudes
@@ -53,7 +54,7 @@ class ForcingSummary(ForcedSummary):
     sigma_ratio_median_ci: dict[str, RatioEstimate] | None = field(default=None, metadata=OPTIONAL)
 
 
-class ForcingStudy(Study):
+class ForcingStudy(Study[ForcingConfig]):
     """One task per (model, q); all η in one simulate call."""
 
     kind = "forcing"
@@ -112,7 +113,7 @@ class ForcingStudy(Study):
         nm, nq, ne = xw.shape[:3]
         se = np.full((nm, nq, ne, 2), np.nan)
         for mi, qi, ei in np.ndindex(nm, nq, ne):
-            runs = 1 if self.config.models[mi] == "deterministic" else self.config.runs
+            runs = 1 if self.config.models[mi] == Model.DETERMINISTIC else self.config.runs
             g = child_generator(self.config.seed, BOOTSTRAP_KEY, mi, qi, ei)
             sm = sample_summary([xw[mi, qi, ei, r] for r in range(runs)], n_boot=200, rng=g)
             se[mi, qi, ei] = [sm.se_mean_boot, sm.se_std_boot]
@@ -123,9 +124,9 @@ class ForcingStudy(Study):
         ``[q, η, (low, high)]``) and per q its median over η (``median``, all η resampled together);
         ``None`` without both models."""
         models, nr = list(self.config.models), self.config.runs
-        if not ("white" in models and "contact" in models):
+        if not (Model.WHITE in models and Model.CONTACT in models):
             return None
-        ci, cw = models.index("contact"), models.index("white")
+        ci, cw = models.index(Model.CONTACT), models.index(Model.WHITE)
         nq, ne = xw.shape[1:3]
         with np.errstate(invalid="ignore", divide="ignore"):
             value = std[ci] / std[cw]

@@ -72,6 +72,7 @@ import numpy as np
 import numpy.typing as npt
 
 from ..oscillator.case import MU0
+from ..oscillator.options import Model
 from .base import Study, StudyResult
 from .config import LyapunovConfig, integrator_record
 from .errors import StudyError
@@ -260,7 +261,7 @@ Cells = list[list[list[float]]]
 
 
 @dataclass(frozen=True, kw_only=True)
-class LyapunovSummary(ForcedSummary):
+class LyapunovSummary(ForcedSummary, kind="lyapunov"):
     """The Lyapunov study's summary (module docstring).
 
     Grid: ``normal_force_n`` [N] beside ``forcing_q`` and ``eta`` (:class:`ForcedSummary`); σ_ζ,
@@ -317,7 +318,7 @@ class _Exponents:
                    rate_status_runs=np.full((*shape, runs), "", dtype=object))
 
 
-class LyapunovStudy(Study):
+class LyapunovStudy(Study[LyapunovConfig]):
     """One task per (model, q, N): parameter sets (η0, η0, η0, η1, …) = (ref, pert δ, twin 2δ)."""
 
     kind = "lyapunov"
@@ -368,7 +369,7 @@ class LyapunovStudy(Study):
         dd2 = twin - ref
         ex = _Exponents.empty(w.shape[:4], config.runs)
         for idx in np.ndindex(*w.shape[:4]):
-            runs = 1 if config.models[idx[0]] == "deterministic" else config.runs
+            runs = 1 if config.models[idx[0]] == Model.DETERMINISTIC else config.runs
             self.analyse_cell(ex, idx, w[idx][:runs], dd[idx], dd2[idx])
         coords: dict[str, Any] = {
             "model": list(config.models),
@@ -411,7 +412,7 @@ class LyapunovStudy(Study):
     def summarise(self, ex: _Exponents, warns: list[dict[str, str]]) -> LyapunovSummary:
         """The :class:`LyapunovSummary` of the analysed cells."""
         config, models, rec = self.config, list(self.config.models), integrator_record(self.config)
-        sig = {m: significance(ex.rate[i], ex.rate_se[i]) for i, m in enumerate(models)}
+        sig: dict[str, Significance] = {m: significance(ex.rate[i], ex.rate_se[i]) for i, m in enumerate(models)}
 
         def per_model(a: npt.NDArray[Any]) -> dict[str, Any]:
             return {m: a[i].tolist() for i, m in enumerate(models)}

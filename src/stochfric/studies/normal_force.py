@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from ..oscillator.options import Model
 from ..random import BOOTSTRAP_KEY, INTERVAL_KEY, child_generator
 from .base import Study, StudyResult
 from .config import NormalForceConfig
@@ -35,7 +36,7 @@ _SE_FIELDS = ("mean", "std", "vark", "se_mean_iid", "se_std_iid", "se_vark_iid",
 
 
 @dataclass(frozen=True, kw_only=True)
-class NormalForceSummary(StudySummary):
+class NormalForceSummary(StudySummary, kind="normal-force"):
     """The normal-force study's summary (module docstring).
 
     Grid: ``normal_force_n`` [N], ``damping_ratio`` [-]; σ_ζ, σ_ζ,eff [-] per force; ``stick_window``
@@ -64,7 +65,7 @@ class NormalForceSummary(StudySummary):
     sigma_ratio_contact_white: list[list[RatioEstimate]] | None = field(default=None, metadata=OPTIONAL)
 
 
-class NormalForceStudy(Study):
+class NormalForceStudy(Study[NormalForceConfig]):
     """One task per (model, D); all normal forces N in one simulate call."""
 
     kind = "normal-force"
@@ -136,7 +137,7 @@ class NormalForceStudy(Study):
         nm, nd, nn = xw.shape[:3]
         table = np.full((nm, nd, nn, len(_SE_FIELDS)), np.nan)
         for mi, di, ni in np.ndindex(nm, nd, nn):
-            runs = 1 if models[mi] == "deterministic" else self.config.runs
+            runs = 1 if models[mi] == Model.DETERMINISTIC else self.config.runs
             rng = child_generator(self.config.seed, BOOTSTRAP_KEY, mi, di, ni)
             s = sample_summary([xw[mi, di, ni, r] for r in range(runs)], rng=rng)
             table[mi, di, ni] = [float(getattr(s, f)) for f in _SE_FIELDS]
@@ -170,9 +171,9 @@ normal_force_study = NormalForceStudy.study
 def _sigma_ratio(models: Sequence[str], xw: Any, nr: int, seed: int) -> list[list[RatioEstimate]] | None:
     """σ(X_gh) contact / white per (D, N) with delta-method SE and 95 % bootstrap interval (runs
     resampled, fixed seed); ``None`` without both models.  Layout [normal_force][damping_ratio]."""
-    if not ("white" in models and "contact" in models):
+    if not (Model.WHITE in models and Model.CONTACT in models):
         return None
-    ci, cw = models.index("contact"), models.index("white")
+    ci, cw = models.index(Model.CONTACT), models.index(Model.WHITE)
     nd, nn = xw.shape[1:3]
     out = []
     for di in range(nd):

@@ -16,7 +16,7 @@ from ..oscillator.presets import PresetName
 from ..progress import StagedProgress
 from .base import StudyResult
 from .chapter3 import chapter3_analysis
-from .config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
+from .config import AnyStudyConfig, DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
 from .executors import Executor
 from .grids import parse_grid
 from .kinds import study_kind
@@ -26,7 +26,7 @@ _DAMPING_FORCES = {"brake": (1800.0, 2800.0, 3800.0, 4800.0, 5600.0, 6800.0, 800
 _LYAP_FORCES = {"brake": (2000.0, 4000.0, 8000.0), "sheet": (500.0, 1100.0, 1750.0)}
 
 
-def run_study(config: Any, **kwargs: Any) -> StudyResult[Any]:
+def run_study(config: AnyStudyConfig, **kwargs: Any) -> StudyResult[Any]:
     """Run the study of ``config`` (its kind's study function, :mod:`~stochfric.studies.kinds`)."""
     return study_kind(config.kind).run(config, **kwargs)
 

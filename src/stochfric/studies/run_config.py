@@ -29,19 +29,20 @@ from __future__ import annotations
 import tomllib
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Literal
+from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError
 
 from .config import AnyStudyConfig
 from .errors import StudyError
+from .executors import ExecutorKind
 
 
 class Execution(BaseModel):
     """Where the tasks run (never changes the numbers)."""
 
     model_config = ConfigDict(frozen=True, extra="forbid")
-    executor: Literal["serial", "processes", "dask"] = "serial"
+    executor: ExecutorKind = ExecutorKind.SERIAL
     workers: int | None = Field(default=None, ge=1)
     scheduler: str | None = None
     checkpoint: str | None = None

@@ -20,6 +20,8 @@ from typing import Any, Self, TypeVar
 
 import numpy as np
 
+from .errors import StudyError
+
 T = TypeVar("T")
 
 #: Metadata of a summary field the study has only in some configurations: ``None`` and left out of the
@@ -108,6 +110,22 @@ def _decode_union(args: tuple[Any, ...], v: Any) -> Any:
     return _decode(pick[0], v)
 
 
+#: The summary class of each study kind, filled as the study modules define them
+#: (:meth:`StudySummary.__init_subclass__`); read by :func:`summary_class`.
+_SUMMARY_CLASSES: dict[str, type[StudySummary]] = {}
+
+
+def summary_class(kind: str) -> type[StudySummary]:
+    """The summary class of the study kind ``kind`` (what :meth:`~stochfric.studies.base.StudyResult.load`
+    reads a saved summary into); :class:`StudyError` naming the kinds for another.  The study modules
+    define these classes and :mod:`stochfric.studies` imports every study module, so the kinds are known
+    wherever a study module can be imported; this module sits below them and imports none (no cycle)."""
+    try:
+        return _SUMMARY_CLASSES[kind]
+    except KeyError:
+        raise StudyError(f"unknown study kind {kind!r}; one of {', '.join(sorted(_SUMMARY_CLASSES))}") from None
+
+
 @dataclass(frozen=True)
 class WarningCount:
     """How often one simulation warning class (``code``, e.g. ``coarse-time-step``) occurred in a study."""
@@ -145,6 +163,13 @@ class StudySummary:
     white_model: str | None = field(default=None, metadata=OPTIONAL)
     warnings: list[WarningCount] = field(default_factory=list)
     versions: dict[str, str] = field(default_factory=dict)
+
+    def __init_subclass__(cls, *, kind: str | None = None, **kwargs: Any) -> None:
+        """A study kind's summary class names its kind (``class DampingSummary(StudySummary,
+        kind="damping")``): :func:`summary_class` finds it by that name."""
+        super().__init_subclass__(**kwargs)
+        if kind is not None:
+            _SUMMARY_CLASSES[kind] = cls
 
     def to_json(self) -> dict[str, Any]:
         """The summary as one JSON object (module docstring)."""

@@ -36,6 +36,7 @@ from ..oscillator.case import WHITE_MODEL_STANDING, Case, CaseSetup, case_setup
 from ..oscillator.integrate import simulate
 from ..oscillator.options import ExecutionOptions, IntegrationOptions, Integrator, Model, NoiseOptions, OutputOptions
 from ..oscillator.parameters import OscillatorParameters
+from .config import StudyConfig
 from .errors import StudyError
 
 #: Version of the cell-key rule, the first word hashed (a new rule gives new streams).
@@ -84,7 +85,7 @@ class TaskSpec:
 
 
 def task_for(
-    config: Any,
+    config: StudyConfig,
     setup: CaseSetup,
     *,
     index: int,
@@ -161,7 +162,7 @@ def integrator_for(model: Model | str, integrator: Integrator | str, sde_integra
     return Integrator(integrator)
 
 
-def setup_for(config: Any, tau_end: float | None = None) -> CaseSetup:
+def setup_for(config: StudyConfig, tau_end: float | None = None) -> CaseSetup:
     """The :class:`~stochfric.oscillator.case.CaseSetup` of a study config (``tau_end`` stands in for a
     missing ``config.tau_end``)."""
     te = config.tau_end if config.tau_end is not None else tau_end
@@ -169,18 +170,33 @@ def setup_for(config: Any, tau_end: float | None = None) -> CaseSetup:
                       config.process_level)
 
 
-def model_choices(config: Any, setup: CaseSetup, forces: Sequence[float]) -> dict[str, Any]:
-    """JSON record of the modelling choices: path coordinate, σ_ζ rule, σ_ζ per force [N] and the
-    effective σ_ζ of the white-noise SDE (differs only in ``thesis`` mode)."""
-    return {
-        "path_coordinate": str(config.path_coordinate),
-        "white_intensity": str(config.white_intensity),
-        "white_increment": str(setup.white_increment),
-        "process_level": str(setup.process_level),
-        "sigma_zeta": [setup.sigma_zeta(nf) for nf in forces],
-        "sigma_zeta_effective": [setup.sigma_zeta_effective(nf) for nf in forces],
-        **({"white_model": WHITE_MODEL_STANDING} if Model.WHITE in config.models else {}),
-    }
+@dataclass(frozen=True)
+class ModelChoices:
+    """The modelling choices of a study, recorded with every result (its summary's fields of the same
+    names): path coordinate, σ_ζ rule, white-noise increment, process level, σ_ζ per force [N] and the
+    effective σ_ζ of the white-noise SDE (differs only in ``thesis`` mode); ``white_model``, the white
+    model's standing, where the study runs it (else ``None``)."""
+
+    path_coordinate: str
+    white_intensity: str
+    white_increment: str
+    process_level: str
+    sigma_zeta: list[float]
+    sigma_zeta_effective: list[float]
+    white_model: str | None = None
+
+
+def model_choices(config: StudyConfig, setup: CaseSetup, forces: Sequence[float]) -> ModelChoices:
+    """The :class:`ModelChoices` of ``config`` and its ``setup`` at the normal forces ``forces`` [N]."""
+    return ModelChoices(
+        path_coordinate=str(config.path_coordinate),
+        white_intensity=str(config.white_intensity),
+        white_increment=str(setup.white_increment),
+        process_level=str(setup.process_level),
+        sigma_zeta=[setup.sigma_zeta(nf) for nf in forces],
+        sigma_zeta_effective=[setup.sigma_zeta_effective(nf) for nf in forces],
+        white_model=WHITE_MODEL_STANDING if Model.WHITE in config.models else None,
+    )
 
 
 def warnings_of(arrays: dict[str, npt.NDArray[Any]]) -> list[dict[str, str]]:

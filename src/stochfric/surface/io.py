@@ -22,6 +22,7 @@ import numpy as np
 import numpy.typing as npt
 
 from stochfric.arrays import FloatArray
+from stochfric.errors import InputError
 from stochfric.units import length_to_m
 
 __all__ = [
@@ -52,7 +53,7 @@ MIN_GRID_POINTS = 5
 SPIKE_SQ = 20.0
 
 
-class SurfaceError(ValueError):
+class SurfaceError(InputError):
     """Bad surface input: unreadable file, missing size or unit, undefined points, a
     non-uniform grid, a preparation that leaves too few points, no summit.
 

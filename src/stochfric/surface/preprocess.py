@@ -10,6 +10,7 @@ and docs/surface_contact.md, "Preparation").
 
 from __future__ import annotations
 
+import copy
 import math
 from dataclasses import asdict, dataclass, fields
 from pathlib import Path
@@ -27,8 +28,10 @@ __all__ = [
     "DETREND_MODES",
     "FORM_FILTERS",
     "QUANTISED_TREATMENTS",
+    "STEP_ORDER",
     "DetrendMode",
     "Preparation",
+    "PreparationReport",
     "coarsen",
     "detrend",
     "median_filter",
@@ -48,6 +51,9 @@ _MODE_SYNONYMS = {"center": "mean", "height": "plane", "curvature": "quadratic",
 _BY_DEGREE = {1: "plane", 2: "quadratic", 3: "poly3"}
 #: Seed of the dither noise (fixed: the same map is prepared the same way every time).
 DITHER_SEED = 0
+#: The preparation steps in the order they are applied (:attr:`PreparationReport.order`).
+STEP_ORDER: tuple[str, ...] = ("undefined", "quantisation check", "outliers", "form", "rough-surface check",
+                               "quantisation treatment", "median filter", "coarsening")
 
 
 def _normalise_mode(mode: str) -> str:
@@ -233,13 +239,63 @@ def _name(surface: Surface) -> str:
     return Path(surface.source).name if surface.source != "array" else "the height map"
 
 
+@dataclass(frozen=True, kw_only=True)
+class PreparationReport:
+    """What every preparation step did to one surface (:func:`prepare_with_report`; module doc for the steps).
+
+    Each step's entry is a plain dictionary of its numbers (the JSON record, SI units in the keys):
+    ``undefined`` (step 1: count, fraction, border fraction, limit), ``quantisation`` (steps 2 and 6: tie
+    fractions, height quantum, whether dithered), ``outliers`` (step 3: count, fraction, positions, the
+    rule's scales), ``form`` (step 4: requested and applied form, Sq before and after, Sq by degree, the
+    ``auto`` rule), ``rough_surface`` (step 5: the verdict); ``median_radius`` and ``step`` are steps 7
+    and 8, ``settings`` the complete :class:`Preparation`.  :meth:`to_dict` gives the JSON record
+    (``preparation.preparation_report`` of the command outputs, ``fine.info["preparation"]``).
+    """
+
+    order: tuple[str, ...]
+    settings: dict[str, Any]
+    undefined: dict[str, Any]
+    quantisation: dict[str, Any]
+    outliers: dict[str, Any]
+    form: dict[str, Any]
+    rough_surface: dict[str, Any]
+    median_radius: int
+    step: int
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON record (a deep copy: changing it leaves the report as it is)."""
+        return {
+            "order": list(self.order),
+            "settings": copy.deepcopy(self.settings),
+            "undefined": copy.deepcopy(self.undefined),
+            "quantisation": copy.deepcopy(self.quantisation),
+            "outliers": copy.deepcopy(self.outliers),
+            "form": copy.deepcopy(self.form),
+            "rough_surface": copy.deepcopy(self.rough_surface),
+            "median_radius": self.median_radius,
+            "step": self.step,
+        }
+
+    @classmethod
+    def from_dict(cls, record: dict[str, Any]) -> PreparationReport:
+        """The report back from :meth:`to_dict` (e.g. ``fine.info["preparation"]``)."""
+        return cls(order=tuple(record["order"]), **{f.name: copy.deepcopy(record[f.name])
+                                                    for f in fields(cls) if f.name != "order"})
+
+    def __repr__(self) -> str:
+        return (f"PreparationReport(form {self.form['requested']} -> {self.form['applied']}, "
+                f"{self.outliers['count']} outliers replaced, {self.undefined['count']} undefined points filled, "
+                f"median radius {self.median_radius}, step {self.step})")
+
+
 def prepare_with_report(
     surface: Surface, preparation: Preparation | None = None
-) -> tuple[Surface, Surface, dict[str, Any]]:
+) -> tuple[Surface, Surface, PreparationReport]:
     """Apply ``preparation`` to ``surface``; return ``(fine, coarse, report)``.
 
-    ``report`` says what every step did (also stored as ``fine.info["preparation"]``); the coded
-    warnings of the preparation are appended to ``fine.info["warnings"]`` after the reading's.
+    ``report`` (:class:`PreparationReport`) says what every step did (its :meth:`~PreparationReport.to_dict`
+    is also stored as ``fine.info["preparation"]``); the coded warnings of the preparation are appended to
+    ``fine.info["warnings"]`` after the reading's.
 
     Raises
     ------
@@ -250,24 +306,20 @@ def prepare_with_report(
     prep = preparation if preparation is not None else Preparation()
     name = _name(surface)
     _check_grid(surface, prep)
-    report: dict[str, Any] = {
-        "order": ["undefined", "quantisation check", "outliers", "form", "rough-surface check",
-                  "quantisation treatment", "median filter", "coarsening"],
-        "settings": prep.settings(),
-    }  # fmt: skip
-    report["undefined"] = _undefined_points(surface, prep, name)
+    undefined = _undefined_points(surface, prep, name)
     read = np.array(surface.heights_m, dtype=np.float64)
-    report["quantisation"] = _quantisation_check(read, prep)
-    cleaned, report["outliers"], warnings = _remove_outliers(read, surface, prep, name)
-    h, report["form"] = _remove_form(cleaned, read, surface, prep, name)
-    report["rough_surface"] = _rough_surface_check(h, cleaned, report["undefined"]["border_fraction"], prep, name)
-    h, quantised = _treat_quantisation(h, report["quantisation"], prep, name)
+    quantisation = _quantisation_check(read, prep)
+    cleaned, outliers, warnings = _remove_outliers(read, surface, prep, name)
+    h, form = _remove_form(cleaned, read, surface, prep, name)
+    rough = _rough_surface_check(h, cleaned, undefined["border_fraction"], prep, name)
+    h, quantised = _treat_quantisation(h, quantisation, prep, name)
     h = median_filter(h, prep.median_radius)
-    report["median_radius"] = prep.median_radius
-    report["step"] = prep.step
+    report = PreparationReport(order=STEP_ORDER, settings=prep.settings(), undefined=undefined,
+                               quantisation=quantisation, outliers=outliers, form=form, rough_surface=rough,
+                               median_radius=prep.median_radius, step=prep.step)  # fmt: skip
     info = dict(surface.info)
     info["warnings"] = [dict(w) for w in surface.info.get("warnings", [])] + warnings + quantised
-    info["preparation"] = report
+    info["preparation"] = report.to_dict()
     fine = Surface(
         heights_m=h,
         physical_size_m=surface.physical_size_m,
@@ -448,12 +500,12 @@ def prepare(surface: Surface, preparation: Preparation | None = None) -> tuple[S
 
     ``fine`` is the surface after steps 1–7 (module doc), ``coarse`` additionally coarsened (the
     two are the same object for ``step = 1``). The contact analysis uses ``coarse``.  The
-    report of every step is ``fine.info["preparation"]``.
+    report of every step is ``fine.info["preparation"]`` (:meth:`PreparationReport.to_dict`).
     """
     fine, coarse, _ = prepare_with_report(surface, preparation)
     return fine, coarse
 
 
-def preparation_report(surface: Surface, preparation: Preparation | None = None) -> dict[str, Any]:
+def preparation_report(surface: Surface, preparation: Preparation | None = None) -> PreparationReport:
     """What :func:`prepare` does to ``surface`` (the report alone; raises like :func:`prepare`)."""
     return prepare_with_report(surface, preparation)[2]

@@ -24,7 +24,7 @@ from scipy.sparse.csgraph import connected_components
 from stochfric.arrays import FloatArray
 from stochfric.random import SeedLike, as_generator
 from stochfric.surface.io import Surface, SurfaceError
-from stochfric.surface.summits import find_summits
+from stochfric.surface.summits import DEFAULT_SUMMIT_RULE, find_summits
 from stochfric.surface.synthesis import checked_heights
 
 __all__ = [
@@ -37,6 +37,7 @@ __all__ = [
     "MIN_PATCH_SUMMIT_SPACINGS",
     "OVERLAP_FRACTION",
     "PATCH_SUMMIT_SPACINGS",
+    "QUILT_METHOD",
     "SCREENING_PATCHES",
     "SPLIT_ORDER",
     "SPLIT_PATCHES",
@@ -77,6 +78,8 @@ CHOOSE = 4
 SCREENING_PATCHES = 1.0
 #: Split wavelength between random-phase long and quilted short wavelengths, in patch sides (0 = off).
 SPLIT_PATCHES = 1.5
+#: The registry name of quilted surrogates (:mod:`stochfric.surface.surrogates`).
+QUILT_METHOD = "quilt"
 #: Order of the Butterworth split between the random-phase long and the quilted short wavelengths.
 SPLIT_ORDER = 8
 #: A surrogate whose largest verbatim piece exceeds this fraction of the map's area is a copy.
@@ -144,7 +147,7 @@ def max_patch(nx: int, ny: int) -> int:
 def quilt_parameters(
     heights: npt.ArrayLike,
     *,
-    rule: str = "thesis",
+    rule: str = DEFAULT_SUMMIT_RULE,
     patch_spacings: float = PATCH_SUMMIT_SPACINGS,
     candidates: int = CANDIDATES,
     choose: int = CHOOSE,
@@ -178,7 +181,7 @@ def quilt_parameters(
     )
 
 
-def quilt_applicable(heights: npt.ArrayLike, *, rule: str = "thesis") -> tuple[bool, str]:
+def quilt_applicable(heights: npt.ArrayLike, *, rule: str = DEFAULT_SUMMIT_RULE) -> tuple[bool, str]:
     """Can this map be quilted by the fixed rules (:func:`quilt_parameters`)?  ``(yes, reason)``.
 
     A quilt needs patches of at least ``MIN_PATCH_SUMMIT_SPACINGS`` summit spacings (so that
@@ -634,7 +637,7 @@ def quilt_surface(
         source=f"quilt surrogate (length factor {factor}) of {surface.source}",
         n_undefined_filled=0,
         info={
-            "surrogate": "quilt",
+            "surrogate": QUILT_METHOD,
             "length_factor": int(factor),
             "original": surface.source,
             "quilt": res.parameters.to_dict(),

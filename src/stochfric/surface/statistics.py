@@ -24,6 +24,7 @@ __all__ = [
     "ELASTIC_LIMIT",
     "GAUSSIAN_CURVATURE_Z",
     "PLASTIC_LIMIT",
+    "CurvatureGaussianity",
     "SurfaceStatistics",
     "curvature_gaussianity",
     "height_moments",
@@ -161,7 +162,22 @@ def plasticity_verdict(gamma: float) -> str:
 GAUSSIAN_CURVATURE_Z = 3.0
 
 
-def curvature_gaussianity(heights: npt.ArrayLike, summit_count: int) -> dict[str, Any]:
+@dataclass(frozen=True, kw_only=True)
+class CurvatureGaussianity:
+    """The result of :func:`curvature_gaussianity`: the Laplacian's kurtosis κ, z = (κ − 3)/√(24/n_s),
+    the verdict and its limit on |z|."""
+
+    laplacian_kurtosis: float
+    z: float
+    gaussian: bool
+    limit: float = GAUSSIAN_CURVATURE_Z
+
+    def to_dict(self) -> dict[str, Any]:
+        """The fields by name (JSON)."""
+        return asdict(self)
+
+
+def curvature_gaussianity(heights: npt.ArrayLike, summit_count: int) -> CurvatureGaussianity:
     """Is the map's curvature field that of a Gaussian field?  (The rule of ``--surrogate auto``.)
 
     κ = kurtosis of the 5-point Laplacian (interior points; 3 for any Gaussian field), z = (κ − 3) /
@@ -176,5 +192,4 @@ def curvature_gaussianity(heights: npt.ArrayLike, summit_count: int) -> dict[str
     m2 = float(np.mean(c * c))
     kappa = float(np.mean(c**4) / (m2 * m2)) if m2 > 0.0 else math.nan
     z = (kappa - 3.0) / math.sqrt(24.0 / max(int(summit_count), 1)) if math.isfinite(kappa) else math.inf
-    return {"laplacian_kurtosis": kappa, "z": z, "gaussian": bool(abs(z) <= GAUSSIAN_CURVATURE_Z),
-            "limit": GAUSSIAN_CURVATURE_Z}
+    return CurvatureGaussianity(laplacian_kurtosis=kappa, z=z, gaussian=bool(abs(z) <= GAUSSIAN_CURVATURE_Z))

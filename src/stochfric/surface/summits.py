@@ -10,7 +10,6 @@ counted, and plateau tops (equal maxima) are counted (docs/surface_contact.md, "
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
 
 import numpy as np
 import numpy.typing as npt
@@ -18,10 +17,44 @@ import numpy.typing as npt
 from stochfric.arrays import FloatArray
 from stochfric.surface.io import Surface, SurfaceError
 
-__all__ = ["SUMMIT_RULES", "SummitRule", "Summits", "find_summits", "summits_of"]
+__all__ = ["DEFAULT_SUMMIT_RULE", "SUMMIT_RULES", "SummitRule", "Summits", "find_summits", "summit_rule",
+           "summits_of"]
 
-SummitRule = Literal["thesis", "8-neighbour"]
-SUMMIT_RULES: tuple[str, ...] = ("thesis", "8-neighbour")
+
+@dataclass(frozen=True)
+class SummitRule:
+    """A summit rule: a grid point is a summit when it is strictly higher than the neighbours at
+    ``offsets`` (grid steps (di, dj)); ``margin`` is the distance from the border it needs."""
+
+    name: str
+    summary: str
+    offsets: tuple[tuple[int, int], ...]
+
+    @property
+    def margin(self) -> int:
+        """Grid points a summit lies at least inside the border (the farthest compared neighbour)."""
+        return max(max(abs(di), abs(dj)) for di, dj in self.offsets)
+
+
+#: name → rule (registry order: the default first).
+SUMMIT_RULES: dict[str, SummitRule] = {
+    r.name: r
+    for r in (
+        SummitRule("thesis", "higher than the two points on each side along x and along y (thesis 3.1.1)",
+                   ((-2, 0), (-1, 0), (1, 0), (2, 0), (0, -2), (0, -1), (0, 1), (0, 2))),
+        SummitRule("8-neighbour", "higher than all 8 nearest neighbours",
+                   tuple((di, dj) for di in (-1, 0, 1) for dj in (-1, 0, 1) if (di, dj) != (0, 0))),
+    )
+}
+DEFAULT_SUMMIT_RULE = "thesis"
+
+
+def summit_rule(name: str) -> SummitRule:
+    """The rule registered as ``name`` (:class:`~stochfric.surface.io.SurfaceError` naming the known ones)."""
+    try:
+        return SUMMIT_RULES[str(name)]
+    except KeyError:
+        raise SurfaceError(f"unknown summit rule {name!r}; use one of {', '.join(SUMMIT_RULES)}") from None
 
 IntArray = npt.NDArray[np.intp]
 
@@ -69,19 +102,11 @@ class Summits:
         return self.count / self.area_m2
 
 
-def _neighbour_offsets(rule: str) -> list[tuple[int, int]]:
-    if rule == "thesis":
-        return [(-2, 0), (-1, 0), (1, 0), (2, 0), (0, -2), (0, -1), (0, 1), (0, 2)]
-    if rule == "8-neighbour":
-        return [(di, dj) for di in (-1, 0, 1) for dj in (-1, 0, 1) if (di, dj) != (0, 0)]
-    raise SurfaceError(f"unknown summit rule {rule!r}; use one of {', '.join(SUMMIT_RULES)}")
-
-
 def find_summits(
     heights_m: npt.ArrayLike,
     grid_spacing_m: tuple[float, float],
     *,
-    rule: str = "thesis",
+    rule: str = DEFAULT_SUMMIT_RULE,
     area_m2: float | None = None,
 ) -> Summits:
     """Find summits and their radii on a uniform grid (thesis 3.1.1, eq. 3.1).
@@ -100,8 +125,8 @@ def find_summits(
     z = np.asarray(heights_m, dtype=np.float64)
     if z.ndim != 2:
         raise SurfaceError(f"summits need a 2-D height map, got {z.ndim} dimension(s)")
-    offsets = _neighbour_offsets(rule)
-    m = max(max(abs(di), abs(dj)) for di, dj in offsets)
+    spec = summit_rule(rule)
+    offsets, m = spec.offsets, spec.margin
     nx, ny = z.shape
     dx, dy = float(grid_spacing_m[0]), float(grid_spacing_m[1])
     if not (dx > 0 and dy > 0):
@@ -149,6 +174,6 @@ def find_summits(
     )
 
 
-def summits_of(surface: Surface, *, rule: str = "thesis") -> Summits:
+def summits_of(surface: Surface, *, rule: str = DEFAULT_SUMMIT_RULE) -> Summits:
     """:func:`find_summits` on a :class:`~stochfric.surface.io.Surface`."""
     return find_summits(surface.heights_m, surface.grid_spacing_m, rule=rule, area_m2=surface.nominal_area_m2)

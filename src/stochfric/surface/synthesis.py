@@ -1,16 +1,18 @@
-"""Stochastically similar surfaces (method §3, thesis 3.1.2, eq. 3.2–3.6).
+"""Stochastically similar surfaces from the amplitude spectrum (method §3, thesis 3.1.2, eq. 3.2–3.6).
 
-Three generators, pure functions of a height map and ``rng`` (a :class:`numpy.random.Generator` or a
+Generators, pure functions of a height map and ``rng`` (a :class:`numpy.random.Generator` or a
 seed): :func:`random_phase_surface`, the thesis's random-phase surrogate (3.4–3.5, the amplitude
 matrix kept, hence the variance and the anisotropy); :func:`longer_surface`, the thesis's longer
 surfaces (3.6, variance kept exactly); :func:`iaaft_surface`, beyond the thesis, the height
-distribution kept exactly and the spectrum approximately (docs/statistical_contact.md §1).
+distribution kept exactly and the spectrum approximately (docs/statistical_contact.md §1).  The
+surrogate methods by name (these two, quilting and any other) are the registry of
+:mod:`stochfric.surface.surrogates`, one floor module above this one and :mod:`.quilting`.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Literal
+from enum import StrEnum
 
 import numpy as np
 import numpy.typing as npt
@@ -23,31 +25,40 @@ from stochfric.surface.io import Surface, SurfaceError
 __all__ = [
     "AMPLITUDE_METHODS",
     "DEFAULT_AMPLITUDE",
-    "SURROGATE_METHODS",
+    "IAAFT_METHOD",
+    "PHASE_METHOD",
     "TUKEY_ALPHA",
-    "AmplitudeMethod",
+    "AmplitudeEstimate",
     "IaaftResult",
-    "SurrogateMethod",
     "amplitude_error",
     "amplitude_spectrum",
     "checked_heights",
     "iaaft_heights",
+    "iaaft_longer_heights",
     "iaaft_surface",
     "interpolate_amplitudes",
     "longer_surface",
+    "phase_longer_heights",
     "random_phase_heights",
     "random_phase_surface",
-    "similar_surface",
+    "surrogate_surface",
 ]
 
-SurrogateMethod = Literal["phase", "iaaft", "quilt"]
-#: ``"quilt"``: image quilting with gradient-domain seam repair (:mod:`stochfric.surface.quilting`).
-SURROGATE_METHODS: tuple[str, ...] = ("phase", "iaaft", "quilt")
-AmplitudeMethod = Literal["tukey", "hann", "raw"]
-#: Amplitude estimates of a measured map: ``"tukey"`` (default) and ``"hann"`` remove the edge
-#: jump, ``"raw"`` is the thesis's DFT of the map as it is.
-AMPLITUDE_METHODS: tuple[str, ...] = ("tukey", "hann", "raw")
-DEFAULT_AMPLITUDE = "tukey"
+
+class AmplitudeEstimate(StrEnum):
+    """Amplitude estimates of a measured map (:func:`amplitude_spectrum`): ``tukey`` (default) and
+    ``hann`` remove the edge jump, ``raw`` is the thesis's DFT of the map as it is."""
+
+    TUKEY = "tukey"
+    HANN = "hann"
+    RAW = "raw"
+
+
+AMPLITUDE_METHODS: tuple[str, ...] = tuple(AmplitudeEstimate)
+#: The registry names of the two generators of this module (:mod:`stochfric.surface.surrogates`).
+PHASE_METHOD = "phase"
+IAAFT_METHOD = "iaaft"
+DEFAULT_AMPLITUDE = AmplitudeEstimate.TUKEY
 #: Fraction of each axis inside the cosine tapers of the ``"tukey"`` estimate (half at each edge).
 TUKEY_ALPHA = 0.2
 
@@ -70,7 +81,7 @@ def _check_factor(factor: int) -> int:
     return int(factor)
 
 
-def amplitude_spectrum(heights: npt.ArrayLike, method: str = "raw") -> FloatArray:
+def amplitude_spectrum(heights: npt.ArrayLike, method: str = AmplitudeEstimate.RAW) -> FloatArray:
     """Normalised amplitude matrix ``|Z(m, n)| = |DFT2(z)| / √(MN)`` (eq. 3.2–3.3), full M × N.
 
     ``method="raw"`` is the thesis's estimate, the DFT of the map as it is.  A measured map is
@@ -93,13 +104,13 @@ def amplitude_spectrum(heights: npt.ArrayLike, method: str = "raw") -> FloatArra
 
 def _full_amplitudes(z: FloatArray, method: str) -> FloatArray:
     """Unnormalised full-plane amplitudes |DFT2| (DC = |Σz|) of the estimate ``method``."""
-    if method == "raw":
+    if method == AmplitudeEstimate.RAW:
         return np.asarray(np.abs(np.fft.fft2(z)))
     if method not in AMPLITUDE_METHODS:
         raise SurfaceError(f"unknown amplitude estimate {method!r}; use one of {', '.join(AMPLITUDE_METHODS)}")
     mean = float(z.mean())
     z0 = z - mean
-    alpha = 1.0 if method == "hann" else TUKEY_ALPHA  # a Tukey window with alpha = 1 is the Hann window
+    alpha = 1.0 if method == AmplitudeEstimate.HANN else TUKEY_ALPHA  # a Tukey window with alpha = 1 is the Hann window
     wx = sig_windows.tukey(z.shape[0], alpha, sym=False)
     wy = sig_windows.tukey(z.shape[1], alpha, sym=False)
     amp = np.abs(np.fft.fft2(z0 * wx[:, None] * wy[None, :]))
@@ -114,7 +125,7 @@ def _full_amplitudes(z: FloatArray, method: str) -> FloatArray:
 
 def _half_amplitudes(z: FloatArray, method: str) -> FloatArray:
     """rfft2-layout (M × (N//2 + 1)) unnormalised amplitudes of the estimate ``method``."""
-    if method == "raw":
+    if method == AmplitudeEstimate.RAW:
         return np.asarray(np.abs(np.fft.rfft2(z)))
     return np.asarray(_full_amplitudes(z, method)[:, : z.shape[1] // 2 + 1])
 
@@ -194,50 +205,62 @@ def _longer_half_amplitudes(z: FloatArray, factor: int, amplitude: str = DEFAULT
     return half
 
 
+def phase_longer_heights(
+    heights: npt.ArrayLike, factor: int, rng: np.random.Generator | SeedLike = None, *,
+    amplitude: str = DEFAULT_AMPLITUDE,
+) -> FloatArray:
+    """Heights of a random-phase surface ``factor`` times longer in y (eq. 3.4–3.6): for ``factor = 1``
+    :func:`random_phase_heights`, else the interpolated amplitude matrix with the variance kept exactly."""
+    factor = _check_factor(factor)
+    z = checked_heights(heights)
+    gen = as_generator(rng)
+    if factor == 1:
+        return random_phase_heights(z, gen, amplitude=amplitude)
+    shape = (z.shape[0], factor * z.shape[1])
+    half = _longer_half_amplitudes(z, factor, amplitude)
+    return _phase_from_half_amplitudes(half, shape, float(z.mean()), gen)
+
+
+def iaaft_longer_heights(
+    heights: npt.ArrayLike, factor: int, rng: np.random.Generator | SeedLike = None, *, max_iter: int = 100,
+    tol: float = 1e-4, amplitude: str = DEFAULT_AMPLITUDE,
+) -> FloatArray:
+    """Heights of an IAAFT surface ``factor`` times longer in y (:func:`iaaft_heights`)."""
+    return iaaft_heights(heights, rng, factor=_check_factor(factor), max_iter=max_iter, tol=tol,
+                         amplitude=amplitude).heights
+
+
+def surrogate_surface(surface: Surface, heights: FloatArray, method: str, factor: int,
+                      amplitude: str = DEFAULT_AMPLITUDE) -> Surface:
+    """``heights`` — a surrogate of ``surface`` made by ``method``, ``factor`` times its length in y —
+    as a :class:`Surface` of the same spacing (Δx, Δy) and size (ℓx, factor·ℓy)."""
+    lx, ly = surface.physical_size_m
+    return Surface(
+        heights_m=heights,
+        physical_size_m=(lx, factor * ly),
+        source=f"{method} surrogate (length factor {factor}) of {surface.source}",
+        n_undefined_filled=0,
+        info={"surrogate": str(method), "length_factor": factor, "amplitude": str(amplitude),
+              "original": surface.source},
+    )
+
+
 def longer_surface(
     surface: Surface,
     factor: int,
     rng: np.random.Generator | SeedLike = None,
     *,
-    method: str = "phase",
-    max_iter: int = 100,
-    tol: float = 1e-4,
     amplitude: str = DEFAULT_AMPLITUDE,
 ) -> Surface:
-    """A surface ``factor`` times longer in y, stochastically similar to ``surface`` (eq. 3.6).
-
-    ``method="phase"``: Gaussian random-phase synthesis from the interpolated amplitude matrix
-    (thesis); ``"iaaft"``: IAAFT towards the interpolated amplitude matrix and the measured
-    height distribution (each measured height repeated ``factor`` times).  The spacing stays
-    (Δx, Δy); the size becomes (ℓx, factor·ℓy).  Mean and variance equal the original's.
-    ``amplitude`` is the amplitude estimate of the original (:func:`amplitude_spectrum`).
+    """A random-phase surface ``factor`` times longer in y, stochastically similar to ``surface``
+    (eq. 3.6, the thesis's longer surfaces): the interpolated amplitude matrix of the estimate
+    ``amplitude`` (:func:`amplitude_spectrum`) with random phases.  The spacing stays (Δx, Δy); the
+    size becomes (ℓx, factor·ℓy).  Mean and variance equal the original's.  Other methods:
+    :func:`stochfric.surface.surrogates.similar_surface`.
     """
     factor = _check_factor(factor)
-    z = checked_heights(surface.heights_m)
-    gen = as_generator(rng)
-    if method == "phase":
-        if factor == 1:
-            h = random_phase_heights(z, gen, amplitude=amplitude)
-        else:
-            shape = (z.shape[0], factor * z.shape[1])
-            half = _longer_half_amplitudes(z, factor, amplitude)
-            h = _phase_from_half_amplitudes(half, shape, float(z.mean()), gen)
-    elif method == "iaaft":
-        h = iaaft_heights(z, gen, factor=factor, max_iter=max_iter, tol=tol, amplitude=amplitude).heights
-    elif method == "quilt":
-        from stochfric.surface.quilting import quilt_heights  # quilting imports this module
-
-        h = quilt_heights(z, gen, factor=factor, sources=False).heights
-    else:
-        raise SurfaceError(f"unknown surrogate method {method!r}; use one of {', '.join(SURROGATE_METHODS)}")
-    lx, ly = surface.physical_size_m
-    return Surface(
-        heights_m=h,
-        physical_size_m=(lx, factor * ly),
-        source=f"{method} surrogate (length factor {factor}) of {surface.source}",
-        n_undefined_filled=0,
-        info={"surrogate": method, "length_factor": factor, "amplitude": amplitude, "original": surface.source},
-    )
+    h = phase_longer_heights(surface.heights_m, factor, rng, amplitude=amplitude)
+    return surrogate_surface(surface, h, PHASE_METHOD, factor, amplitude)
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -336,29 +359,12 @@ def iaaft_surface(
     amplitude: str = DEFAULT_AMPLITUDE,
 ) -> Surface:
     """:func:`iaaft_heights` of ``surface`` as a :class:`Surface` of the same size."""
-    return longer_surface(surface, 1, rng, method="iaaft", max_iter=max_iter, tol=tol, amplitude=amplitude)
+    h = iaaft_longer_heights(surface.heights_m, 1, rng, max_iter=max_iter, tol=tol, amplitude=amplitude)
+    return surrogate_surface(surface, h, IAAFT_METHOD, 1, amplitude)
 
 
 def random_phase_surface(
     surface: Surface, rng: np.random.Generator | SeedLike = None, *, amplitude: str = DEFAULT_AMPLITUDE
 ) -> Surface:
     """:func:`random_phase_heights` of ``surface`` as a :class:`Surface` of the same size."""
-    return longer_surface(surface, 1, rng, method="phase", amplitude=amplitude)
-
-
-def similar_surface(
-    surface: Surface,
-    rng: np.random.Generator | SeedLike = None,
-    *,
-    method: str = "phase",
-    factor: int = 1,
-    max_iter: int = 100,
-    tol: float = 1e-4,
-    amplitude: str = DEFAULT_AMPLITUDE,
-) -> Surface:
-    """One stochastically similar surface of ``factor`` times the length (``"phase"`` | ``"iaaft"`` | ``"quilt"``).
-
-    ``"quilt"`` ignores ``max_iter``, ``tol`` and ``amplitude`` (its long wavelengths are a
-    random-phase surrogate with the default amplitude estimate).
-    """
-    return longer_surface(surface, factor, rng, method=method, max_iter=max_iter, tol=tol, amplitude=amplitude)
+    return longer_surface(surface, 1, rng, amplitude=amplitude)

@@ -126,7 +126,7 @@ def test_linear_fit() -> None:
 
 
 def test_memory_estimate_refuses_before_work() -> None:
-    from stochfric.contact.asperity import ContactError
+    from stochfric.errors import AnalysisError
     from stochfric.process.memory import check_memory, estimate_peak_memory_bytes, workers_that_fit
 
     # the thesis's 1700² map with 10 lengths: measured peak 1118 MiB, estimate above it and < 4 GiB
@@ -137,5 +137,5 @@ def test_memory_estimate_refuses_before_work() -> None:
     assert workers_that_fit((1700, 1700), 10, 2, available=2 * 2**30) == 1
     assert workers_that_fit((1700, 1700), 10, 2, available=8 * 2**30) == 2
     assert workers_that_fit((1700, 1700), 10, 4, available=2**20) == 1
-    with pytest.raises(ContactError, match=r"GB.*--length-factor"):
+    with pytest.raises(AnalysisError, match=r"GB.*--length-factor"):
         check_memory((1700, 1700), 100, available=8 * 2**30)

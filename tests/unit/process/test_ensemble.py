@@ -8,8 +8,9 @@ from typing import Any
 import numpy as np
 import pytest
 
-from stochfric.contact.asperity import ContactError, asperity_sums, default_approach_m
+from stochfric.contact.asperity import asperity_sums, default_approach_m
 from stochfric.contact.materials import get_material
+from stochfric.errors import AnalysisError
 from stochfric.friction_process.model_base import SigmaZetaRule
 from stochfric.friction_process.tabulated import PressureRule, VarianceRule
 from stochfric.process.analysis_config import AnalysisConfig
@@ -62,7 +63,7 @@ def test_each_window_referenced_to_its_own_highest_summit(fine: Surface) -> None
 
 def test_window_starts() -> None:
     np.testing.assert_array_equal(window_starts(10, 4, 3), [0, 3, 6])
-    with pytest.raises(ContactError):
+    with pytest.raises(AnalysisError):
         window_starts(3, 4, 1)
 
 
@@ -73,7 +74,7 @@ def test_ensemble_streams_do_not_depend_on_the_number_of_realisations(fine: Surf
     np.testing.assert_array_equal(small.normal_force_n, big.normal_force_n[:3])
     assert small.mu.shape == (3, u.size)
     assert not np.allclose(big.mu[0], big.mu[1])
-    with pytest.raises(ContactError, match="surrogate"):
+    with pytest.raises(AnalysisError, match="surrogate"):
         ensemble_contact(fine, MAT, u, realizations=2, method="x")
 
 
@@ -104,9 +105,9 @@ def test_surrogate_options_and_keywords_are_the_same(fine: Surface) -> None:
     path_opts = path_contact(fine, MAT, u, long_surfaces=2, length_factor=2, shift_points=148, seed=1,
                              options=SurrogateOptions(amplitude="raw"))
     np.testing.assert_array_equal(path_kw.samples.normal_force_n, path_opts.samples.normal_force_n)
-    with pytest.raises(ContactError, match="amplitude"):
+    with pytest.raises(AnalysisError, match="amplitude"):
         path_contact(fine, MAT, u, long_surfaces=2, length_factor=2, shift_points=148, amplitude="x")
-    with pytest.raises(ContactError, match="surrogate"):
+    with pytest.raises(AnalysisError, match="surrogate"):
         AnalysisConfig(surrogate="x")
 
 
@@ -114,11 +115,11 @@ def test_counts_share_one_validator() -> None:
     """Counts of the analysis settings and of the window functions: int (NumPy ints too), never bool."""
     cfg = AnalysisConfig(realizations=np.int64(4))
     assert cfg.realizations == 4 and type(cfg.realizations) is int
-    with pytest.raises(ContactError, match="realizations must be an integer >= 1, got True"):
+    with pytest.raises(AnalysisError, match="realizations must be an integer >= 1, got True"):
         AnalysisConfig(realizations=True)
-    with pytest.raises(ContactError, match="length_factor must be an integer >= 2, got 1"):
+    with pytest.raises(AnalysisError, match="length_factor must be an integer >= 2, got 1"):
         AnalysisConfig(length_factor=1)
-    with pytest.raises(ContactError, match="shift_points must be an integer >= 1, got 0"):
+    with pytest.raises(AnalysisError, match="shift_points must be an integer >= 1, got 0"):
         window_starts(10, 4, 0)
 
 
@@ -130,7 +131,7 @@ def test_sigma_zeta_rule_is_the_enum_and_round_trips_through_json() -> None:
     text = json.dumps(cfg.to_dict())
     assert json.loads(text)["sigma_zeta_rule"] == "spectral_level"
     assert AnalysisConfig(**json.loads(text)) == cfg
-    with pytest.raises(ContactError, match="sigma_zeta_rule must be one of"):
+    with pytest.raises(AnalysisError, match="sigma_zeta_rule must be one of"):
         AnalysisConfig(sigma_zeta_rule="psd")  # type: ignore[arg-type]
 
 
@@ -141,7 +142,7 @@ def test_pressure_and_variance_rules_are_the_process_layers_enums() -> None:
     assert cfg.pressure_rule is PressureRule.INTERPOLATE and cfg.variance_rule is VarianceRule.TABULATED
     assert AnalysisConfig(**json.loads(json.dumps(cfg.to_dict()))) == cfg
     for field in ("pressure_rule", "variance_rule"):
-        with pytest.raises(ContactError, match=f"{field} must be one of"):
+        with pytest.raises(AnalysisError, match=f"{field} must be one of"):
             AnalysisConfig(**{field: "linear"})
 
 
@@ -164,7 +165,7 @@ def test_ensemble_records_summit_statistics(fine: Surface) -> None:
     ens = ensemble_contact(fine, MAT, u, realizations=3, seed=1)
     assert ens.summit_stats is not None and ens.summit_stats.shape == (3, 3)
     s = find_summits(
-        __import__("stochfric.surface.synthesis", fromlist=["x"]).similar_surface(
+        __import__("stochfric.surface.surrogates", fromlist=["x"]).similar_surface(
             fine, np.random.default_rng(np.random.SeedSequence(1).spawn(3)[0])
         ).heights_m,
         fine.grid_spacing_m,
@@ -174,5 +175,5 @@ def test_ensemble_records_summit_statistics(fine: Surface) -> None:
 
 def test_window_without_summit_is_refused() -> None:
     flat = surface_from_array(np.zeros((10, 40)), physical_size_m=(1e-5, 4e-5))
-    with pytest.raises(ContactError, match="no summit"):
+    with pytest.raises(AnalysisError, match="no summit"):
         window_contact(flat.heights_m, flat.grid_spacing_m, MAT, [1e-7], window_points=10, shift_points=5)

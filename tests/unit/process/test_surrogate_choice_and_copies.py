@@ -7,7 +7,7 @@ copy and makes the analysis not credible; realisations on 1 or 2 worker processe
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Iterator
 
 import numpy as np
 import pytest
@@ -23,6 +23,7 @@ from stochfric.random import spawn_seed_sequences
 from stochfric.surface.io import Surface, default_surface_path, read_surface
 from stochfric.surface.preprocess import prepare
 from stochfric.surface.summits import summits_of
+from stochfric.surface.surrogates import SurrogateMethod, SurrogateSettings, register_surrogate, unregister_surrogate
 
 MAT = get_material("brake-pad")
 
@@ -66,31 +67,39 @@ def test_curvature_gaussianity_is_calibrated_on_gaussian_fields() -> None:
     for k, (n, corr) in enumerate([(200, 0.7), (300, 1.5), (400, 3.0)]):
         s = _field((n, n + 17), corr, seed=k)
         t = curvature_gaussianity(s.heights_m, summits_of(s).count)
-        assert t["gaussian"] and abs(t["z"]) < GAUSSIAN_CURVATURE_Z / 3, t
+        assert t.gaussian and abs(t.z) < GAUSSIAN_CURVATURE_Z / 3, t
     spiky = _spiky((320, 320))
     t = curvature_gaussianity(spiky.heights_m, summits_of(spiky).count)
-    assert not t["gaussian"] and t["z"] > 10 * GAUSSIAN_CURVATURE_Z
+    assert not t.gaussian and t.z > 10 * GAUSSIAN_CURVATURE_Z
 
 
-@dataclass(frozen=True)
-class _Copier:
+class _Copier(SurrogateMethod):
     """A surrogate method that returns the map itself (what no surrogate may do)."""
 
-    method: str = "copy"
+    name = "copy"
+    summary = "the map itself"
 
-    def similar(self, surface: Surface, rng: np.random.Generator, factor: int = 1) -> Surface:
-        return surface
+    def heights(self, heights: np.ndarray, rng: np.random.Generator, *, factor: int,
+                settings: SurrogateSettings) -> np.ndarray:
+        return np.tile(heights, (1, factor))
 
 
-def test_a_surrogate_that_is_the_map_is_a_copy_and_not_credible() -> None:
+@pytest.fixture
+def copier() -> Iterator[str]:
+    register_surrogate(_Copier())
+    yield _Copier.name
+    unregister_surrogate(_Copier.name)
+
+
+def test_a_surrogate_that_is_the_map_is_a_copy_and_not_credible(copier: str) -> None:
     s = _field((96, 96), 2.0)
     seeds = spawn_seed_sequences(1, 4)
-    copies = copy_check([s], _Copier(), seeds)
-    assert copies["is_copy"] and copies["max_ncc_with_map"] == pytest.approx(1.0)
+    copies = copy_check([s], SurrogateOptions(method=copier), seeds)
+    assert copies.is_copy and copies.max_ncc_with_map == pytest.approx(1.0)
     fresh = copy_check([s], SurrogateOptions(method="phase"), seeds)
-    assert not fresh["is_copy"] and fresh["max_ncc_with_map"] < 0.9
+    assert not fresh.is_copy and fresh.max_ncc_with_map < 0.9
     quilt = copy_check([_spiky((320, 320))], SurrogateOptions(method="quilt"), seeds)
-    assert not quilt["is_copy"] and 0.0 < quilt["largest_piece_fraction"] < 0.1
+    assert not quilt.is_copy and 0.0 < quilt.largest_piece_fraction < 0.1
     u = np.linspace(1e-7, 1e-6, 4)
     verdict = assess_credibility(
         name="m", approach_m=u, surrogate_ok=True, surrogate_failures=[], window_ok=True, window_max_z=0.0,

@@ -3,6 +3,8 @@ points, rough-surface check; on synthetic maps with known answers."""
 
 from __future__ import annotations
 
+import dataclasses
+import json
 import math
 
 import numpy as np
@@ -10,7 +12,15 @@ import pytest
 
 from stochfric.surface import prepare_checks as pc
 from stochfric.surface.io import Surface, SurfaceError, surface_from_array
-from stochfric.surface.preprocess import Preparation, detrend, preparation_report, prepare, prepare_with_report
+from stochfric.surface.preprocess import (
+    STEP_ORDER,
+    Preparation,
+    PreparationReport,
+    detrend,
+    preparation_report,
+    prepare,
+    prepare_with_report,
+)
 
 
 def _rough(nx: int = 128, ny: int = 96, seed: int = 0, corr: float = 2.0) -> np.ndarray:
@@ -37,7 +47,7 @@ def test_poly3_removes_a_cubic_and_auto_picks_the_form() -> None:
     bowl = 4e-6 * (x * x + y * y)
     assert pc.auto_degree(h + bowl)[0] == 2
     report = preparation_report(_surface(h + bowl))
-    assert report["form"]["applied"] == "quadratic" and len(report["form"]["sq_by_degree_m"]) == 3
+    assert report.form["applied"] == "quadratic" and len(report.form["sq_by_degree_m"]) == 3
 
 
 def test_gaussian_lfilter_transmission_and_robustness() -> None:
@@ -64,29 +74,29 @@ def test_outliers_found_filled_and_reported_but_legit_roughness_kept() -> None:
     for k, (i, j) in enumerate(spots):
         spiky[i, j] += (30 if k % 2 else -40) * 1e-6
     fine, _, rep = prepare_with_report(_surface(spiky))
-    out = rep["outliers"]
+    out = rep.outliers
     assert out["count"] == len(spots) and sorted(map(tuple, out["positions"])) == sorted(spots)
     assert out["fraction"] == pytest.approx(len(spots) / h.size)
     assert np.abs(fine.heights_m).max() < 6e-6
     assert "outliers-replaced" in {w["code"] for w in fine.info["warnings"]}
     off = prepare_with_report(_surface(spiky), Preparation(outliers=False))[2]
-    assert off["outliers"]["count"] == 0
+    assert off.outliers["count"] == 0
 
 
 def test_quantised_heights_warn_and_dither() -> None:
     q = 0.25e-6
     h = np.round(_rough(seed=5) / q) * q
     fine, _, rep = prepare_with_report(_surface(h))
-    assert rep["quantisation"]["tie_fraction"] > pc.TIE_WARN
-    assert rep["quantisation"]["quantum_m"] == pytest.approx(q)
+    assert rep.quantisation["tie_fraction"] > pc.TIE_WARN
+    assert rep.quantisation["quantum_m"] == pytest.approx(q)
     assert "quantised-heights" in {w["code"] for w in fine.info["warnings"]}
     fine2, _, rep2 = prepare_with_report(_surface(h), Preparation(quantised="dither"))
-    assert rep2["quantisation"]["applied"] is True
+    assert rep2.quantisation["applied"] is True
     assert "quantised-heights" not in {w["code"] for w in fine2.info["warnings"]}
     d = fine2.heights_m
     assert np.count_nonzero(np.diff(d, axis=0) == 0) == 0
     assert np.abs(d - fine.heights_m).max() <= q / 2 + 1e-12
-    assert not prepare_with_report(_surface(_rough()))[2]["quantisation"]["quantised"]
+    assert not prepare_with_report(_surface(_rough()))[2].quantisation["quantised"]
 
 
 def test_undefined_limit_and_part_outline() -> None:
@@ -95,7 +105,7 @@ def test_undefined_limit_and_part_outline() -> None:
     holes[40:45, 40:47] = np.nan  # 35 interior points
     s = surface_from_array(holes, physical_size_m=(128e-6, 96e-6), fill_undefined=True)
     rep = preparation_report(s)
-    assert rep["undefined"]["count"] == 35 and rep["undefined"]["border_fraction"] == 0.0
+    assert rep.undefined["count"] == 35 and rep.undefined["border_fraction"] == 0.0
     with pytest.raises(SurfaceError, match="undefined points, more than the limit"):
         prepare(s, Preparation(max_undefined=0.001))
     frame = h.copy()
@@ -107,7 +117,7 @@ def test_undefined_limit_and_part_outline() -> None:
         prepare(s, Preparation(rough_check=False))
     with pytest.raises(SurfaceError, match="part outline"):
         prepare(s, Preparation(max_undefined=0.5))
-    assert preparation_report(s, Preparation(max_undefined=0.5, rough_check=False))["rough_surface"]["rough"] is False
+    assert preparation_report(s, Preparation(max_undefined=0.5, rough_check=False)).rough_surface["rough"] is False
 
 
 def test_step_is_refused_but_skewed_roughness_is_not() -> None:
@@ -117,7 +127,7 @@ def test_step_is_refused_but_skewed_roughness_is_not() -> None:
     with pytest.raises(SurfaceError, match=r"not a rough surface .*step or two-level"):
         prepare(_surface(step), Preparation(detrend="plane"))
     skewed = np.exp(h / h.std())  # lognormal heights, skewness ≈ 6
-    assert preparation_report(_surface(skewed * 1e-6))["rough_surface"]["rough"]
+    assert preparation_report(_surface(skewed * 1e-6)).rough_surface["rough"]
     rng = np.random.default_rng(1)
     for z in (rng.normal(size=200_000), rng.uniform(size=200_000), rng.exponential(size=200_000)):
         assert pc.otsu_split(z)["separation"] < pc.STEP_SEPARATION
@@ -157,3 +167,20 @@ def test_to_dict_round_trips() -> None:
     assert Preparation(**p.to_dict()) == p
     assert set(Preparation().to_dict()) == {"detrend", "median_radius", "step"}
     assert set(p.settings()) >= {"cutoff_m", "outliers", "outlier_k", "quantised", "max_undefined", "rough_check"}
+
+
+def test_the_report_is_a_frozen_record_whose_dict_is_the_json() -> None:
+    fine, coarse, rep = prepare_with_report(_surface(_rough(seed=11)), Preparation(median_radius=1, step=2))
+    d = rep.to_dict()
+    assert list(d) == ["order", "settings", "undefined", "quantisation", "outliers", "form", "rough_surface",
+                       "median_radius", "step"]
+    assert d["order"] == list(STEP_ORDER) and (d["median_radius"], d["step"]) == (1, 2)
+    assert d["settings"] == Preparation(median_radius=1, step=2).settings()
+    assert fine.info["preparation"] == d and coarse.info["preparation"] == d
+    assert json.loads(json.dumps(d)) == d
+    assert PreparationReport.from_dict(d).to_dict() == d
+    d["form"]["applied"] = "changed"  # the dict is a copy
+    assert rep.form["applied"] == "plane"
+    with pytest.raises(dataclasses.FrozenInstanceError):
+        rep.step = 3  # type: ignore[misc]
+    assert "\n" not in repr(rep) and "step 2" in repr(rep)

@@ -21,7 +21,8 @@ from stochfric.surface.quilting import (
     source_gradients,
 )
 from stochfric.surface.summits import find_summits
-from stochfric.surface.synthesis import SURROGATE_METHODS, similar_surface
+from stochfric.surface.surrogates import SURROGATES as SURROGATE_METHODS
+from stochfric.surface.surrogates import similar_surface
 
 
 def _field(n: int = 160, m: int = 192, corr: float = 2.0, seed: int = 0) -> np.ndarray:

@@ -8,6 +8,7 @@ from scipy import stats
 
 from stochfric.surface.io import SurfaceError, default_surface_path, read_surface, surface_from_array
 from stochfric.surface.preprocess import prepare
+from stochfric.surface.surrogates import similar_surface
 from stochfric.surface.synthesis import (
     amplitude_error,
     amplitude_spectrum,
@@ -15,7 +16,6 @@ from stochfric.surface.synthesis import (
     interpolate_amplitudes,
     longer_surface,
     random_phase_heights,
-    similar_surface,
 )
 
 

@@ -1,0 +1,224 @@
+"""The friction-process pipeline as one library call: scans → prepared, pooled maps → approaches →
+statistical contact analysis → model (method §1, §3–§4).
+
+:func:`analyse_scans` is what ``stochfric friction-process FILE...`` does, step by step: read and
+prepare every scan (:func:`~stochfric.surface.scans.load_scan`), pool them onto one grid
+(:func:`~stochfric.surface.scans.pool_scans`), choose the approaches (:func:`choose_approach`) and the
+window shift of μ along the path (:func:`window_shift_points`), run
+:func:`~stochfric.process.statistics.analyse`.  It returns a :class:`ScanAnalysis`: the typed result,
+its JSON summary (:meth:`ScanAnalysis.to_json_dict`) and its files (:meth:`ScanAnalysis.write`).  The
+command line parses, calls this and prints; a Python user calls the same::
+
+    import stochfric as sf
+    run = sf.analyse_scans(["spot1.x3p", "spot2.x3p"], "dc04", config=sf.AnalysisConfig(seed=1))
+    run.analysis.credibility.credible, run.analysis.model
+    run.write("fp", model=run.credible)
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from stochfric.arrays import FloatArray
+from stochfric.contact.asperity import ApproachRule, default_approach_m
+from stochfric.contact.materials import Material, load_material
+from stochfric.errors import AnalysisError
+from stochfric.io_utils import check_output_path
+from stochfric.process.analysis_config import AnalysisConfig
+from stochfric.process.analysis_result import StatisticalContactAnalysis
+from stochfric.process.ensemble import default_window_shift_points
+from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
+from stochfric.process.statistics import analyse
+from stochfric.random import as_generator
+from stochfric.surface.io import Surface
+from stochfric.surface.preprocess import Preparation
+from stochfric.surface.scans import PooledScans, load_scan, pool_scans
+from stochfric.surface.summits import summits_of
+from stochfric.surface.surrogates import SURROGATES, SurrogateSettings
+
+__all__ = [
+    "MODEL_FILE",
+    "STATISTICS_FILE",
+    "ApproachRule",
+    "ScanAnalysis",
+    "analyse_scans",
+    "choose_approach",
+    "window_shift_points",
+]
+
+#: File names of :meth:`ScanAnalysis.write`.
+MODEL_FILE = "friction_process.json"
+STATISTICS_FILE = "friction_process_statistics.nc"
+
+
+#: The ``approach_rule`` recorded when the approaches were given explicitly.
+EXPLICIT_APPROACH = "explicit"
+
+
+def choose_approach(
+    surfaces: Sequence[Surface], *, summit_rule: str, approach_m: npt.ArrayLike | None = None,
+    rule: ApproachRule | str = ApproachRule.CONTACTS, max_area_fraction: float = DEFAULT_MAX_AREA_FRACTION,
+) -> FloatArray:
+    """The approaches u [m]: ``approach_m`` when given, else the default range by ``rule`` on the scan
+    with the fewest summits (at least 2 are needed on every scan)."""
+    summit_sets = [summits_of(s, rule=summit_rule) for s in surfaces]
+    fewest = min(summit_sets, key=lambda x: x.count)
+    if fewest.count < 2:
+        raise AnalysisError(f"the prepared surface has {fewest.count} summit(s); at least 2 are needed")
+    if approach_m is not None:
+        return np.asarray(approach_m, dtype=np.float64)
+    return default_approach_m(fewest, rule=ApproachRule(rule).value, max_area_fraction=max_area_fraction)
+
+
+def window_shift_points(surface: Surface, window_shift_m: float | None, length_factor: int) -> int:
+    """a_y in grid points of y: ``window_shift_m`` rounded to whole points, default the thesis's 0.3 of
+    5.3 mm of the window length (:func:`~stochfric.process.ensemble.default_window_shift_points`); at
+    least two windows must fit on a long surface of ``length_factor`` lengths."""
+    ny = surface.nb_grid_pts[1]
+    if window_shift_m is None:
+        shift = default_window_shift_points(ny)
+    else:
+        if not (isinstance(window_shift_m, int | float) and math.isfinite(window_shift_m) and window_shift_m > 0):
+            raise AnalysisError(f"the window shift must be > 0, got {window_shift_m!r} m")
+        shift = max(1, round(window_shift_m / surface.grid_spacing_m[1]))
+    if shift >= ny * length_factor - ny:
+        raise AnalysisError(
+            f"the window shift ({shift} points) leaves fewer than two windows on a long surface of "
+            f"{length_factor} × {ny} points; use a smaller --window-shift-um or a larger --length-factor"
+        )
+    return shift
+
+
+def notify_cost(surface: Surface, cfg: AnalysisConfig, notify: Callable[[str], None]) -> None:
+    """Say before the work what the surrogates of ``cfg`` will cost on this grid, when their method
+    estimates it (``"auto"`` resolves to methods that do not)."""
+    method = SURROGATES.get(cfg.surrogate)
+    maps = cfg.realizations + cfg.long_surfaces * cfg.length_factor
+    seconds = None if method is None else method.cost_seconds(surface.nb_grid_pts, maps)
+    if method is not None and seconds is not None:
+        notify(f"{method.cost_reason}: about {seconds:.0f} s for {cfg.realizations} maps and "
+               f"{cfg.long_surfaces} long surfaces of this grid (estimate)")
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class ScanAnalysis:
+    """The result of :func:`analyse_scans`: the pooled scans, the analysis, how the approaches were
+    chosen, and the warnings of reading and preparing the scans."""
+
+    pooled: PooledScans
+    analysis: StatisticalContactAnalysis
+    #: ``"contacts"``, ``"sigma"`` or ``"explicit"``.
+    approach_rule: str
+    #: The reading's and the preparation's coded warnings (``{"code", "message"}``).
+    scan_warnings: list[dict[str, Any]]
+
+    @property
+    def credible(self) -> bool:
+        """The gate's verdict (:mod:`stochfric.process.credibility`)."""
+        return self.analysis.credibility.credible
+
+    def warnings(self) -> list[dict[str, Any]]:
+        """Every warning in order: reading and preparation, the analysis's validity warnings, the gate's reasons."""
+        a = self.analysis
+        return (list(self.scan_warnings) + [w.to_dict() for w in a.warnings]
+                + [r.to_dict() for r in a.credibility.reasons])
+
+    def to_json_dict(self) -> dict[str, Any]:
+        """The JSON summary of ``friction-process --json``: the analysis's, with every warning, the
+        preparation record(s) and the approach rule (SI units)."""
+        payload = self.analysis.to_json_dict()
+        payload["warnings"] = self.warnings()
+        payload["preparation"] = self.pooled.record()
+        payload["approach_rule"] = self.approach_rule
+        return payload
+
+    def write(self, out: str | os.PathLike[str], *, model: bool | None = None, figures: bool = False) -> dict[str, Any]:
+        """Write into ``out``: the model file :data:`MODEL_FILE` (when ``model``; default: when credible),
+        the statistics :data:`STATISTICS_FILE` and with ``figures`` the figures into ``out/figures``.
+        Every file is written atomically.  Returns their paths, keyed as in the JSON summary
+        (``model_file``, ``statistics_file``, ``figures``)."""
+        directory = Path(out)
+        directory.mkdir(parents=True, exist_ok=True)
+        written: dict[str, Any] = {}
+        if self.credible if model is None else model:
+            written["model_file"] = str(self.analysis.model.save(directory / MODEL_FILE))
+        written["statistics_file"] = str(self.analysis.to_netcdf(directory / STATISTICS_FILE))
+        if figures:
+            written["figures"] = [str(p) for p in self.write_figures(directory / "figures")]
+        return written
+
+    def write_figures(self, directory: Path) -> list[Path]:
+        """The analysis's figures (:func:`~stochfric.process.figures.write_process_figures`) and one
+        surrogate of the first scan by every registered method that applies to it, beside the map."""
+        from stochfric.process.figures import plot_surrogates, write_process_figures  # matplotlib
+
+        a = self.analysis
+        paths = write_process_figures(a, directory)
+        heights = self.pooled.surfaces[0].heights_m
+        settings = SurrogateSettings(amplitude=a.config.amplitude)
+        maps = {name: m.heights(heights, as_generator(a.config.seed), factor=1, settings=settings)
+                for name, m in SURROGATES.items() if m.applicable(heights, rule=a.config.summit_rule)[0]}
+        paths.append(plot_surrogates(heights, maps, directory / "surrogates.png"))
+        return paths
+
+
+def analyse_scans(
+    files: Sequence[str | os.PathLike[str] | None] | None,
+    material: Material | str,
+    *,
+    config: AnalysisConfig | None = None,
+    preparation: Preparation | None = None,
+    physical_size_m: tuple[float, float] | None = None,
+    height_unit: str | None = None,
+    fill_undefined: bool = False,
+    resample: bool = False,
+    approach_m: npt.ArrayLike | None = None,
+    approach_rule: ApproachRule | str = ApproachRule.CONTACTS,
+    window_shift_m: float | None = None,
+    workers: int | None = None,
+    progress: Callable[[str, int, int], None] | None = None,
+    notify: Callable[[str], None] | None = None,
+    out: str | os.PathLike[str] | None = None,
+) -> ScanAnalysis:
+    """Scans → friction-process model: what ``stochfric friction-process FILE...`` does (module docstring).
+
+    ``files``: instrument files of one surface (``None`` or empty: the shipped surface); several are
+    pooled into one ensemble (one pixel size, or ``resample``).  ``material``: a name or a
+    :class:`~stochfric.contact.materials.Material`.  ``config``: the analysis settings (its
+    ``summit_rule`` also finds the summits of the prepared scans); its ``window_shift_points`` is
+    replaced by ``window_shift_m`` [m] rounded to the grid, by default the thesis's proportion of the
+    window (:func:`window_shift_points`).  ``approach_m`` [m], or the default range by ``approach_rule``
+    (:func:`choose_approach`).  ``progress(stage, done, total)`` is called as the work advances;
+    ``notify(text)`` once before it with the cost estimate of an expensive surrogate method
+    (:meth:`~stochfric.surface.surrogates.SurrogateMethod.cost_seconds`).  ``out``: an output
+    directory checked *before* any work (nothing is written; call :meth:`ScanAnalysis.write`).
+    Raises a :class:`~stochfric.errors.StochfricError` subclass for bad input; the gate's verdict is
+    in the result, not an exception.
+    """
+    cfg = config if config is not None else AnalysisConfig()
+    if out is not None:
+        check_output_path(Path(out), option="--out")
+    if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
+        raise AnalysisError(f"--workers must be >= 1, got {workers}")
+    mat = load_material(material) if isinstance(material, str) else material
+    paths: list[str | os.PathLike[str] | None] = list(files) if files else [None]
+    pooled = pool_scans([load_scan(p, preparation=preparation, summit_rule=cfg.summit_rule,
+                                   physical_size_m=physical_size_m, height_unit=height_unit,
+                                   fill_undefined=fill_undefined) for p in paths], resample=resample)
+    surfaces = list(pooled.surfaces)
+    u = choose_approach(surfaces, summit_rule=cfg.summit_rule, approach_m=approach_m, rule=approach_rule,
+                        max_area_fraction=cfg.max_area_fraction)
+    cfg = replace(cfg, window_shift_points=window_shift_points(surfaces[0], window_shift_m, cfg.length_factor))
+    if notify is not None:
+        notify_cost(surfaces[0], cfg, notify)
+    analysis = analyse(surfaces, mat, u, cfg, name=pooled.name, progress=progress, workers=workers)
+    rule = EXPLICIT_APPROACH if approach_m is not None else ApproachRule(approach_rule).value
+    return ScanAnalysis(pooled=pooled, analysis=analysis, approach_rule=rule, scan_warnings=pooled.warnings)
