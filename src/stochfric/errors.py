@@ -8,13 +8,14 @@ value errors: code that caught ``ValueError`` keeps working): :class:`~stochfric
 statistical contact analysis), :class:`~stochfric.oscillator.parameters.ParameterError` and
 :class:`~stochfric.oscillator.case.CaseError`, :class:`~stochfric.studies.errors.StudyError`, and the
 foundation's :class:`~stochfric.io_utils.OutputPathError` and
-:class:`~stochfric.io_utils.MemoryRequestError`.  Programming errors (a wrong type from Python code,
-a broken invariant) stay ``TypeError``/``AssertionError`` and are not caught as input errors.
+:class:`~stochfric.io_utils.MemoryRequestError`.  An argument of the wrong type is an
+:class:`InputTypeError` (also a :class:`TypeError`).  A study config that pydantic refuses raises
+:class:`~stochfric.studies.errors.StudyConfigError`.  Broken invariants stay ``AssertionError``.
 """
 
 from __future__ import annotations
 
-__all__ = ["AnalysisError", "InputError", "ProcessModelError", "StochfricError"]
+__all__ = ["AnalysisError", "InputError", "InputTypeError", "ProcessModelError", "StochfricError"]
 
 
 class StochfricError(Exception):
@@ -23,6 +24,10 @@ class StochfricError(Exception):
 
 class InputError(StochfricError, ValueError):
     """A value, option or file the package cannot use; the message says what to change."""
+
+
+class InputTypeError(StochfricError, TypeError):
+    """An argument of the wrong type (a string where a number is meant, …); the message names it."""
 
 
 class ProcessModelError(InputError):

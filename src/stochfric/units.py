@@ -6,6 +6,8 @@ constant so a reader sees the unit in the name (``MICROMETRE``, ``MEGAPASCAL``).
 
 from __future__ import annotations
 
+from stochfric.errors import InputError
+
 METRE = 1.0
 MILLIMETRE = 1e-3
 MICROMETRE = 1e-6
@@ -24,7 +26,7 @@ def length_to_m(value: float, unit: str) -> float:
     try:
         return float(value) * _LENGTH[unit]
     except KeyError:
-        raise ValueError(f"unknown length unit {unit!r}; use one of {sorted(_LENGTH)}") from None
+        raise InputError(f"unknown length unit {unit!r}; use one of {sorted(_LENGTH)}") from None
 
 
 def pressure_to_pa(value: float, unit: str) -> float:
@@ -32,4 +34,4 @@ def pressure_to_pa(value: float, unit: str) -> float:
     try:
         return float(value) * _PRESSURE[unit]
     except KeyError:
-        raise ValueError(f"unknown pressure unit {unit!r}; use one of {sorted(_PRESSURE)}") from None
+        raise InputError(f"unknown pressure unit {unit!r}; use one of {sorted(_PRESSURE)}") from None

@@ -28,6 +28,8 @@ import os
 import platform
 import sys
 
+from stochfric.errors import InputError
+
 #: LLVM CPU names of Intel Xeons with AVX-512 and no 512-bit frequency licence penalty.
 FULL_WIDTH_CPUS = frozenset({"sapphirerapids", "emeraldrapids", "graniterapids", "graniterapids-d",
                              "diamondrapids"})
@@ -56,7 +58,7 @@ def configure(choice: str | None = None) -> str | None:
     name = given.strip().lower()
     if name not in CHOICES:
         source = f"{ENV}={given!r}" if choice is None else f"vector width {given!r}"
-        raise ValueError(f"{source}: choose one of {', '.join(CHOICES)}")
+        raise InputError(f"{source}: choose one of {', '.join(CHOICES)}")
     if os.environ.get("NUMBA_CPU_NAME") or os.environ.get("NUMBA_CPU_FEATURES"):
         return None  # the user's own numba target
     if platform.machine().lower() not in ("x86_64", "amd64"):

@@ -111,3 +111,25 @@ def test_a_bad_model_is_a_process_model_error() -> None:
         type(model).from_dict({**data, "dx": -1.0})
     with pytest.raises(ProcessModelError, match="falling_ratio must lie in"):
         type(model).from_dict({**data, "falling_ratio": 2.0})
+
+
+def test_a_bad_study_config_from_python_is_a_package_error_on_one_line() -> None:
+    from stochfric.studies.config import DampingConfig
+    from stochfric.studies.errors import StudyConfigError
+
+    with pytest.raises(StudyConfigError) as info:
+        DampingConfig(runs=0, seed=-1)
+    assert isinstance(info.value, StochfricError) and isinstance(info.value, ValueError)
+    assert "\n" not in str(info.value) and "runs" in str(info.value) and "seed" in str(info.value)
+
+
+def test_wrong_types_and_values_of_the_foundation_are_package_errors() -> None:
+    from stochfric.random import as_seed_sequence
+    from stochfric.units import length_to_m
+
+    with pytest.raises(StochfricError, match="seed must be a non-negative int"):
+        as_seed_sequence("1")  # type: ignore[arg-type]
+    with pytest.raises(TypeError):
+        as_seed_sequence(1.5)  # type: ignore[arg-type]
+    with pytest.raises(StochfricError, match="unknown length unit"):
+        length_to_m(1.0, "furlong")

@@ -411,3 +411,18 @@ def test_the_cycle_finder_sees_a_cycle_through_local_and_package_imports(tmp_pat
     c.write_text("from stochfric import units\n", encoding="utf-8")
     assert _cycles(_graph(root)) == []
     assert _closure(_graph(root), [a]) == {a, b, c, root / "units.py"}
+
+
+#: The longest function the package may hold (lines, decorators excluded): a longer one is split.
+MAX_FUNCTION_LINES = 120
+
+
+def test_no_function_is_longer_than_the_limit() -> None:
+    long = []
+    for path in MODULES:
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef):
+                lines = (node.end_lineno or node.lineno) - node.lineno + 1
+                if lines > MAX_FUNCTION_LINES:
+                    long.append(f"{path.relative_to(PACKAGE)}:{node.lineno} {node.name} ({lines} lines)")
+    assert not long, f"functions over {MAX_FUNCTION_LINES} lines: {long}"

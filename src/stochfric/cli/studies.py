@@ -18,7 +18,6 @@ from pathlib import Path
 from typing import Annotated, Any
 
 import typer
-from pydantic import ValidationError
 from rich.console import Console
 from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn, TimeRemainingColumn
@@ -29,7 +28,7 @@ from ..report import html as report_html
 from ..studies import executors, run_config
 from ..studies.base import StudyResult
 from ..studies.damping import DampingSummary
-from ..studies.errors import StudyError
+from ..studies.errors import StudyConfigError, StudyError, format_validation_errors
 from ..studies.executors import ExecutorKind, SweepInterrupted
 from ..studies.kinds import study_kind
 from .options import GROUP, fail, flag_of, option_group
@@ -226,8 +225,8 @@ def execution_options(
 def _validate(kind: str, fields: dict[str, Any]) -> Any:
     try:
         return study_kind(kind).config(**{k: v for k, v in fields.items() if v is not None})
-    except ValidationError as exc:
-        raise StudyError(run_config._format_errors(exc, flag_of)) from None
+    except StudyConfigError as exc:
+        raise StudyError(format_validation_errors(exc.validation_error, flag_of)) from None
 
 
 def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:

@@ -29,6 +29,7 @@ import numpy.typing as npt
 from stochfric.contact.asperity import ContactError, ContactResult, asperity_contact
 from stochfric.contact.halfspace import halfspace_contact
 from stochfric.contact.materials import Material
+from stochfric.errors import InputTypeError
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import Summits
 
@@ -143,7 +144,7 @@ def register_contact_model(model: ContactModel) -> ContactModel:
     """Add ``model`` to :data:`CONTACT_MODELS` under its name and return it; :class:`ContactError` for a
     name (or alias) already taken."""
     if not isinstance(model, ContactModel):
-        raise TypeError(f"a contact model must be a ContactModel, got {type(model).__name__}")
+        raise InputTypeError(f"a contact model must be a ContactModel, got {type(model).__name__}")
     if model.name in CONTACT_MODELS or model.name in ALIASES:
         raise ContactError(f"a contact model named {model.name!r} is already registered")
     CONTACT_MODELS[model.name] = model

@@ -16,6 +16,7 @@ import numpy.typing as npt
 from scipy import integrate, special
 
 from stochfric.arrays import FloatArray
+from stochfric.errors import InputError
 
 __all__ = [
     "GWContact",
@@ -45,7 +46,7 @@ def hertz_contact(*, radius_m: float, e_star_pa: float, indentation_m: float) ->
     ``p0 = 3N/(2πa²) = 2E* a/(πβ)`` (2.72, 2.75). ``δ <= 0`` gives no contact.
     """
     if not (radius_m > 0 and e_star_pa > 0):
-        raise ValueError("radius_m and e_star_pa must be > 0")
+        raise InputError("radius_m and e_star_pa must be > 0")
     d = max(float(indentation_m), 0.0)
     a = math.sqrt(radius_m * d)
     force = 4.0 / 3.0 * e_star_pa * math.sqrt(radius_m) * d**1.5
@@ -79,7 +80,7 @@ def gw_integral_closed(order: int, h: npt.ArrayLike) -> FloatArray:
         return np.asarray(phi - x * q, dtype=np.float64)
     if order == 2:
         return np.asarray((1.0 + x * x) * q - x * phi, dtype=np.float64)
-    raise ValueError(f"closed form only for orders 0, 1, 2; got {order}")
+    raise InputError(f"closed form only for orders 0, 1, 2; got {order}")
 
 
 def gw_integral(order: float, h: npt.ArrayLike) -> FloatArray:
@@ -125,7 +126,7 @@ def gw_contact(
     (2.87, 2.90) with ``F_n`` of :func:`gw_integral` (standard normal density φ*, 2.88).
     """
     if not (n_summits > 0 and radius_m > 0 and sigma_m > 0 and e_star_pa > 0):
-        raise ValueError("n_summits, radius_m, sigma_m and e_star_pa must be > 0")
+        raise InputError("n_summits, radius_m, sigma_m and e_star_pa must be > 0")
     d = np.asarray(separation_m, dtype=np.float64)
     h = d / sigma_m
     k = float(n_summits)

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from stochfric.errors import InputError
 from stochfric.surface.statistics import ELASTIC_LIMIT, PLASTIC_LIMIT
 
 __all__ = [
@@ -110,10 +111,10 @@ def contact_validity(
     frac = np.atleast_1d(np.asarray(area_fraction, dtype=np.float64))
     nc = np.atleast_1d(np.asarray(n_contacts, dtype=np.float64))
     if not (m.shape == frac.shape == nc.shape) or m.ndim != 1:
-        raise ValueError("mu, area_fraction and n_contacts must be 1-D of the same length")
+        raise InputError("mu, area_fraction and n_contacts must be 1-D of the same length")
     u = None if approach_m is None else np.atleast_1d(np.asarray(approach_m, dtype=np.float64))
     if u is not None and u.shape != m.shape:
-        raise ValueError("approach_m must have one value per point")
+        raise InputError("approach_m must have one value per point")
     pre = f"{name}: " if name else ""
     out: list[ValidityWarning] = []
 

@@ -12,7 +12,7 @@ from typing import Any, Literal, get_args
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from stochfric.errors import ProcessModelError
+from stochfric.errors import InputError, ProcessModelError
 from stochfric.friction_process.model_base import ProcessModelBase, SigmaZetaRule, low_frequency_level
 from stochfric.friction_process.model_function import ModelFunction
 from stochfric.validation import finite
@@ -118,7 +118,7 @@ class BandLimitedProcessModel(ProcessModelBase):
         """
         freq = np.asarray(f, dtype=np.float64)
         if not np.all(np.isfinite(freq)):
-            raise ValueError("frequencies f must be finite [1/m]")
+            raise InputError("frequencies f must be finite [1/m]")
         band = self.frequencies()
         variance = self.std(p_pa) ** 2
         scale = variance / (self.frequency_step * float(np.sum(self._shape(band))))

@@ -20,7 +20,7 @@ from typing import Any, Protocol, Self
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from stochfric.errors import ProcessModelError
+from stochfric.errors import InputError, InputTypeError, ProcessModelError
 from stochfric.friction_process.model_function import ModelFunction, checked_pressure
 from stochfric.friction_process.spectral import (
     band_limited_frequencies,
@@ -66,7 +66,7 @@ def low_frequency_level(psd_over_band: ArrayLike) -> float:
     """
     s = np.asarray(psd_over_band, dtype=np.float64)
     if s.ndim != 1 or s.size == 0:
-        raise ValueError("the band spectrum must be a non-empty 1-D array")
+        raise InputError("the band spectrum must be a non-empty 1-D array")
     k = max(1, math.floor(LOW_FREQUENCY_FRACTION * s.size))
     return float(np.mean(s[:k]))
 
@@ -146,7 +146,7 @@ class ProcessModelBase:
             raise ProcessModelError(f"name must be a non-empty string, got {self.name!r}")
         for attr in ("mu_mean", "mu_std"):
             if not isinstance(getattr(self, attr), ModelFunction):
-                raise TypeError(f"{attr} must be a ModelFunction, got {getattr(self, attr)!r}")
+                raise InputTypeError(f"{attr} must be a ModelFunction, got {getattr(self, attr)!r}")
         dx = positive("dx", self.dx, "m", error=ProcessModelError)
         length = positive("length", self.length, "m", error=ProcessModelError)
         object.__setattr__(self, "dx", dx)
@@ -188,7 +188,7 @@ class ProcessModelBase:
         """
         s = self.mu_std(checked_pressure(p_pa))
         if s < 0.0:
-            raise ValueError(
+            raise InputError(
                 f"the σ_μ model function of {self.name!r} is negative ({s:.4g}) at "
                 f"p = {p_pa:.6g} Pa: the fit is used outside its range of validity"
             )

@@ -12,7 +12,7 @@ from typing import Any, overload
 import numpy as np
 from numpy.typing import NDArray
 
-from stochfric.errors import ProcessModelError
+from stochfric.errors import InputError, ProcessModelError
 from stochfric.validation import finite
 
 __all__ = ["ModelFunction", "checked_pressure"]
@@ -22,7 +22,7 @@ def checked_pressure(p_pa: float) -> float:
     """Pressure p [Pa] as a finite float > 0, or ValueError (the argument of every f(p) and model)."""
     p = finite("pressure p [Pa]", p_pa)
     if p <= 0.0:
-        raise ValueError(f"pressure p must be > 0 Pa, got {p_pa!r}")
+        raise InputError(f"pressure p must be > 0 Pa, got {p_pa!r}")
     return p
 
 
@@ -61,7 +61,7 @@ class ModelFunction:
             return self.a * p**self.b + self.c
         arr = np.asarray(p_pa, dtype=np.float64)
         if not (np.all(np.isfinite(arr)) and np.all(arr > 0.0)):
-            raise ValueError("pressures p must be finite and > 0 Pa")
+            raise InputError("pressures p must be finite and > 0 Pa")
         result: NDArray[np.float64] = self.a * arr**self.b + self.c
         return result
 

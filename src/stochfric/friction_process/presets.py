@@ -31,6 +31,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from stochfric.errors import InputError
 from stochfric.friction_process.model import BandLimitedProcessModel, ModelFunction, SigmaZetaRule
 from stochfric.random import SeedLike
 
@@ -158,7 +159,7 @@ class PsdLevelProcessModel:
         """σ_SD(p) = √(C · E[S](p) · K Δf) [-]; ValueError where the E[S] fit is not positive."""
         level = self.psd_level(float(p_pa))
         if not level > 0.0:
-            raise ValueError(f"the E[S] model function of {self.base.name!r} is not positive ({level:.4g}) at "
+            raise InputError(f"the E[S] model function of {self.base.name!r} is not positive ({level:.4g}) at "
                              f"p = {p_pa:.6g} Pa")
         band = len(self.base.frequencies()) * self.base.frequency_step
         return math.sqrt(self.calibration * level * band)
@@ -215,6 +216,6 @@ def process_with_level(base: BandLimitedProcessModel, psd_level_fit: ModelFuncti
         return base
     if level == ProcessLevel.PSD_LEVEL:
         if psd_level_fit is None:
-            raise ValueError(f"the process {base.name!r} has no E[S](p) fit for the psd_level mode")
+            raise InputError(f"the process {base.name!r} has no E[S](p) fit for the psd_level mode")
         return psd_level_process(base, psd_level_fit)
-    raise ValueError(f"unknown process level {level!r}; choose one of {[str(v) for v in ProcessLevel]}")
+    raise InputError(f"unknown process level {level!r}; choose one of {[str(v) for v in ProcessLevel]}")

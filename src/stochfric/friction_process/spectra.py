@@ -15,6 +15,7 @@ import numpy as np
 import numpy.typing as npt
 
 from stochfric.arrays import FloatArray
+from stochfric.errors import InputError
 from stochfric.friction_process.spectral import one_sided_psd
 
 __all__ = [
@@ -34,7 +35,7 @@ def normalise(mu: npt.ArrayLike) -> FloatArray:
     """μ̄ = (μ − E[μ]) / σ_μ (eq. 3.17), E and σ over all elements of ``mu`` (ddof = 0)."""
     m = np.asarray(mu, dtype=np.float64)
     if not np.all(np.isfinite(m)):
-        raise ValueError("μ(y) contains NaN or infinity (a window without load?)")
+        raise InputError("μ(y) contains NaN or infinity (a window without load?)")
     sd = float(m.std())
     if sd == 0.0:
         return np.zeros_like(m)
@@ -50,10 +51,10 @@ def autocorrelation(mu: npt.ArrayLike, max_lag: int | None = None) -> FloatArray
     bar = normalise(mu)
     w = bar.shape[-1]
     if w < 2:
-        raise ValueError(f"need at least 2 windows along the path, got {w}")
+        raise InputError(f"need at least 2 windows along the path, got {w}")
     lag_max = w // 2 if max_lag is None else int(max_lag)
     if not 0 <= lag_max < w:
-        raise ValueError(f"max_lag must lie in [0, {w - 1}], got {max_lag}")
+        raise InputError(f"max_lag must lie in [0, {w - 1}], got {max_lag}")
     rec = bar.reshape(-1, w)
     out = np.empty(lag_max + 1)
     for k in range(lag_max + 1):
@@ -112,13 +113,13 @@ def psd_level(frequencies: npt.ArrayLike, psd: npt.ArrayLike, window_length_m: f
     f = np.asarray(frequencies, dtype=np.float64)
     s = np.asarray(psd, dtype=np.float64)
     if s.ndim != 1 or s.shape != f.shape:
-        raise ValueError("psd must be 1-D with one value per frequency")
+        raise InputError("psd must be 1-D with one value per frequency")
     ell = float(window_length_m)
     if not (math.isfinite(ell) and ell > 0.0):
-        raise ValueError(f"window length must be > 0 m, got {window_length_m!r}")
+        raise InputError(f"window length must be > 0 m, got {window_length_m!r}")
     pos = f > 0.0
     if not np.any(pos):
-        raise ValueError("no frequency bin above f = 0")
+        raise InputError("no frequency bin above f = 0")
     keep = pos & (f * ell <= LOW_FREQUENCY_LIMIT * (1.0 + 1e-9))
     if not np.any(keep):
         keep = pos & (f == f[pos].min())
@@ -156,7 +157,7 @@ def correlation_length_interval(per_record: npt.ArrayLike, level: float = 0.95) 
     v = np.asarray(per_record, dtype=np.float64).ravel()
     v = v[np.isfinite(v)]
     if not 0.0 < level < 1.0:
-        raise ValueError(f"level must lie in (0, 1), got {level!r}")
+        raise InputError(f"level must lie in (0, 1), got {level!r}")
     if v.size == 0:
         return math.nan, math.nan, math.nan, math.nan
     mean = float(v.mean())

@@ -14,6 +14,7 @@ import math
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from stochfric.errors import InputError
 from stochfric.random import SeedLike, as_generator
 
 __all__ = [
@@ -38,7 +39,7 @@ _BLOCK_ELEMENTS = 2**21
 def _positive_finite(name: str, value: float) -> float:
     v = float(value)
     if not math.isfinite(v) or v <= 0.0:
-        raise ValueError(f"{name} must be a positive finite number, got {value!r}")
+        raise InputError(f"{name} must be a positive finite number, got {value!r}")
     return v
 
 
@@ -84,12 +85,12 @@ def one_sided_psd(values: ArrayLike, dx: float) -> tuple[NDArray[np.float64], ND
     dx = _positive_finite("dx", dx)
     arr = np.asarray(values, dtype=np.float64)
     if arr.ndim == 0:
-        raise ValueError("values must have at least one axis (samples along the last axis)")
+        raise InputError("values must have at least one axis (samples along the last axis)")
     n = arr.shape[-1]
     if n < 2:
-        raise ValueError(f"need at least 2 samples along the last axis, got {n}")
+        raise InputError(f"need at least 2 samples along the last axis, got {n}")
     if not np.all(np.isfinite(arr)):
-        raise ValueError("values contain NaN or infinity; fill or remove them first")
+        raise InputError("values contain NaN or infinity; fill or remove them first")
     centred = arr - arr.mean(axis=-1, keepdims=True)
     spectrum = np.fft.rfft(centred, axis=-1)[..., 1:]  # k = 1..floor(N/2)
     psd = (2.0 * dx / n) * (spectrum.real**2 + spectrum.imag**2)
@@ -105,13 +106,13 @@ def _check_spectrum(
     f = np.asarray(frequencies, dtype=np.float64)
     s = np.asarray(psd, dtype=np.float64)
     if f.ndim != 1 or f.size == 0:
-        raise ValueError(f"frequencies must be a non-empty 1-D array, got shape {f.shape}")
+        raise InputError(f"frequencies must be a non-empty 1-D array, got shape {f.shape}")
     if s.shape != f.shape:
-        raise ValueError(f"psd has shape {s.shape}, frequencies {f.shape}: they must match")
+        raise InputError(f"psd has shape {s.shape}, frequencies {f.shape}: they must match")
     if not (np.all(np.isfinite(f)) and np.all(f > 0.0)):
-        raise ValueError("frequencies must be finite and > 0 [1/m]")
+        raise InputError("frequencies must be finite and > 0 [1/m]")
     if not (np.all(np.isfinite(s)) and np.all(s >= 0.0)):
-        raise ValueError("psd must be finite and >= 0 [m]")
+        raise InputError("psd must be finite and >= 0 [m]")
     return f, s
 
 
@@ -122,7 +123,7 @@ def _frequency_step(f: NDArray[np.float64]) -> float:
     steps = np.diff(f)
     df = float(steps.mean())
     if df <= 0.0 or not np.allclose(steps, df, rtol=1e-9, atol=0.0):
-        raise ValueError(
+        raise InputError(
             "frequencies must form a uniform, increasing grid f_i = f_1 + (i−1)Δf "
             "(eq. 2.48 with constant Δf); pass df explicitly for other grids"
         )
@@ -169,13 +170,13 @@ def spectral_representation(
     f, s = _check_spectrum(frequencies, psd)
     psi = np.asarray(phases, dtype=np.float64)
     if psi.shape != f.shape:
-        raise ValueError(f"phases have shape {psi.shape}, frequencies {f.shape}: they must match")
+        raise InputError(f"phases have shape {psi.shape}, frequencies {f.shape}: they must match")
     if not np.all(np.isfinite(psi)):
-        raise ValueError("phases must be finite")
+        raise InputError("phases must be finite")
     step = _frequency_step(f) if df is None else _positive_finite("df", df)
     xs = np.asarray(x, dtype=np.float64)
     if not np.all(np.isfinite(xs)):
-        raise ValueError("x must be finite")
+        raise InputError("x must be finite")
     return _evaluate(f, s, step, xs.ravel(), psi[np.newaxis, :])[0].reshape(xs.shape)
 
 
@@ -282,9 +283,9 @@ def generate_process_batch(
     f, s, x = _process_grid(frequencies, psd, dx, length)
     psi = np.asarray(phases, dtype=np.float64)
     if psi.ndim != 2 or psi.shape[1] != f.size:
-        raise ValueError(f"phases must have shape (b, {f.size}), got {psi.shape}")
+        raise InputError(f"phases must have shape (b, {f.size}), got {psi.shape}")
     if not np.all(np.isfinite(psi)):
-        raise ValueError("phases must be finite")
+        raise InputError("phases must be finite")
     return _evaluate(f, s, _frequency_step(f), x, psi)
 
 
@@ -297,7 +298,7 @@ def _process_grid(
     f, s = _check_spectrum(frequencies, psd)
     bad = _at_or_above_nyquist(f, dx)
     if np.any(bad):
-        raise ValueError(
+        raise InputError(
             f"{int(bad.sum())} frequenc{'y is' if bad.sum() == 1 else 'ies are'} at or above "
             f"the Nyquist frequency 1/(2·dx) = {nyquist_frequency(dx):.6g} 1/m "
             f"(largest: {float(f.max()):.6g} 1/m); they would alias on the grid of "
@@ -305,7 +306,7 @@ def _process_grid(
         )
     n = round(length / dx)
     if n < 1:
-        raise ValueError(f"length {length!r} m is shorter than half a grid step dx {dx!r} m")
+        raise InputError(f"length {length!r} m is shorter than half a grid step dx {dx!r} m")
     return f, s, np.arange(n, dtype=np.float64) * dx
 
 
@@ -323,7 +324,7 @@ def band_limited_frequencies(dx: float, length: float) -> NDArray[np.float64]:
     f = np.arange(1, k_max + 1, dtype=np.float64) / length
     f = f[~_at_or_above_nyquist(f, dx)]
     if f.size == 0:
-        raise ValueError(
+        raise InputError(
             f"no harmonic k/length lies below the Nyquist frequency: length {length!r} m "
             f"must exceed 2·dx = {2 * dx!r} m"
         )

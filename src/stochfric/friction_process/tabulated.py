@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from stochfric.errors import ProcessModelError
+from stochfric.errors import InputError, InputTypeError, ProcessModelError
 from stochfric.friction_process.model_base import ProcessModelBase, SigmaZetaRule, low_frequency_level
 from stochfric.friction_process.model_function import ModelFunction, checked_pressure
 from stochfric.friction_process.spectra import psd_level
@@ -115,7 +115,7 @@ class TabulatedProcessModel(ProcessModelBase):
             object.__setattr__(self, "window_length_m", window)
         self._check_common()
         if self.psd_level is not None and not isinstance(self.psd_level, ModelFunction):
-            raise TypeError(f"psd_level must be a ModelFunction or None, got {self.psd_level!r}")
+            raise InputTypeError(f"psd_level must be a ModelFunction or None, got {self.psd_level!r}")
         p = finite_tuple("pressures_pa", self.pressures_pa, error=ProcessModelError)
         f = finite_tuple("table_frequencies", self.table_frequencies, error=ProcessModelError)
         if min(p) <= 0.0 or any(b <= a for a, b in itertools.pairwise(p)):
@@ -172,13 +172,13 @@ class TabulatedProcessModel(ProcessModelBase):
         """
         freq = np.asarray(f, dtype=np.float64)
         if not np.all(np.isfinite(freq)):
-            raise ValueError("frequencies f must be finite [1/m]")
+            raise InputError("frequencies f must be finite [1/m]")
         band = self.frequencies()
         g = self._shape(freq, p_pa)
         if self.variance_rule == "sigma_mu":
             total = float(np.sum(self._shape(band, p_pa)))
             if total <= 0.0:
-                raise ValueError(
+                raise InputError(
                     f"the tabulated spectrum is zero over the band {band[0]:.4g} … {band[-1]:.4g} 1/m; "
                     "dx/length do not overlap the measured frequencies"
                 )

@@ -25,6 +25,8 @@ import numba
 import numpy as np
 import numpy.typing as npt
 
+from stochfric.errors import InputError
+
 SHAPE_CONSTANT, SHAPE_RATIONAL = range(2)
 
 #: Codes of the compiled shapes understood by :func:`mu_kinetic`.
@@ -103,17 +105,17 @@ class FrictionLaw:
 
     def __post_init__(self) -> None:
         if self.shape not in N_PARAMS:
-            raise ValueError(f"unknown friction-law shape code {self.shape}")
+            raise InputError(f"unknown friction-law shape code {self.shape}")
         need = N_PARAMS[self.shape]
         if len(self.params) != need:
-            raise ValueError(f"law {self.name!r}: shape needs {need} parameters, got {self.params}")
+            raise InputError(f"law {self.name!r}: shape needs {need} parameters, got {self.params}")
         if not np.all(np.isfinite(self.params)) or not np.isfinite(self.static):
-            raise ValueError(f"law {self.name!r}: parameters must be finite")
+            raise InputError(f"law {self.name!r}: parameters must be finite")
         if self.static < 0:
-            raise ValueError(f"law {self.name!r}: static coefficient must be >= 0")
+            raise InputError(f"law {self.name!r}: static coefficient must be >= 0")
         vs = np.linspace(0.0, 20.0, 2001)
         if np.any(self.kinetic(vs) < 0):
-            raise ValueError(
+            raise InputError(
                 f"law {self.name!r} gives a negative kinetic coefficient for |v| <= 20 m/s; "
                 "check its parameters (e.g. μ_fit(p) > μ0 in the pressure law)"
             )
@@ -180,9 +182,9 @@ def pressure_law(mu_fit: float, mu0: float = 0.4, decay: float = 1.42, quad: flo
     from the contact analysis (model function 3.21) and ``μ0 = μ_D(0) = 0.4``.
     """
     if not np.isfinite(mu_fit) or mu_fit <= 0:
-        raise ValueError(f"mu_fit(p) must be a positive finite number, got {mu_fit}")
+        raise InputError(f"mu_fit(p) must be a positive finite number, got {mu_fit}")
     if mu_fit > mu0:
-        raise ValueError(
+        raise InputError(
             f"mu_fit(p) = {mu_fit:.4g} exceeds mu0 = {mu0}: eq. (4.13) would give a negative "
             "friction coefficient at high sliding speed; the pressure is outside the range the "
             "model function was fitted for"
@@ -209,7 +211,7 @@ def get_law(name: str, **kwargs: float) -> FrictionLaw:
     try:
         factory = FRICTION_LAWS[name]
     except KeyError:
-        raise ValueError(
+        raise InputError(
             f"unknown friction law {name!r}; choose one of {sorted(FRICTION_LAWS)}"
         ) from None
     return factory(**kwargs)

@@ -15,6 +15,8 @@ from enum import StrEnum
 from types import MappingProxyType
 from typing import Any
 
+from stochfric.errors import InputError, InputTypeError
+
 from ..friction_process.model import BandLimitedProcessModel, ModelFunction
 from ..friction_process.presets import (
     BRAKE_PSD_LEVEL_FIT,
@@ -41,7 +43,7 @@ class PresetName(StrEnum):
 def _positive(name: str, value: Any, unit: str) -> float:
     v = float(value)
     if not math.isfinite(v) or v <= 0.0:
-        raise ValueError(f"{name} must be a positive finite number {unit}, got {value!r}")
+        raise InputError(f"{name} must be a positive finite number {unit}, got {value!r}")
     return v
 
 
@@ -64,13 +66,13 @@ class StudyParameters:
         for attr in ("damping_undamped", "damping_damped"):
             d = float(getattr(self, attr))
             if not 0.0 <= d < 1.0:
-                raise ValueError(f"{attr} must lie in [0, 1), got {d!r}")
+                raise InputError(f"{attr} must lie in [0, 1), got {d!r}")
             object.__setattr__(self, attr, d)
         for attr in ("damping_study_force", "forcing_study_force"):
             object.__setattr__(self, attr, _positive(attr, getattr(self, attr), "[N]"))
         forces = tuple(_positive("normal_force_study_forces", f, "[N]") for f in self.normal_force_study_forces)
         if not forces:
-            raise ValueError("normal_force_study_forces must hold at least one force [N]")
+            raise InputError("normal_force_study_forces must hold at least one force [N]")
         object.__setattr__(self, "normal_force_study_forces", forces)
 
 
@@ -131,19 +133,19 @@ class Preset:
             object.__setattr__(self, attr, _positive(attr, getattr(self, attr), unit))
         lo, hi = (float(v) for v in self.normal_force_range)
         if not (0.0 < lo < hi and math.isfinite(hi)):
-            raise ValueError(
+            raise InputError(
                 f"normal_force_range must be (N_min, N_max) with 0 < N_min < N_max, got {self.normal_force_range!r}"
             )
         object.__setattr__(self, "normal_force_range", (lo, hi))
         if not lo <= self.default_normal_force <= hi:
-            raise ValueError(
+            raise InputError(
                 f"default_normal_force {self.default_normal_force!r} N lies outside "
                 f"normal_force_range {self.normal_force_range!r}"
             )
         if not isinstance(self.process, BandLimitedProcessModel):
-            raise TypeError(f"process must be a BandLimitedProcessModel, got {self.process!r}")
+            raise InputTypeError(f"process must be a BandLimitedProcessModel, got {self.process!r}")
         if not isinstance(self.study_parameters, StudyParameters):
-            raise TypeError(f"study_parameters must be StudyParameters, got {self.study_parameters!r}")
+            raise InputTypeError(f"study_parameters must be StudyParameters, got {self.study_parameters!r}")
 
     @property
     def omega0(self) -> float:
@@ -159,7 +161,7 @@ class Preset:
         """Nominal contact pressure p = N/A [Pa] for a normal force N [N] (eq. 4.13)."""
         n = float(normal_force)
         if not math.isfinite(n) or n <= 0.0:
-            raise ValueError(f"normal_force must be a positive finite number [N], got {n!r}")
+            raise InputError(f"normal_force must be a positive finite number [N], got {n!r}")
         return n / self.contact_area
 
     @property
@@ -244,5 +246,5 @@ def get_preset(name: PresetName | str) -> Preset:
     try:
         factory = PRESETS[PresetName(name)]
     except (ValueError, TypeError):
-        raise ValueError(f"unknown preset {name!r}; available presets: {sorted(str(p) for p in PresetName)}") from None
+        raise InputError(f"unknown preset {name!r}; available presets: {sorted(str(p) for p in PresetName)}") from None
     return factory()

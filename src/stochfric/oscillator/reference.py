@@ -23,6 +23,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq, minimize_scalar
 
+from stochfric.errors import InputError
+
 from .friction_laws import FrictionLaw
 from .parameters import OscillatorParameters
 
@@ -59,9 +61,9 @@ def constant_friction_cycle(
     moves at ``γ0`` from ``X_gh`` back to ``x_hg``.
     """
     if not 0 <= mu_kinetic < mu_static:
-        raise ValueError("need 0 <= mu_kinetic < mu_static")
+        raise InputError("need 0 <= mu_kinetic < mu_static")
     if not 0 <= damping_ratio < 1:
-        raise ValueError("need 0 <= damping_ratio < 1")
+        raise InputError("need 0 <= damping_ratio < 1")
     d = damping_ratio
     x_hg = n * mu_static - 2 * d * gamma0
     xi0 = x_hg - n * mu_kinetic
@@ -83,7 +85,7 @@ def constant_friction_cycle(
         g = np.array([gamma0 - x2(t) for t in grid])
         idx = np.nonzero((g[:-1] > 0) & (g[1:] <= 0))[0]
         if idx.size == 0:
-            raise ValueError("the slip phase does not return to the belt speed: no stick-slip")
+            raise InputError("the slip phase does not return to the belt speed: no stick-slip")
         i = int(idx[0])
         t_slip = brentq(lambda t: gamma0 - x2(t), grid[i], grid[i + 1], xtol=1e-15, rtol=1e-15)
         res = minimize_scalar(x2, bounds=(0.0, t_slip), method="bounded",
@@ -91,7 +93,7 @@ def constant_friction_cycle(
         vmin = float(res.fun)
     x_gh = xi(t_slip) + n * mu_kinetic
     if abs(x_gh + 2 * d * gamma0) > n * mu_static:
-        raise ValueError("static friction cannot hold at the end of the slip phase")
+        raise InputError("static friction cannot hold at the end of the slip phase")
     return StickSlipCycle(
         x_slip_start=x_hg,
         x_slip_end=x_gh,

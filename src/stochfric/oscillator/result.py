@@ -20,6 +20,8 @@ import numpy as np
 import numpy.typing as npt
 import xarray as xr
 
+from stochfric.errors import InputError
+
 from ..io_utils import package_versions, write_netcdf_atomic
 from .parameters import OscillatorParameters
 
@@ -206,5 +208,5 @@ def load_result(path: str | Path) -> xr.Dataset:
     if "metadata_json" not in out.attrs or json.loads(out.attrs["metadata_json"]).get(
         "schema"
     ) != SCHEMA:
-        raise ValueError(f"{path} is not a stochfric simulation result ({SCHEMA})")
+        raise InputError(f"{path} is not a stochfric simulation result ({SCHEMA})")
     return out

@@ -22,7 +22,7 @@ from scipy import stats as sps
 from stochfric.arrays import FloatArray
 from stochfric.contact.asperity import asperity_sums, bowden_tabor_mu
 from stochfric.contact.materials import Material
-from stochfric.errors import AnalysisError
+from stochfric.errors import AnalysisError, InputError
 from stochfric.friction_process.model_base import FrictionProcessModel
 from stochfric.friction_process.spectral import one_sided_psd
 from stochfric.process.ensemble import ContactSamples, SurrogateOptions, summit_statistics
@@ -137,7 +137,7 @@ def ergodicity_check(blocks_mu: npt.ArrayLike, *, alpha: float = ERGODICITY_ALPH
     """Ergodicity of μ along the path from non-overlapping windows, shape (K surfaces, J, U)."""
     mu = np.asarray(blocks_mu, dtype=np.float64)
     if mu.ndim != 3 or mu.shape[0] < 3 or mu.shape[1] < 2:
-        raise ValueError("need μ of shape (surfaces >= 3, windows per surface >= 2, approaches)")
+        raise InputError("need μ of shape (surfaces >= 3, windows per surface >= 2, approaches)")
     if not np.all(np.isfinite(mu)):
         raise AnalysisError("a window carries no load at some approach (μ undefined); use larger approaches")
     k_count, j_count, n_u = mu.shape
@@ -240,7 +240,7 @@ def surrogate_check(
     and ``mu_z`` the largest-magnitude z over the scans, ``per_scan_z`` each scan's.
     """
     if ensemble.summit_stats is None:
-        raise ValueError("the ensemble carries no summit statistics (use ensemble_contact)")
+        raise InputError("the ensemble carries no summit statistics (use ensemble_contact)")
     scans = [surface] if isinstance(surface, Surface) else list(surface)
     stats = ensemble.summit_stats
     e_mean = stats.mean(axis=0)
@@ -429,7 +429,7 @@ def window_scatter_check(
     s = np.asarray(surrogate_mu, dtype=np.float64)
     s = s.reshape(-1, s.shape[-1])
     if m.ndim != 2 or m.shape[0] < 3 or s.shape[0] < 4 or m.shape[1] != s.shape[1]:
-        raise ValueError("need mu of >= 3 measured and >= 4 surrogate windows over the same approaches")
+        raise InputError("need mu of >= 3 measured and >= 4 surrogate windows over the same approaches")
     n_u = m.shape[1]
     out: dict[str, list[Any]] = {k: [] for k in ("sm", "smci", "ss", "ssci", "mm", "ms", "kap", "z")}
     for k in range(n_u):

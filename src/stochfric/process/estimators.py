@@ -15,6 +15,7 @@ import numpy as np
 import numpy.typing as npt
 
 from stochfric.arrays import FloatArray
+from stochfric.errors import InputError
 
 __all__ = ["linear_fit", "mean_and_std_errors", "mu_pdfs"]
 
@@ -27,7 +28,7 @@ def mean_and_std_errors(samples: npt.ArrayLike) -> tuple[FloatArray, FloatArray,
     x = np.asarray(samples, dtype=np.float64)
     n = x.shape[0]
     if n < 2:
-        raise ValueError("need at least two samples")
+        raise InputError("need at least two samples")
     mean = x.mean(axis=0)
     sd = x.std(axis=0, ddof=1)
     m4 = np.mean((x - mean) ** 4, axis=0)

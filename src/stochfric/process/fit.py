@@ -19,6 +19,7 @@ from scipy.optimize import OptimizeWarning, curve_fit
 
 from stochfric.arrays import FloatArray
 from stochfric.contact.validity import NON_INTERACTION_AREA_FRACTION
+from stochfric.errors import InputError
 from stochfric.friction_process.model_function import ModelFunction
 
 __all__ = [
@@ -122,7 +123,7 @@ def fit_mask(
     frac = np.asarray(area_fraction, dtype=np.float64)
     p = np.asarray(pressure_pa, dtype=np.float64)
     if frac.shape != p.shape or frac.ndim != 1:
-        raise ValueError("area_fraction and pressure_pa must be 1-D of the same length")
+        raise InputError("area_fraction and pressure_pa must be 1-D of the same length")
     finite = np.isfinite(frac) & np.isfinite(p) & (p > 0.0)
     mask = finite & (frac <= max_area_fraction)
     if int(mask.sum()) >= min_points:
@@ -175,18 +176,18 @@ def fit_model_function(
     p = np.asarray(pressure_pa, dtype=np.float64)
     y = np.asarray(values, dtype=np.float64)
     if p.shape != y.shape or p.ndim != 1:
-        raise ValueError("pressure_pa and values must be 1-D of the same length")
+        raise InputError("pressure_pa and values must be 1-D of the same length")
     use = np.isfinite(p) & np.isfinite(y) & (p > 0.0)
     if mask is not None:
         use &= np.asarray(mask, dtype=bool)
     s_all = None if sigma is None else np.asarray(sigma, dtype=np.float64)
     if s_all is not None:
         if s_all.shape != p.shape:
-            raise ValueError("sigma must have one value per point")
+            raise InputError("sigma must have one value per point")
         use &= np.isfinite(s_all) & (s_all > 0.0)
     n = int(use.sum())
     if n < 4:
-        raise ValueError(f"a fit of a p^b + c needs at least 4 usable points, got {n}")
+        raise InputError(f"a fit of a p^b + c needs at least 4 usable points, got {n}")
     pu, yu = p[use], y[use]
     su = s_all[use] if s_all is not None else np.ones(n)
     p_ref = float(np.exp(np.mean(np.log(pu))))

@@ -16,6 +16,8 @@ from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from typing import Any, TypeVar
 
+from stochfric.errors import InputError
+
 __all__ = ["default_workers", "map_indexed"]
 
 T = TypeVar("T")
@@ -53,7 +55,7 @@ def map_indexed(
     global _JOB
     n = default_workers() if workers is None else int(workers)
     if n < 1:
-        raise ValueError(f"workers must be >= 1, got {workers!r}")
+        raise InputError(f"workers must be >= 1, got {workers!r}")
     if n == 1 or count < 2 or "fork" not in multiprocessing.get_all_start_methods():
         out = []
         for k in range(count):

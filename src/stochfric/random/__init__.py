@@ -20,6 +20,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from stochfric.errors import InputError, InputTypeError
+
 SeedLike = int | np.random.SeedSequence | None
 
 
@@ -34,9 +36,9 @@ def as_seed_sequence(seed: SeedLike) -> np.random.SeedSequence:
     if seed is None:
         return np.random.SeedSequence()
     if isinstance(seed, bool) or not isinstance(seed, int | np.integer):
-        raise TypeError(f"seed must be a non-negative int, a SeedSequence or None, got {seed!r}")
+        raise InputTypeError(f"seed must be a non-negative int, a SeedSequence or None, got {seed!r}")
     if seed < 0:
-        raise ValueError(f"seed must be non-negative, got {seed}")
+        raise InputError(f"seed must be non-negative, got {seed}")
     return np.random.SeedSequence(int(seed))
 
 
@@ -88,7 +90,7 @@ def spawn_seed_sequences(seed: SeedLike, n: int) -> list[np.random.SeedSequence]
     ``(entropy, spawn_key + (k,))`` directly, so calling it twice gives the same children.
     """
     if n < 0:
-        raise ValueError(f"number of streams must be non-negative, got {n}")
+        raise InputError(f"number of streams must be non-negative, got {n}")
     root = as_seed_sequence(seed)
     return [child_seed(root, k) for k in range(n)]
 

@@ -53,6 +53,8 @@ from llvmlite import ir
 from numba.core import types
 from numba.core.extending import intrinsic
 
+from stochfric.errors import InputError
+
 __all__ = [
     "PHILOX_M0",
     "PHILOX_M1",
@@ -349,7 +351,7 @@ def _child_states(
 def _uint32_words(value: int) -> list[int]:
     """Little-endian 32-bit words of a non-negative int (numpy's ``_int_to_uint32_array``)."""
     if value < 0:
-        raise ValueError("seed entropy and spawn keys must be non-negative")
+        raise InputError("seed entropy and spawn keys must be non-negative")
     words = [value & 0xFFFFFFFF]
     value >>= 32
     while value:
@@ -365,9 +367,9 @@ def spawn_tails(keys: npt.ArrayLike) -> npt.NDArray[np.int64]:
     if arr.ndim == 1:
         arr = arr[:, None]
     if arr.ndim != 2:
-        raise ValueError(f"spawn-key tails must be a 2-D array (children × entries), got shape {arr.shape}")
+        raise InputError(f"spawn-key tails must be a 2-D array (children × entries), got shape {arr.shape}")
     if arr.size and arr.min() < 0:
-        raise ValueError("spawn-key entries must be non-negative")
+        raise InputError("spawn-key entries must be non-negative")
     return arr
 
 

@@ -6,6 +6,8 @@ from pathlib import Path
 
 import numpy as np
 
+from stochfric.errors import InputError
+
 from ..io_utils import write_atomic
 from ..oscillator.result import SimulationResult
 from ..plotting import new_figure
@@ -19,7 +21,7 @@ def plot_phase_portrait(result: SimulationResult, path: str | Path, param_set: i
     dot.  Several runs are overlaid in grey with run 0 in black.
     """
     if result.trajectory is None:
-        raise ValueError("the result holds no trajectory; simulate with save_trajectory=True")
+        raise InputError("the result holds no trajectory; simulate with save_trajectory=True")
     p = result.params[param_set]
     traj = result.trajectory[param_set]
     forced = p.q > 0 and p.eta > 0

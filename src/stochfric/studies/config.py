@@ -23,14 +23,16 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable
+from contextvars import ContextVar
 from pathlib import Path
 from typing import Annotated, Any, Literal, TypeVar
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, field_validator, model_validator
+from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator, model_validator
 
 from ..friction_process.presets import ProcessLevel
 from ..oscillator.options import Integrator, Model, PathCoordinate, WhiteIntensity
 from ..oscillator.presets import PresetName
+from .errors import StudyConfigError
 from .grids import STICK_WINDOW, parse_grid
 
 Grid = Annotated[tuple[float, ...], BeforeValidator(parse_grid)]
@@ -80,10 +82,24 @@ def parse_risk_levels(spec: Any) -> Any:
     return spec
 
 
+#: True while a larger model (a ``study.toml``) validates study configs: their errors stay pydantic's,
+#: so that the file's error names the place (``study[0].field``).
+NESTED_VALIDATION: ContextVar[bool] = ContextVar("NESTED_VALIDATION", default=False)
+
+
 class StudyConfig(BaseModel):
-    """Fields shared by all studies."""
+    """Fields shared by all studies.  A value the validation refuses raises
+    :class:`~stochfric.studies.errors.StudyConfigError` (every problem on one line)."""
 
     model_config = ConfigDict(frozen=True, extra="forbid")
+
+    def __init__(self, **data: Any) -> None:
+        try:
+            super().__init__(**data)
+        except ValidationError as exc:
+            if NESTED_VALIDATION.get():  # inside a study.toml: pydantic collects the errors with their place
+                raise
+            raise StudyConfigError(exc) from None
 
     preset: PresetName = PresetName.BRAKE
     process_file: str | None = Field(

@@ -27,14 +27,13 @@ Errors name the place in the file (``study[0].damping_ratio: …``) and what is 
 from __future__ import annotations
 
 import tomllib
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError
 
-from .config import AnyStudyConfig
-from .errors import StudyError
+from .config import NESTED_VALIDATION, AnyStudyConfig
+from .errors import StudyError, format_validation_errors
 from .executors import ExecutorKind
 
 
@@ -66,26 +65,6 @@ class RunFile(BaseModel):
     study: list[AnyStudyConfig] = Field(min_length=1)
 
 
-def _format_errors(exc: ValidationError, names: Callable[[str], str] | None = None) -> str:
-    """Every problem of ``exc`` on one line; ``names`` renames the field a location starts with
-    (the command line shows its flag, e.g. ``--normal-force`` for ``normal_forces``)."""
-    lines = []
-    for e in exc.errors():
-        loc = ""
-        for i, part in enumerate(e["loc"]):
-            if i == 0 and names is not None and isinstance(part, str):
-                part = names(part)
-            if isinstance(part, int):
-                loc += f"[{part}]"
-            elif part in ("damping", "forcing", "lyapunov", "normal-force") and loc.endswith("]"):
-                continue  # the discriminator tag pydantic inserts
-            else:
-                loc += f".{part}" if loc else str(part)
-        msg = str(e["msg"]).removeprefix("Value error, ")
-        lines.append(f"{loc}: {msg}" if loc else msg)  # a whole-config rule names its own fields
-    return "; ".join(lines)
-
-
 def parse_run_file(data: dict[str, Any], source: str = "study.toml") -> RunFile:
     """Validate a loaded TOML mapping; StudyError with every problem on one line."""
     raw = dict(data)
@@ -105,10 +84,13 @@ def parse_run_file(data: dict[str, Any], source: str = "study.toml") -> RunFile:
             raise StudyError(f"{source}: study[{i}] needs kind = damping | forcing | lyapunov | normal-force")
         merged.append({**defaults, **s})
     raw["study"] = merged
+    token = NESTED_VALIDATION.set(True)
     try:
         return TypeAdapter(RunFile).validate_python(raw)
     except ValidationError as exc:
-        raise StudyError(f"{source}: {_format_errors(exc)}") from None
+        raise StudyError(f"{source}: {format_validation_errors(exc)}") from None
+    finally:
+        NESTED_VALIDATION.reset(token)
 
 
 def load_run_file(path: str | Path) -> RunFile:

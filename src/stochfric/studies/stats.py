@@ -21,6 +21,8 @@ import numpy as np
 import numpy.typing as npt
 from scipy.stats import beta, norm
 
+from stochfric.errors import InputError
+
 
 def clopper_pearson(k: npt.ArrayLike, n: npt.ArrayLike, confidence: float = 0.95) -> tuple[
         npt.NDArray[np.float64], npt.NDArray[np.float64]]:
@@ -30,7 +32,7 @@ def clopper_pearson(k: npt.ArrayLike, n: npt.ArrayLike, confidence: float = 0.95
     k = n), α = 1 − confidence.  Closed forms: k = 0 → upper = 1 − (α/2)^{1/n}.
     """
     if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must be in (0, 1), got {confidence}")
+        raise InputError(f"confidence must be in (0, 1), got {confidence}")
     kk = np.asarray(k, dtype=float)
     nn = np.asarray(n, dtype=float)
     a = 1.0 - confidence
@@ -47,7 +49,7 @@ def wilson(k: npt.ArrayLike, n: npt.ArrayLike, confidence: float = 0.95) -> tupl
         npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     """Wilson score interval: (p̂ + z²/2n ± z √(p̂(1 − p̂)/n + z²/4n²)) / (1 + z²/n), z = Φ⁻¹((1 + c)/2)."""
     if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must be in (0, 1), got {confidence}")
+        raise InputError(f"confidence must be in (0, 1), got {confidence}")
     kk = np.asarray(k, dtype=float)
     nn = np.asarray(n, dtype=float)
     z = float(norm.ppf(0.5 + confidence / 2))
@@ -367,7 +369,7 @@ def risk_limit(damping: npt.ArrayLike, k: npt.ArrayLike, n: npt.ArrayLike, risk_
     same noise at every D): only the runs at one D must be independent.
     """
     if not 0.0 < risk_level < 1.0:
-        raise ValueError(f"risk level must be in (0, 1), got {risk_level}")
+        raise InputError(f"risk level must be in (0, 1), got {risk_level}")
     d = np.asarray(damping, dtype=float)
     kk = np.asarray(k, dtype=float)
     nn = np.broadcast_to(np.asarray(n, dtype=float), kk.shape)

@@ -31,6 +31,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from stochfric.arrays import FloatArray
+from stochfric.errors import InputError
 from stochfric.random import SeedLike, as_generator
 from stochfric.surface.io import Surface, SurfaceError
 from stochfric.surface.quilting import QUILT_METHOD, QuiltResult, quilt_applicable, quilt_heights
@@ -188,7 +189,7 @@ def register_surrogate(method: SurrogateMethod) -> SurrogateMethod:
     """Add ``method`` under its ``name`` (a new name, not ``"auto"``); returns it."""
     name = method.name
     if not name or name == AUTO_SURROGATE or name in SURROGATES:
-        raise ValueError(f"a surrogate method needs a new name other than {AUTO_SURROGATE!r}; got {name!r} "
+        raise InputError(f"a surrogate method needs a new name other than {AUTO_SURROGATE!r}; got {name!r} "
                          f"(registered: {', '.join(SURROGATES)})")
     SURROGATES[name] = method
     return method
@@ -197,7 +198,7 @@ def register_surrogate(method: SurrogateMethod) -> SurrogateMethod:
 def unregister_surrogate(name: str) -> None:
     """Remove the method ``name`` (tests, plug-ins); the package's own three cannot be removed."""
     if name in (PHASE_METHOD, IAAFT_METHOD, QUILT_METHOD):
-        raise ValueError(f"{name!r} is one of the package's own surrogate methods")
+        raise InputError(f"{name!r} is one of the package's own surrogate methods")
     SURROGATES.pop(name, None)
 
 

@@ -10,7 +10,7 @@ import pytest
 from stochfric.studies.base import Study, warning_counts
 from stochfric.studies.config import DampingConfig, ForcingConfig, LyapunovConfig, NormalForceConfig
 from stochfric.studies.damping import DampingStudy
-from stochfric.studies.errors import StudyError
+from stochfric.studies.errors import StudyConfigError, StudyError
 from stochfric.studies.forcing import ForcingStudy, forcing_study
 from stochfric.studies.lyapunov import LyapunovStudy
 from stochfric.studies.normal_force import NormalForceStudy
@@ -73,7 +73,7 @@ def test_warning_counts() -> None:
 ], ids=lambda v: getattr(v, "__name__", ""))
 def test_config_names_not_in_the_glossary_are_unknown_fields(cls: Any, old: dict[str, Any]) -> None:
     """No compatibility layer (issue 21): another spelling is refused like any unknown field."""
-    with pytest.raises(ValueError, match=f"{next(iter(old))}\n  Extra inputs are not permitted"):
+    with pytest.raises(StudyConfigError, match=f"{next(iter(old))}: Extra inputs are not permitted"):
         cls(**old)
 
 
