@@ -13,6 +13,7 @@ import contextlib
 import functools
 import importlib.metadata
 import json
+import math
 import os
 import tempfile
 import threading
@@ -247,3 +248,16 @@ def _package_versions() -> tuple[tuple[str, str], ...]:
         except importlib.metadata.PackageNotFoundError:  # pragma: no cover
             out[name] = "not installed"
     return tuple(out.items())
+
+
+def json_ready(obj: Any) -> Any:
+    """``obj`` with tuples as lists, numpy scalars as Python numbers and NaN/inf as None (strict JSON)."""
+    if isinstance(obj, dict):
+        return {k: json_ready(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [json_ready(v) for v in obj]
+    if isinstance(obj, float) or type(obj).__name__.startswith("float"):  # numpy floats without importing numpy
+        return float(obj) if math.isfinite(float(obj)) else None
+    if type(obj).__module__ == "numpy" and hasattr(obj, "item"):  # numpy integers and booleans
+        return obj.item()
+    return obj

@@ -37,12 +37,13 @@ from stochfric.contact.materials import load_material, material_names
 from stochfric.errors import AnalysisError, StochfricError
 from stochfric.friction_process.model_base import SigmaZetaRule
 from stochfric.friction_process.tabulated import PressureRule, VarianceRule
-from stochfric.io_utils import check_output_path
+from stochfric.io_utils import check_output_path, json_ready
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
 from stochfric.process.checks import WINDOW_TILES
 from stochfric.process.credibility import NOT_CREDIBLE_EXIT
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
+from stochfric.process.holdout import HOLDOUT_MAX_REALIZATIONS, HOLDOUT_REALIZATIONS
 from stochfric.process.pipeline import MODEL_FILE, STATISTICS_FILE, ApproachRule, ScanAnalysis, analyse_scans
 from stochfric.surface.surrogates import AUTO_SURROGATE, SURROGATES, surrogate_names
 from stochfric.surface.synthesis import AmplitudeEstimate
@@ -105,6 +106,13 @@ def friction_process_command(
         str,
         typer.Option("--surrogate", parser=SURROGATE_CHOICE, metavar="METHOD", help=_SURROGATE_HELP),
     ] = AUTO_SURROGATE,
+    validation_budget: Annotated[
+        int | None, typer.Option(
+            "--validation-budget", help="Most surrogates per fold of the held-out validation: it starts with "
+            f"min({HOLDOUT_REALIZATIONS}, --realizations) and doubles while a statistic lies within 2 Monte Carlo SE "
+            "of the threshold; undecided after the budget. Default: 4 × the start, at most "
+            f"{HOLDOUT_MAX_REALIZATIONS}.")
+    ] = None,
     window_tiles: Annotated[
         int, typer.Option("--window-tiles", help="Measured-window check: at most N × N disjoint windows per scan "
                           "(fewer when a window would hold < 40 summits).")
@@ -164,6 +172,9 @@ def friction_process_command(
             surrogate=surrogate, amplitude=amplitude, summit_rule=surf.summit_rule,
             max_area_fraction=max_area_fraction, pressure_rule=pressure_rule, variance_rule=variance_rule,
             sigma_zeta_rule=sigma_zeta_rule, window_tiles=window_tiles, seed=seed,
+            holdout_realizations=None if validation_budget is None else min(
+                HOLDOUT_REALIZATIONS, max(4, realizations), validation_budget),
+            holdout_max_realizations=validation_budget,
         )  # fmt: skip
         with _progress(show=not as_json) as progress:
             run = analyse_scans(
@@ -175,16 +186,19 @@ def friction_process_command(
         payload = run.to_json_dict()
         if out is not None:
             payload.update(run.write(out, model=run.credible or accept_not_credible, figures=plot))
-    except StochfricError as exc:
-        raise fail(str(exc)) from None
-    except ValueError as exc:  # e.g. a fit without enough points
+    except (StochfricError, ValueError) as exc:  # ValueError: e.g. a fit without enough points
         raise fail(str(exc)) from None
     except OSError as exc:  # disk full while writing: the previous files stay intact
         raise write_failed(exc) from None
+    _show(run, payload, as_json=as_json, accept_not_credible=accept_not_credible)
+
+
+def _show(run: ScanAnalysis, payload: dict[str, Any], *, as_json: bool, accept_not_credible: bool) -> None:
+    """Warnings and checks on stderr, the result as JSON or text, then the gate (exit 3 when not credible)."""
     _echo_warnings(payload["warnings"])
     _echo_checks(run.analysis)
     if as_json:
-        typer.echo(json.dumps(_clean(payload), indent=1, allow_nan=False))
+        typer.echo(json.dumps(json_ready(payload), indent=1, allow_nan=False))
     else:
         _print(run, payload)
     _gate(run.analysis, accept_not_credible=accept_not_credible)
@@ -212,8 +226,8 @@ def _gate(analysis: StatisticalContactAnalysis, *, accept_not_credible: bool) ->
                    "stamped so; simulate and the studies warn when they read it", err=True)
         return
     typer.echo(
-        f"error: not credible ({', '.join(analysis.credibility.codes())}): no model file written; fix the "
-        "cause named above, or give --accept-not-credible to write a stamped model", err=True)
+        f"error: {analysis.credibility.status} ({', '.join(analysis.credibility.codes())}): no model file written; "
+        "fix the cause named above, or give --accept-not-credible to write a stamped model", err=True)
     raise typer.Exit(code=NOT_CREDIBLE_EXIT)
 
 
@@ -228,8 +242,13 @@ def _echo_checks(analysis: StatisticalContactAnalysis) -> None:
     if wc is None:
         typer.echo("check: measured windows not checked (too few summits for 2 x 2 windows)", err=True)
     else:
-        typer.echo(f"check: measured windows ({wc.measured_windows}) max |z| {wc.max_abs_z:.2f} (threshold "
-                   f"{wc.threshold:.2f}) → {'pass' if wc.consistent else 'FAIL'}", err=True)
+        typer.echo(f"check: measured windows, in sample ({wc.measured_windows}) max |z| {wc.max_abs_z:.2f} (threshold "
+                   f"{wc.threshold:.2f}) → {'pass' if wc.consistent else 'FAIL'} (information; the gate uses the "
+                   "held-out test)", err=True)
+    ho = analysis.holdout
+    if ho is not None:
+        typer.echo(f"check: held out ({ho.method}, {ho.realizations} surrogates per fold) max |z| "
+                   f"{_num(ho.max_abs_z, '.2f')} (threshold {_num(ho.threshold, '.2f')}) → {ho.verdict}", err=True)
 
 
 @contextlib.contextmanager
@@ -250,18 +269,6 @@ def _progress(*, show: bool) -> Iterator[Callable[[str, int, int], None] | None]
             prog.update(tasks[stage], completed=done)
 
         yield report
-
-
-def _clean(obj: Any) -> Any:
-    if isinstance(obj, dict):
-        return {k: _clean(v) for k, v in obj.items()}
-    if isinstance(obj, list | tuple):
-        return [_clean(v) for v in obj]
-    if isinstance(obj, float | np.floating):
-        return float(obj) if math.isfinite(float(obj)) else None
-    if isinstance(obj, np.integer):
-        return int(obj)
-    return obj
 
 
 def _num(v: Any, fmt: str) -> str:
@@ -310,7 +317,7 @@ def _print(run: ScanAnalysis, written: dict[str, Any]) -> None:
     for n in analysis.notes:
         typer.echo(f"note      {n}")
     cr = analysis.credibility
-    typer.echo("verdict   " + ("credible" if cr.credible else "NOT credible: " + ", ".join(cr.codes())))
+    typer.echo("verdict   " + ("credible" if cr.credible else f"{cr.status.upper()}: " + ", ".join(cr.codes())))
 
 
 def _print_checks(analysis: StatisticalContactAnalysis) -> None:
@@ -352,6 +359,13 @@ def _print_checks(analysis: StatisticalContactAnalysis) -> None:
                if piece else "")
             + f" → {'COPY' if cc.is_copy else 'new'}"
         )
+        if cc.verbatim is not None:
+            typer.echo(f"verbatim  {cc.verbatim.summary()}")
+    _print_evidence(analysis)
+    bs = analysis.between_scans
+    if bs is not None:
+        typer.echo(f"one surface? {ss_count(analysis)} scans, random-effects test of μ over their windows: "
+                   f"{bs.verdict}")
     ss = analysis.scan_scatter
     if ss.scans > 1:
         typer.echo(f"scans     {ss.scans} pooled; sd of μ(u): between scans "
@@ -368,6 +382,38 @@ def _print_checks(analysis: StatisticalContactAnalysis) -> None:
     typer.echo("  spectral_level : " + " ".join(_num(v, ".3g") for v in sz["spectral_level"]))
     typer.echo(f"process check: generated σ within {analysis.process_check.max_std_z():.2f} standard errors of "
                "the target")
+
+
+def ss_count(analysis: StatisticalContactAnalysis) -> int:
+    """Number of pooled scans."""
+    return int(analysis.scan_scatter.scans)
+
+
+def _print_evidence(analysis: StatisticalContactAnalysis) -> None:
+    """What rests on the measurement: μ over its disjoint windows with intervals, and the surrogate model
+    tested on held-out halves with the test's power."""
+    um = MICROMETRE
+    mw = analysis.measured_windows
+    if mw is None:
+        typer.echo("measured  too few summits for 2 × 2 windows: no number rests on the measurement's windows")
+    else:
+        typer.echo(
+            f"measured  {mw.windows} windows of {mw.window_size_m[0] / um:.4g} × {mw.window_size_m[1] / um:.4g} µm "
+            f"(measurement only; effective windows {_num(float(np.min(mw.effective_windows)), '.3g')}–"
+            f"{_num(float(np.max(mw.effective_windows)), '.3g')}): E[μ] "
+            + " ".join(f"{m:.3g} [{lo:.3g}, {hi:.3g}]" for m, (lo, hi) in zip(mw.mu_mean, mw.mu_mean_ci95, strict=True))
+        )
+        typer.echo("          σ_μ over those windows " + " ".join(
+            f"{s:.3g} [{lo:.3g}, {hi:.3g}]" for s, (lo, hi) in zip(mw.mu_std, mw.mu_std_ci95, strict=True)))
+    ho = analysis.holdout
+    if ho is not None:
+        typer.echo(f"held out  {ho.method} surrogates from one half of the map tested on the other (2 folds, "
+                   f"{ho.held_out_windows} windows per fold, {ho.realizations} surrogates per fold): {ho.verdict} — "
+                   f"{ho.reason}")
+        if ho.tests:
+            typer.echo(f"          power: detects a scatter ratio of μ ≥ {_num(ho.detectable_scatter_ratio, '.2g')} "
+                       f"and a mean shift ≥ {_num(ho.detectable_mean_shift_sd, '.2g')} sd of the window mean with "
+                       f"80 % probability (family-wise false alarms {ho.alpha:.0%})")
 
 
 def register(app: typer.Typer) -> None:

@@ -19,6 +19,7 @@ from stochfric.friction_process.tabulated import PressureRule, VarianceRule
 from stochfric.process.checks import WINDOW_TILES
 from stochfric.process.ensemble import SurrogateOptions
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
+from stochfric.process.holdout import HOLDOUT_MAX_REALIZATIONS, HOLDOUT_REALIZATIONS
 from stochfric.surface.quilting import QUILT_METHOD
 from stochfric.surface.statistics import curvature_gaussianity
 from stochfric.surface.summits import DEFAULT_SUMMIT_RULE, SUMMIT_RULES, find_summits
@@ -60,6 +61,8 @@ class AnalysisConfig:
     pdf_bins: int = 30
     check_realizations: int = 200
     window_tiles: int = WINDOW_TILES
+    holdout_realizations: int | None = None
+    holdout_max_realizations: int | None = None
     seed: int | None = None
 
     def __post_init__(self) -> None:
@@ -71,10 +74,19 @@ class AnalysisConfig:
             v = getattr(self, name)
             if not isinstance(v, bool) and isinstance(v, int | np.integer) and v < low:
                 raise AnalysisError(f"{name} must be >= {low} ({why}), got {v}")
+        start = self.holdout_realizations
+        if start is None:  # as many as the ensemble, within 4 … HOLDOUT_REALIZATIONS
+            start = min(HOLDOUT_REALIZATIONS, max(4, int(self.realizations)))
+            object.__setattr__(self, "holdout_realizations", start)
+        if self.holdout_max_realizations is None:  # the sequential decision may quadruple them, up to the cap
+            object.__setattr__(self, "holdout_max_realizations", min(HOLDOUT_MAX_REALIZATIONS, 4 * int(start)))
         for name in ("realizations", "long_surfaces", "window_shift_points", "pdf_bins", "check_realizations",
-                     "window_tiles"):
+                     "window_tiles", "holdout_realizations", "holdout_max_realizations"):
             object.__setattr__(self, name, count(name, getattr(self, name), error=AnalysisError))
         object.__setattr__(self, "length_factor", count("length_factor", self.length_factor, 2, error=AnalysisError))
+        if self.holdout_start < 4 or self.holdout_budget < self.holdout_start:
+            raise AnalysisError(f"the held-out validation needs 4 <= holdout_realizations <= holdout_max_realizations, "
+                                f"got {self.holdout_realizations} and {self.holdout_max_realizations}")
         if self.window_tiles < 2:
             raise AnalysisError(f"window_tiles must be >= 2 (at least 2 x 2 windows), got {self.window_tiles}")
         if not 0.0 < self.max_area_fraction <= 1.0:
@@ -95,6 +107,16 @@ class AnalysisConfig:
         object.__setattr__(self, "amplitude", AmplitudeEstimate(self.amplitude))
         if self.summit_rule not in SUMMIT_RULES:
             raise AnalysisError(f"unknown summit rule {self.summit_rule!r}; use one of {', '.join(SUMMIT_RULES)}")
+
+    @property
+    def holdout_start(self) -> int:
+        """Surrogates per fold the held-out validation starts with (resolved in ``__post_init__``)."""
+        return int(self.holdout_realizations or HOLDOUT_REALIZATIONS)
+
+    @property
+    def holdout_budget(self) -> int:
+        """The most surrogates per fold the held-out validation may make."""
+        return int(self.holdout_max_realizations or HOLDOUT_MAX_REALIZATIONS)
 
     @property
     def surrogate_options(self) -> SurrogateOptions:

@@ -37,6 +37,8 @@ from stochfric.process.checks import (
 from stochfric.process.credibility import Credibility
 from stochfric.process.ensemble import ContactSamples, PathContact
 from stochfric.process.fit import ModelFit
+from stochfric.process.holdout import HoldoutValidation, MeasuredWindows
+from stochfric.process.pooling import BetweenScanTest
 
 __all__ = ["EnsembleStatistics", "PathMoments", "PathSpectra", "StatisticalContactAnalysis", "SurrogateChecks"]
 
@@ -69,6 +71,12 @@ class SurrogateChecks:
     scan_scatter: ScanScatter
     #: Overlap of the first surrogates with the map and each other (:func:`~stochfric.process.checks.copy_check`).
     copy_check: CopyCheck | None = None
+    #: The surrogate model tested on held-out halves of the map (:mod:`stochfric.process.holdout`).
+    holdout: HoldoutValidation | None = None
+    #: μ(u) over disjoint windows of the measurement itself, with intervals (rests on the measurement alone).
+    measured_windows: MeasuredWindows | None = None
+    #: Pooled scans: are they of one surface?  (:func:`~stochfric.process.pooling.between_scan_test`)
+    between_scans: BetweenScanTest | None = None
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -158,6 +166,18 @@ class StatisticalContactAnalysis(EnsembleStatistics, SurrogateChecks, PathMoment
             out[rule.value] = vals
         return out
 
+    def sources(self) -> dict[str, str]:
+        """Which numbers rest on the measurement and which on the surrogate model (for every output)."""
+        model = f"surrogate model ({self.surrogate_choice.split(' ')[0] or self.config.surrogate})"
+        return {
+            "measured_windows": "measurement: disjoint windows of the prepared map(s), no model",
+            "surrogate_check.measured": "measurement: the whole prepared map(s)",
+            "holdout": "measurement (held-out half) against the surrogate model built from the other half",
+            "ensemble": f"{model}: {self.config.realizations} surrogates of the map's size",
+            "mu_mean, mu_std, correlation_length, psd_level, fit, model": (
+                f"{model}: {self.config.long_surfaces} long surfaces of {self.config.length_factor} map lengths"),
+        }
+
     def to_json_dict(self) -> dict[str, Any]:
         """The JSON summary of the command line (SI units, p in Pa)."""
 
@@ -200,6 +220,10 @@ class StatisticalContactAnalysis(EnsembleStatistics, SurrogateChecks, PathMoment
             "credibility": self.credibility.to_dict(),
             "surrogate_choice": self.surrogate_choice,
             "copy_check": self.copy_check.to_dict() if self.copy_check is not None else {},
+            "holdout": None if self.holdout is None else self.holdout.to_dict(),
+            "between_scans": None if self.between_scans is None else self.between_scans.to_dict(),
+            "measured_windows": None if self.measured_windows is None else self.measured_windows.to_dict(),
+            "sources": self.sources(),
             "sigma_zeta": self.sigma_zeta_table(),
             "process_check": self.process_check.to_dict(),
             "model": self.model.to_dict(),
@@ -276,6 +300,10 @@ class StatisticalContactAnalysis(EnsembleStatistics, SurrogateChecks, PathMoment
             "surrogate_choice": self.surrogate_choice,
             "copy_check": json.dumps(self.copy_check.to_dict() if self.copy_check is not None else {},
                                      sort_keys=True),
+            "holdout": json.dumps(None if self.holdout is None else self.holdout.to_dict(), sort_keys=True),
+            "measured_windows": json.dumps(None if self.measured_windows is None else self.measured_windows.to_dict(),
+                                           sort_keys=True),
+            "sources": json.dumps(self.sources(), sort_keys=True),
             "contact_fraction_fit": json.dumps(self.contact_fraction_fit, sort_keys=True),
             "window_shift_m": self.path.window_shift_m,
             "window_length_m": self.path.window_length_m,

@@ -26,6 +26,13 @@ from stochfric.errors import AnalysisError, InputError
 from stochfric.friction_process.model_base import FrictionProcessModel
 from stochfric.friction_process.spectral import one_sided_psd
 from stochfric.process.ensemble import ContactSamples, SurrogateOptions, summit_statistics
+from stochfric.process.verbatim import (
+    BlockMatcher,
+    VerbatimMeasure,
+    default_block,
+    pool_verbatim,
+    verbatim_fraction,
+)
 from stochfric.random import SeedLike, as_seed_sequence, spawn_generators
 from stochfric.surface.io import Surface
 from stochfric.surface.quilting import COPY_NCC_LIMIT, COPY_PIECE_LIMIT, copy_metrics
@@ -210,6 +217,27 @@ class SurrogateCheck:
         """The largest |z| of the measured map's μ(u) against the ensemble (None without approaches)."""
         return float(np.nanmax(np.abs(self.mu_z))) if self.mu_z else None
 
+    def decided(self, realizations: int, margin: float = 2.0) -> tuple[list[str], list[str]]:
+        """The failures a seed cannot undo and the quantities a seed could flip.
+
+        z of the measured map carries the Monte Carlo error of the ensemble's mean and sd,
+        SE_z ≈ √(1/R + z²/(2(R − 1))).  Decided failures: |z| − margin·SE_z ≥ limit; undecided:
+        |z| within margin·SE_z of the limit on either side (more realisations decide them)."""
+        items = [*self.z.items(), *((f"mu(u_{k})", v) for k, v in enumerate(self.mu_z))]
+        r = max(int(realizations), 3)
+        failed, near = [], []
+        for name, v in items:
+            if not math.isfinite(v):
+                if math.isinf(v):
+                    failed.append(name)
+                continue
+            se = math.sqrt(1.0 / r + v * v / (2.0 * (r - 1)))
+            if abs(v) - margin * se >= self.limit:
+                failed.append(name)
+            elif abs(v) + margin * se >= self.limit:
+                near.append(name)
+        return failed, near
+
     def failures(self) -> list[str]:
         """Names of the quantities with |z| ≥ limit (μ as ``mu(u_k)``)."""
         out = [n for n, v in self.z.items() if not abs(v) < self.limit]
@@ -301,13 +329,26 @@ class CopyCheck:
     ncc_limit: float = COPY_NCC_LIMIT
     piece_limit: float = COPY_PIECE_LIMIT
     is_copy: bool
+    #: The verbatim content measured independently of how the surrogates were made
+    #: (:func:`~stochfric.process.verbatim.verbatim_fraction`, pooled over the surrogates).
+    verbatim: VerbatimMeasure | None = None
     rule: str = ("first realisations made again from their seeds; largest NCC over all shifts (>= 1/4 overlap) "
                  "with the map and between pairs of surrogates, largest verbatim piece of the map (quilt); a copy "
-                 "above the limits")
+                 "above the limits; verbatim fraction by curvature-block matching at the summit scale")
+
+    @property
+    def label(self) -> str:
+        """``copy``, ``resampling`` (mostly verbatim pieces of the measurement: a block bootstrap) or ``new``."""
+        if self.is_copy:
+            return "copy"
+        return self.verbatim.label if self.verbatim is not None else "new"
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON form (the fields by name)."""
-        return _json_fields(self)
+        """The JSON form (the fields by name, the verbatim measure as its dict, the label)."""
+        out = {f.name: getattr(self, f.name) for f in fields(self) if f.name != "verbatim"}
+        out["verbatim"] = None if self.verbatim is None else self.verbatim.to_dict()
+        out["label"] = self.label
+        return out
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -341,12 +382,15 @@ def copy_check(
     piece of the map).  ``is_copy`` when any exceeds its limit."""
     n = min(int(count), len(seeds))
     method, settings = options.surrogate, options.settings
-    maps, rows = [], []
+    maps, rows, verbatim = [], [], []
+    matchers = [BlockMatcher(s.heights_m, default_block(s.heights_m, options.rule)) for s in scans[:n]]
     for r in range(n):
         scan = scans[r % len(scans)]
         gen = np.random.Generator(np.random.PCG64(seeds[r]))
         h, source = method.copy_sample(scan.heights_m, gen, settings)
         rows.append(copy_metrics(h, scan.heights_m, source=source))
+        verbatim.append(verbatim_fraction(h, scan.heights_m, matcher=matchers[r % len(scans)], rng=r,
+                                          rule=options.rule))
         maps.append(h)
     pairs = [copy_metrics(maps[a], maps[a + 1]) for a in range(0, n - 1, 2)]
     return CopyCheck(
@@ -355,6 +399,7 @@ def copy_check(
         largest_piece_fraction=max((m.largest_piece_fraction for m in rows), default=None),
         max_ncc_between_surrogates=max((m.max_ncc for m in pairs), default=None),
         is_copy=any(m.is_copy for m in rows) or any(m.is_copy for m in pairs),
+        verbatim=pool_verbatim(verbatim) if verbatim else None,
     )
 
 

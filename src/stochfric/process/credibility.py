@@ -1,10 +1,13 @@
 """Is a statistical contact analysis credible enough to write a friction-process model? (method §3–§4)
 
-The gate of ``stochfric friction-process``: each reason why an analysis is *not credible* (surrogate
-or window check failed, surrogates that copy the map, E[μ] outside the physical range, a contact
-area above the nominal one, too few points for the fits) is a coded
+The gate of ``stochfric friction-process``: each reason why an analysis is *not credible* (the summit
+check failed, the surrogate model failed on held-out data or could not be decided, surrogates that copy
+the map, E[μ] outside the physical range, a contact area above the nominal one, too few points for the
+fits, a fit whose standard error exceeds its coefficient) is a coded
 :class:`~stochfric.contact.validity.ValidityWarning`; the command then exits with status 3 and
-writes no model file unless the user accepts it (docs/statistical_contact.md §0).
+writes no model file unless the user accepts it (docs/statistical_contact.md §0).  The verdict is one
+of three (:attr:`Credibility.status`): ``credible``, ``not credible``, or ``undecided`` when the only
+reason is an out-of-sample test that more surrogates (or more measured area) would decide.
 """
 
 from __future__ import annotations
@@ -17,8 +20,11 @@ import numpy.typing as npt
 
 from stochfric.contact.validity import ValidityWarning
 from stochfric.process.checks import CopyCheck
+from stochfric.process.holdout import HoldoutValidation
+from stochfric.process.pooling import BetweenScanTest
 
-__all__ = ["MIN_FIT_POINTS", "MU_PHYSICAL_RANGE", "NOT_CREDIBLE_EXIT", "Credibility", "assess_credibility"]
+__all__ = ["MIN_FIT_POINTS", "MU_PHYSICAL_RANGE", "NOT_CREDIBLE_EXIT", "UNDECIDED_CODE", "Credibility",
+           "assess_credibility"]
 
 #: Range of a physical mean friction coefficient of a dry contact: boundary-lubricated (0.03) to clean-metal
 #: adhesion (1.5), spanning dry metal, polymer and brake-pad pairings; outside it Bowden–Tabor with this
@@ -28,6 +34,10 @@ MU_PHYSICAL_RANGE = (0.03, 1.5)
 MIN_FIT_POINTS = 4
 #: Exit status of ``friction-process`` for a result that is not credible (2 is bad input).
 NOT_CREDIBLE_EXIT = 3
+#: The reason codes of a test that more realisations or more measured area would decide.
+UNDECIDED_CODE = "holdout-undecided"
+UNDECIDED_SUMMIT_CODE = "summit-check-undecided"
+UNDECIDED_CODES = frozenset({UNDECIDED_CODE, UNDECIDED_SUMMIT_CODE})
 
 
 @dataclass(frozen=True)
@@ -41,13 +51,20 @@ class Credibility:
         """True when nothing speaks against the analysis."""
         return not self.reasons
 
+    @property
+    def status(self) -> str:
+        """``credible``, ``undecided`` (the only reason: an out-of-sample test not yet decided) or ``not credible``."""
+        if not self.reasons:
+            return "credible"
+        return "undecided" if set(self.codes()) <= UNDECIDED_CODES else "not credible"
+
     def codes(self) -> list[str]:
         """The reasons' codes."""
         return [r.code for r in self.reasons]
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary."""
-        return {"credible": self.credible, "reasons": [r.to_dict() for r in self.reasons]}
+        return {"credible": self.credible, "status": self.status, "reasons": [r.to_dict() for r in self.reasons]}
 
 
 def _where(u: npt.NDArray[np.float64], mask: npt.NDArray[np.bool_]) -> str:
@@ -61,9 +78,14 @@ def assess_credibility(
     approach_m: npt.ArrayLike,
     surrogate_ok: bool,
     surrogate_failures: list[str],
+    surrogate_undecided: list[str] | None = None,
+    realizations: int | None = None,
     window_ok: bool | None,
     window_max_z: float | None,
     copies: CopyCheck | None = None,
+    holdout: HoldoutValidation | None = None,
+    between_scans: BetweenScanTest | None = None,
+    uncertain_fits: list[str] | None = None,
     mu_means: list[npt.ArrayLike],
     area_fractions: list[npt.ArrayLike],
     fit_mask: npt.ArrayLike,
@@ -83,11 +105,41 @@ def assess_credibility(
             f"{', '.join(surrogate_failures)}: the surrogates do not resemble this surface; try another "
             "--surrogate (quilt keeps local non-Gaussian structure) or check the preparation",
         ))  # fmt: skip
-    if window_ok is False:
+    if surrogate_ok and surrogate_undecided:
+        out.append(ValidityWarning(
+            UNDECIDED_SUMMIT_CODE,
+            f"{name}: the measured map's {', '.join(surrogate_undecided)} lie(s) within 2 Monte Carlo standard "
+            f"errors of the summit check's limit with {realizations} realisations: another seed could decide "
+            f"either way; about {4 * (realizations or 0)} realisations (--realizations) would decide it",
+        ))  # fmt: skip
+    if window_ok is False and holdout is None:  # the in-sample check gates only where no held-out test ran
         out.append(ValidityWarning(
             "window-check-failed",
             f"{name}: mu scatters across disjoint windows of the measurement unlike the same windows of the "
             f"surrogates (max |z| {window_max_z:.2f}); the surrogates do not carry the measured scatter",
+        ))  # fmt: skip
+    if holdout is not None and holdout.verdict == "not credible":
+        out.append(ValidityWarning(
+            "holdout-failed",
+            f"{name}: the {holdout.method} surrogates, made from one half of the map, do not describe the other "
+            f"half: {holdout.reason}",
+        ))  # fmt: skip
+    elif holdout is not None and holdout.verdict == "undecided":
+        out.append(ValidityWarning(
+            UNDECIDED_CODE,
+            f"{name}: the {holdout.method} surrogate model is not validated on held-out data: {holdout.reason}",
+        ))  # fmt: skip
+    if between_scans is not None and not between_scans.one_surface:
+        out.append(ValidityWarning(
+            "scans-not-one-surface",
+            f"{name}: the pooled scans are not of one surface: μ of their windows differs between scans more than "
+            f"within a scan ({between_scans.verdict}); analyse them separately",
+        ))  # fmt: skip
+    for fit in uncertain_fits or []:
+        out.append(ValidityWarning(
+            "fit-uncertain",
+            f"{name}: {fit}: a model function whose standard error reaches its value says nothing; use more "
+            "realisations / long surfaces or a wider approach range",
         ))  # fmt: skip
     if copies is not None and copies.is_copy:
         out.append(ValidityWarning(

@@ -36,6 +36,7 @@ from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
 from stochfric.process.ensemble import default_window_shift_points
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
+from stochfric.process.pooling import require_summits_for_pooling
 from stochfric.process.statistics import analyse
 from stochfric.random import as_generator
 from stochfric.surface.io import Surface
@@ -214,6 +215,9 @@ def analyse_scans(
                                    physical_size_m=physical_size_m, height_unit=height_unit,
                                    fill_undefined=fill_undefined) for p in paths], resample=resample)
     surfaces = list(pooled.surfaces)
+    if pooled.resampled_to_m is not None:  # never reduce scans to a handful of summits to make them poolable
+        require_summits_for_pooling([summits_of(s, rule=cfg.summit_rule).count for s in surfaces],
+                                    names=[s.path.name for s in pooled.scans], resampled_to_m=pooled.resampled_to_m)
     u = choose_approach(surfaces, summit_rule=cfg.summit_rule, approach_m=approach_m, rule=approach_rule,
                         max_area_fraction=cfg.max_area_fraction)
     cfg = replace(cfg, window_shift_points=window_shift_points(surfaces[0], window_shift_m, cfg.length_factor))

@@ -55,6 +55,7 @@ from stochfric.process.credibility import Credibility, assess_credibility
 from stochfric.process.ensemble import (
     ContactSamples,
     PathContact,
+    SurrogateOptions,
     ensemble_contact,
     path_contact,
     tile_contact,
@@ -62,10 +63,12 @@ from stochfric.process.ensemble import (
 )
 from stochfric.process.estimators import linear_fit, mean_and_std_errors, mu_pdfs
 from stochfric.process.fit import ModelFit, fit_mask, fit_model_function
+from stochfric.process.holdout import HoldoutValidation, holdout_validation, measured_windows
 from stochfric.process.memory import check_memory, sample_arrays_bytes, workers_that_fit
 from stochfric.process.parallel import default_workers
+from stochfric.process.pooling import BetweenScanTest, between_scan_test, measured_window_mu
 from stochfric.progress import Progress, StagedProgress
-from stochfric.random import as_seed_sequence, seed_entropy, spawn_seed_sequences
+from stochfric.random import as_seed_sequence, child_seed, seed_entropy, spawn_seed_sequences
 from stochfric.surface.io import Surface
 from stochfric.surface.statistics import plasticity_index
 from stochfric.surface.summits import Summits, find_summits
@@ -167,18 +170,25 @@ def analyse(
     surrogates = surrogate_check(scans, material, ens, rule=cfg.summit_rule)
     window_check, scan_scatter, notes = _window_checks(scans, found, material, u, tiles, ens, cfg.summit_rule)
     copies = copy_check(scans, options, spawn_seed_sequences(s_ens, cfg.realizations))
+    holdout = _holdout(scans, material, u, options, cfg, child_seed(root, HOLDOUT_STREAM), progress)
     checks = SurrogateChecks(ergodicity=ergodicity, surrogate_check=surrogates, window_check=window_check,
-                             scan_scatter=scan_scatter, copy_check=copies)
+                             scan_scatter=scan_scatter, copy_check=copies, holdout=holdout,
+                             measured_windows=measured_windows(scans, material, u, rule=cfg.summit_rule),
+                             between_scans=_between_scans(scans, material, u, cfg.summit_rule))
     moments, spectra = _path_moments(path), _path_spectra(path)
     fits = _fit_all(moments, spectra, path.samples.mu.shape[0], cfg)
     notes += [fits.note] if fits.note else []
+    notes += _uncertain_fits(fits.fits)[1]
+    if copies.verbatim is not None and copies.verbatim.is_resampling:
+        notes.append(f"the {options.method} surrogates are a resampling of the measurement: "
+                     f"{copies.verbatim.summary()}")
     model = _process_model(name or "measured surface", fits.fits, moments.pressure_pa, spectra, path, cfg)
     validity = contact_validity(
         mu=moments.mu_mean, area_fraction=moments.area_fraction,
         n_contacts=path.samples.n_contacts.mean(axis=(0, 1)), approach_m=u,
         plasticity_index=_plasticity_index(found, material), max_area_fraction=cfg.max_area_fraction, name=name or "",
     )  # fmt: skip
-    credibility = _credibility(name or "measured surface", u, checks, moments, ens_stats, fits)
+    credibility = _credibility(name or "measured surface", u, checks, moments, ens_stats, fits, cfg.realizations)
     if not credibility.credible:
         model = replace(model, not_credible=tuple(f"[{r.code}] {r.message}" for r in credibility.reasons))
     return StatisticalContactAnalysis(
@@ -188,6 +198,63 @@ def analyse(
         process_check=_process_check(model, moments.pressure_pa[fits.mask], cfg, s_check), notes=notes,
         warnings=validity,
     )  # fmt: skip
+
+
+#: The child of the root seed that drives the out-of-sample validation (0–3: ensemble, retired, path, check).
+HOLDOUT_STREAM = 4
+
+
+def _holdout(scans: list[Surface], material: Material, u: FloatArray, options: SurrogateOptions, cfg: AnalysisConfig,
+             seed: np.random.SeedSequence, progress: StagedProgress | None) -> HoldoutValidation:
+    """The surrogate model on held-out halves (:func:`~stochfric.process.holdout.holdout_validation`), or why
+    it could not be tested."""
+    try:
+        return holdout_validation(scans, material, u, options, seed=seed, realizations=cfg.holdout_start,
+                                  max_realizations=cfg.holdout_budget,
+                                  progress=_stage(progress, "held-out validation"))
+    except AnalysisError as exc:
+        return HoldoutValidation.unavailable(options.method, str(exc))
+
+
+def _between_scans(scans: list[Surface], material: Material, u: FloatArray, rule: str) -> BetweenScanTest | None:
+    """Pooled scans: the random-effects test of one surface (:func:`~stochfric.process.pooling.between_scan_test`)
+    on μ of their disjoint windows; None for one scan."""
+    if len(scans) < 2:
+        return None
+    return between_scan_test(measured_window_mu(scans, material, u, rule=rule), approach_m=u)
+
+
+def _uncertain_fits(fits: dict[str, ModelFit]) -> tuple[list[str], list[str]]:
+    """The fits of E[μ] and σ_μ that say nothing, and notes on the ones whose coefficients are not
+    identifiable one by one.
+
+    A fit says nothing when the standard error of the fitted *value* f(p) = a p^b + c (delta method with
+    the fit's covariance) reaches |f(p)| at a pressure it was fitted on.  Coefficients with standard errors
+    above their values but a determined curve (a flat E[μ] has a ≈ 0 and any b) are no reason to refuse
+    the model; they mean the curve must not be extrapolated, which a note says."""
+    refused, notes = [], []
+    for key, label in (("mu_mean", "E[mu]"), ("mu_std", "sigma_mu")):
+        f = fits.get(key)
+        if f is None:
+            continue
+        p = np.asarray(f.pressure_pa, dtype=np.float64)[np.asarray(f.used, dtype=bool)]
+        cov = np.asarray(f.covariance, dtype=np.float64)
+        if p.size == 0 or cov.shape != (3, 3) or not np.all(np.isfinite(cov)):
+            refused.append(f"the fit of {label} has no covariance (its parameters are not determined)")
+            continue
+        pb = p**f.b
+        grad = np.stack([pb, f.a * pb * np.log(p), np.ones_like(p)], axis=1)
+        se = np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", grad, cov, grad), 0.0))
+        value = np.abs(f.a * pb + f.c)
+        worst = int(np.argmax(se / np.maximum(value, 1e-300)))
+        if se[worst] >= value[worst]:
+            refused.append(f"the fit of {label} at p = {p[worst] / 1e6:.3g} MPa is {value[worst]:.3g} ± "
+                           f"{se[worst]:.2g} (a = {f.a:.4g} ± {f.a_se:.2g}, b = {f.b:.4g} ± {f.b_se:.2g})")
+        elif not all(math.isfinite(s_) and abs(s_) <= abs(v) for v, s_ in ((f.a, f.a_se), (f.b, f.b_se))):
+            notes.append(f"the fit of {label}: a = {f.a:.4g} ± {f.a_se:.2g}, b = {f.b:.4g} ± {f.b_se:.2g} are not "
+                         f"determined one by one; the curve is (its SE ≤ {np.max(se / value):.0%} of its value on "
+                         f"{p.min() / 1e6:.3g}–{p.max() / 1e6:.3g} MPa) but must not be extrapolated beyond them")
+    return refused, notes
 
 
 def _fields(section: EnsembleStatistics | SurrogateChecks | PathMoments | PathSpectra) -> dict[str, Any]:
@@ -366,14 +433,18 @@ def _plasticity_index(found: list[Summits], material: Material) -> float | None:
 
 
 def _credibility(
-    name: str, u: FloatArray, checks: SurrogateChecks, moments: PathMoments, ens_stats: EnsembleStatistics, fits: _Fits
+    name: str, u: FloatArray, checks: SurrogateChecks, moments: PathMoments, ens_stats: EnsembleStatistics, fits: _Fits,
+    realizations: int,
 ) -> Credibility:
     """The gate (:mod:`stochfric.process.credibility`) on the checks, E[μ] and A_c/A_nom of the path
-    and the ensemble, and the points the fits use."""
+    and the ensemble, and the points the fits use; the summit check decided against its Monte Carlo error
+    (:meth:`~stochfric.process.checks.SurrogateCheck.decided`)."""
+    decided = checks.surrogate_check.decided(realizations)
     window = checks.window_check
     return assess_credibility(
-        name=name, approach_m=u, surrogate_ok=checks.surrogate_check.credible,
-        surrogate_failures=checks.surrogate_check.failures(),
+        holdout=checks.holdout, uncertain_fits=_uncertain_fits(fits.fits)[0], between_scans=checks.between_scans,
+        name=name, approach_m=u, surrogate_ok=not decided[0], surrogate_failures=decided[0],
+        surrogate_undecided=decided[1], realizations=realizations,
         window_ok=None if window is None else window.consistent,
         window_max_z=None if window is None else window.max_abs_z, copies=checks.copy_check,
         mu_means=[moments.mu_mean, ens_stats.ensemble_mu_mean],

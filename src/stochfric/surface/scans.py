@@ -24,8 +24,10 @@ from stochfric.surface.summits import DEFAULT_SUMMIT_RULE, Summits, summits_of
 
 __all__ = ["PIXEL_RTOL", "PooledScans", "PreparedScan", "load_scan", "pool_scans"]
 
-#: Relative tolerance within which two scans' pixel sizes count as equal when pooled.
-PIXEL_RTOL = 1e-6
+#: Relative tolerance within which two scans' pixel sizes count as one when pooled: an instrument's lateral
+#: calibration is uncertain by about 0.5–1 %, so two files of one measurement (or two scans of one
+#: instrument) 0.1 % apart are one pixel size; they then get their mean pixel size without interpolation.
+PIXEL_RTOL = 5e-3
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -152,6 +154,15 @@ def pool_scans(scans: list[PreparedScan] | tuple[PreparedScan, ...], *, resample
         return PooledScans(scans=tuple(scans), surfaces=tuple(surfaces), warnings=warnings)
     spacings = [s.grid_spacing_m for s in surfaces]
     target: tuple[float, float] | None = None
+    if all(np.allclose(sp, spacings[0], rtol=PIXEL_RTOL, atol=0.0) for sp in spacings) and any(
+            sp != spacings[0] for sp in spacings):  # one pixel size within the calibration: relabel, no interpolation
+        mean = (float(np.mean([sp[0] for sp in spacings])), float(np.mean([sp[1] for sp in spacings])))
+        surfaces = [Surface(heights_m=s.heights_m, physical_size_m=(s.nb_grid_pts[0] * mean[0],
+                                                                    s.nb_grid_pts[1] * mean[1]),
+                            source=s.source, n_undefined_filled=s.n_undefined_filled,
+                            info={**s.info, "pixel_size_relabelled_from": list(s.grid_spacing_m)})
+                    for s in surfaces]
+        spacings = [mean] * len(surfaces)
     if any(not np.allclose(sp, spacings[0], rtol=PIXEL_RTOL, atol=0.0) for sp in spacings):
         if not resample:
             listing = ", ".join(f"{s.path.name}: {sp[0] * 1e6:.4g}×{sp[1] * 1e6:.4g} µm"

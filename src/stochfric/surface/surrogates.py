@@ -14,7 +14,11 @@ The registry :data:`SURROGATES` holds the package's three methods, in this order
 * ``iaaft`` (:class:`IaaftSurrogate`) — beyond the thesis: IAAFT, the measured height distribution
   exactly and the spectrum approximately (Schreiber & Schmitz 1996);
 * ``quilt`` (:class:`QuiltSurrogate`) — beyond the thesis: pieces of the measurement with repaired
-  seams (image quilting, :mod:`stochfric.surface.quilting`), keeping local non-Gaussian structure.
+  seams (image quilting, :mod:`stochfric.surface.quilting`), keeping local non-Gaussian structure — a
+  resampling of the map (docs/statistical_contact.md §0b);
+* ``multiscale`` (:class:`MultiscaleSurrogate`) — beyond the thesis: new maps with the measured marginals
+  of every octave band, of the Laplacian and of the heights (Heeger & Bergen 1995,
+  :mod:`stochfric.surface.multiscale`).  Offered by name, not chosen by ``auto``.
 
 A new method is one class (a subclass of :class:`SurrogateMethod` with ``name``, ``summary`` and
 :meth:`~SurrogateMethod.heights`) and one :func:`register_surrogate` call; the analysis, its checks,
@@ -34,6 +38,17 @@ from stochfric.arrays import FloatArray
 from stochfric.errors import InputError
 from stochfric.random import SeedLike, as_generator
 from stochfric.surface.io import Surface, SurfaceError
+from stochfric.surface.multiscale import (
+    DEFAULT_ITERATIONS,
+    DEFAULT_TOL,
+    LAPLACIAN_BANDS,
+    MULTISCALE_METHOD,
+    Synthesis,
+    band_count,
+    check_bands,
+    check_count,
+    multiscale_heights,
+)
 from stochfric.surface.quilting import QUILT_METHOD, QuiltResult, quilt_applicable, quilt_heights
 from stochfric.surface.synthesis import (
     AMPLITUDE_METHODS,
@@ -52,6 +67,7 @@ __all__ = [
     "IAAFT_ESTIMATE_ITERATIONS",
     "SURROGATES",
     "IaaftSurrogate",
+    "MultiscaleSurrogate",
     "PhaseSurrogate",
     "QuiltSurrogate",
     "SurrogateMethod",
@@ -181,6 +197,45 @@ class QuiltSurrogate(SurrogateMethod):
         return res.heights, res
 
 
+class MultiscaleSurrogate(SurrogateMethod):
+    """Multi-scale marginal matching (Heeger & Bergen 1995; :func:`multiscale_heights`): random phases,
+    then the measured marginals of every octave band, of the Laplacian and of the heights, with the
+    amplitude spectrum re-imposed between rounds.  Uses ``settings.amplitude``; IAAFT's ``max_iter``
+    and ``iaaft_tol`` are not its settings (its own are the constructor's)."""
+
+    name = MULTISCALE_METHOD
+    summary = ("multiscale: new maps with the measured marginals of every octave band, of the Laplacian "
+               "and of the heights (Heeger-Bergen marginal matching; cross-scale structure not kept)")
+    cost_reason: ClassVar[str] = "multiscale surrogates remap every octave band a few times"
+
+    def __init__(self, *, bands: int | None = None, iterations: int = DEFAULT_ITERATIONS,
+                 laplacian_bands: int = LAPLACIAN_BANDS, tol: float = DEFAULT_TOL) -> None:
+        self.bands = None if bands is None else check_bands(bands)
+        self.iterations = check_count("iterations", iterations)
+        self.laplacian_bands = check_count("laplacian_bands", laplacian_bands)
+        self.tol = float(tol)
+
+    def heights(self, heights: FloatArray, rng: np.random.Generator, *, factor: int,
+                settings: SurrogateSettings) -> FloatArray:
+        return multiscale_heights(heights, rng, factor=factor, bands=self.bands, iterations=self.iterations,
+                                  laplacian_bands=self.laplacian_bands, tol=self.tol,
+                                  amplitude=settings.amplitude).heights
+
+    def cost_seconds(self, grid: tuple[int, int], maps: int) -> float:
+        """The set-up (the measured map's bands on its mirror extension) and one round (band, Laplacian
+        and height remaps, the spectrum) timed on a random field of the grid's size on this machine;
+        ``maps`` (each counted in original sizes) × (set-up + ``iterations`` rounds)."""
+        nx, ny = int(grid[0]), int(grid[1])
+        z = np.random.default_rng(0).standard_normal((nx, ny))
+        j_count = band_count(z.shape) if self.bands is None else self.bands
+        t0 = time.perf_counter()
+        synth = Synthesis(z, z, bands=j_count, laplacian_bands=self.laplacian_bands)
+        t1 = time.perf_counter()
+        synth.spectrum(synth.remaps(z))
+        t2 = time.perf_counter()
+        return int(maps) * ((t1 - t0) + self.iterations * (t2 - t1))
+
+
 #: name → method, in the order the help, the figures and the docs list them.
 SURROGATES: dict[str, SurrogateMethod] = {}
 
@@ -197,7 +252,7 @@ def register_surrogate(method: SurrogateMethod) -> SurrogateMethod:
 
 def unregister_surrogate(name: str) -> None:
     """Remove the method ``name`` (tests, plug-ins); the package's own three cannot be removed."""
-    if name in (PHASE_METHOD, IAAFT_METHOD, QUILT_METHOD):
+    if name in (PHASE_METHOD, IAAFT_METHOD, QUILT_METHOD, MULTISCALE_METHOD):
         raise InputError(f"{name!r} is one of the package's own surrogate methods")
     SURROGATES.pop(name, None)
 
@@ -216,7 +271,7 @@ def surrogate_method(name: str) -> SurrogateMethod:
         raise SurfaceError(f"unknown surrogate method {name!r}; use one of {', '.join(SURROGATES)}") from None
 
 
-for _method in (PhaseSurrogate(), IaaftSurrogate(), QuiltSurrogate()):
+for _method in (PhaseSurrogate(), IaaftSurrogate(), QuiltSurrogate(), MultiscaleSurrogate()):
     register_surrogate(_method)
 
 

@@ -11,7 +11,6 @@ from collections.abc import Iterator
 
 import numpy as np
 import pytest
-from scipy import ndimage
 
 from stochfric.contact.asperity import default_approach_m
 from stochfric.contact.materials import get_material
@@ -24,24 +23,17 @@ from stochfric.surface.io import Surface, default_surface_path, read_surface
 from stochfric.surface.preprocess import prepare
 from stochfric.surface.summits import summits_of
 from stochfric.surface.surrogates import SurrogateMethod, SurrogateSettings, register_surrogate, unregister_surrogate
+from synthetic_maps import as_surface, gaussian_heights, spiky_heights  # tests/synthetic_maps.py
 
 MAT = get_material("brake-pad")
 
 
 def _field(shape: tuple[int, int], corr: float, seed: int = 0) -> Surface:
-    z = ndimage.gaussian_filter(np.random.default_rng(seed).standard_normal(shape), corr, mode="wrap")
-    return Surface(heights_m=1e-6 * z / z.std(), physical_size_m=(shape[0] * 1e-6, shape[1] * 1e-6))
+    return as_surface(gaussian_heights(shape, corr, seed))
 
 
 def _spiky(shape: tuple[int, int], seed: int = 0) -> Surface:
-    """A Gaussian field with sparse sharp bumps: non-Gaussian curvature."""
-    rng = np.random.default_rng(seed)
-    z = ndimage.gaussian_filter(rng.standard_normal(shape), 1.0, mode="wrap")
-    bumps = np.zeros(shape)
-    idx = rng.integers(0, min(shape), size=(shape[0] * shape[1] // 400, 2))
-    bumps[idx[:, 0], idx[:, 1]] = 6.0 * z.std()
-    z = z + ndimage.gaussian_filter(bumps, 0.8, mode="wrap") * 4.0
-    return Surface(heights_m=1e-6 * z / z.std(), physical_size_m=(shape[0] * 1e-6, shape[1] * 1e-6))
+    return as_surface(spiky_heights(shape, seed))
 
 
 def test_auto_picks_phase_for_gaussian_curvature_and_quilt_otherwise() -> None:

@@ -1,0 +1,91 @@
+"""Out-of-sample validation of a surrogate model and the measured windows (issue 29, items 1, 2, 6)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from stochfric.contact.asperity import default_approach_m
+from stochfric.contact.materials import get_material
+from stochfric.process.ensemble import SurrogateOptions
+from stochfric.process.holdout import (
+    REQUIRED_SCATTER_RATIO,
+    HoldoutValidation,
+    holdout_validation,
+    measured_windows,
+    split_halves,
+)
+from stochfric.surface.io import Surface
+from stochfric.surface.summits import summits_of
+from synthetic_maps import as_surface, gaussian_heights, spiky_heights  # tests/synthetic_maps.py
+
+MAT = get_material("brake-pad")
+
+
+def _field(shape: tuple[int, int], corr: float, seed: int = 0) -> Surface:
+    return as_surface(gaussian_heights(shape, corr, seed))
+
+
+def _spiky(shape: tuple[int, int], seed: int = 0) -> Surface:
+    return as_surface(spiky_heights(shape, seed))
+
+
+def _u(s: Surface) -> np.ndarray:
+    return default_approach_m(summits_of(s), num=5)
+
+
+def test_halves_split_the_longer_side() -> None:
+    a, b = split_halves(_field((101, 60), 1.0))
+    assert a.nb_grid_pts == b.nb_grid_pts == (50, 60)
+    np.testing.assert_array_equal(a.heights_m, _field((101, 60), 1.0).heights_m[:50])
+
+
+def test_random_phases_of_a_strongly_non_gaussian_map_fail_out_of_sample() -> None:
+    s = _spiky((400, 400))
+    v = holdout_validation([s], MAT, _u(s), SurrogateOptions(method="phase"), seed=1, max_realizations=48)
+    assert v.verdict == "not credible", v.reason
+    assert v.max_abs_z > v.threshold and v.tiles >= 2 and v.held_out_windows == v.tiles**2
+    assert any(t.quantity.startswith("summit") for t in v.tests if abs(t.z) > v.threshold)
+
+
+@pytest.mark.parametrize("seed", [1, 2, 3])
+def test_random_phases_of_a_gaussian_map_are_not_refused_and_the_verdict_does_not_move(seed: int) -> None:
+    s = _field((400, 400), 1.5, seed=7)
+    v = holdout_validation([s], MAT, _u(s), SurrogateOptions(method="phase"), seed=seed, max_realizations=48)
+    assert v.verdict in ("credible", "undecided"), v.reason
+    assert v.detectable_scatter_ratio > 1.0
+    if v.verdict == "undecided":
+        assert "scans" in v.reason or "surrogates" in v.reason
+
+
+def test_a_test_that_cannot_see_a_factor_two_leaves_the_model_undecided_and_says_how_many_scans() -> None:
+    s = _field((100, 100), 1.5, seed=3)  # few summits per half: 2 x 2 windows
+    v = holdout_validation([s], MAT, _u(s), SurrogateOptions(method="phase"), seed=1, max_realizations=96)
+    assert v.tiles == 2
+    assert v.verdict == "undecided" and v.detectable_scatter_ratio > REQUIRED_SCATTER_RATIO, v.reason
+    assert "scans of this size" in v.reason
+
+
+def test_a_map_too_small_to_hold_out_half_is_reported_not_raised() -> None:
+    u = HoldoutValidation.unavailable("phase", "too small")
+    assert u.verdict == "undecided" and not u.credible and u.to_dict()["tests"] == []
+
+
+def test_the_first_surrogates_do_not_depend_on_the_budget() -> None:
+    s = _field((300, 300), 1.5, seed=5)
+    a = holdout_validation([s], MAT, _u(s), SurrogateOptions(method="phase"), seed=4, realizations=8,
+                           max_realizations=8)
+    b = holdout_validation([s], MAT, _u(s), SurrogateOptions(method="phase"), seed=4, realizations=8,
+                           max_realizations=64)
+    if b.realizations == 8:
+        assert a.tests == b.tests
+    assert a.tests[0].held_out == b.tests[0].held_out  # the held-out data never depend on the seed
+
+
+def test_measured_windows_rest_on_the_measurement_with_intervals() -> None:
+    s = _field((320, 320), 1.5, seed=2)
+    mw = measured_windows([s], MAT, _u(s), rule="thesis")
+    assert mw is not None and mw.windows == mw.tiles**2 and mw.source == "measurement"
+    assert np.all(mw.mu_mean_ci95[:, 0] <= mw.mu_mean) and np.all(mw.mu_mean <= mw.mu_mean_ci95[:, 1])
+    assert np.all(mw.effective_windows <= mw.windows) and np.all(mw.effective_windows > 0)
+    assert measured_windows([_field((40, 40), 1.5)], MAT, _u(_field((40, 40), 1.5)), rule="thesis") is None
