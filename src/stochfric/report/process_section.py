@@ -76,9 +76,29 @@ def friction_process_section(directory: Path, ch3: Chapter3) -> str:
             f"of the map: {f(100 * (cc.largest_piece_fraction or 0.0), '.2g')} % (limit "
             f"{f(100 * cc.piece_limit, 'g')} %) → {'a COPY' if cc.is_copy else 'new surfaces'}.</p>"
         )
+    ho, mw = a.holdout, a.measured_windows
+    if ho is not None:
+        window_html += (
+            f"<p><b>Does the model hold on data it never saw?</b> {html.escape(ho.method)} surrogates made from one "
+            f"half of the map, tested on the other (2 folds, {ho.held_out_windows} windows each, {ho.realizations} "
+            f"surrogates per fold): <b>{html.escape(ho.verdict)}</b> — {html.escape(ho.reason)}."
+            + (f" The test detects a scatter ratio of μ ≥ {f(ho.detectable_scatter_ratio, '.2g')} with 80 % "
+               "probability." if ho.tests else "") + "</p>"
+        )
+    if mw is not None:
+        window_html += (
+            f"<p><b>What rests on the measurement alone:</b> μ over {mw.windows} disjoint windows of "
+            f"{f(mw.window_size_m[0] * 1e6, '.3g')} × {f(mw.window_size_m[1] * 1e6, '.3g')} µm of the map: E[μ] "
+            f"{f(mw.mu_mean[0], '.3g')} [{f(mw.mu_mean_ci95[0][0], '.3g')}, {f(mw.mu_mean_ci95[0][1], '.3g')}] at the "
+            f"first approach, σ_μ {f(mw.mu_std[0], '.3g')} [{f(mw.mu_std_ci95[0][0], '.2g')}, "
+            f"{f(mw.mu_std_ci95[0][1], '.2g')}] (95 % jackknife intervals; windows smaller than the model's). "
+            "Every other number of this section comes from the surrogate model.</p>"
+        )
+    if cc is not None and cc.verbatim is not None:
+        window_html += f"<p><b>Verbatim content:</b> {html.escape(cc.verbatim.summary())}.</p>"
     cr = a.credibility
     gate = ("credible: the model would be written" if cr.credible else
-            "NOT credible (" + ", ".join(cr.codes()) + "): `friction-process` would exit 3 "
+            f"{cr.status.upper()} (" + ", ".join(cr.codes()) + "): `friction-process` would exit 3 "
             "and write no model file without --accept-not-credible")
     parts = [
         f"<p><b>Do the surrogates resemble the measured map?</b> Amplitude estimate "
