@@ -364,7 +364,7 @@ def _print_checks(analysis: StatisticalContactAnalysis) -> None:
     _print_evidence(analysis)
     bs = analysis.between_scans
     if bs is not None:
-        typer.echo(f"one surface? {ss_count(analysis)} scans, random-effects test of μ over their windows: "
+        typer.echo(f"one surface? {analysis.scan_scatter.scans} scans, random-effects test of μ over their windows: "
                    f"{bs.verdict}")
     ss = analysis.scan_scatter
     if ss.scans > 1:
@@ -382,11 +382,6 @@ def _print_checks(analysis: StatisticalContactAnalysis) -> None:
     typer.echo("  spectral_level : " + " ".join(_num(v, ".3g") for v in sz["spectral_level"]))
     typer.echo(f"process check: generated σ within {analysis.process_check.max_std_z():.2f} standard errors of "
                "the target")
-
-
-def ss_count(analysis: StatisticalContactAnalysis) -> int:
-    """Number of pooled scans."""
-    return int(analysis.scan_scatter.scans)
 
 
 def _print_evidence(analysis: StatisticalContactAnalysis) -> None:

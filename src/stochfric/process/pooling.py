@@ -42,6 +42,7 @@ from stochfric.process.checks import WINDOW_MIN_SUMMITS, window_tiles
 from stochfric.process.ensemble import tile_contact
 from stochfric.surface.grid import resample_surface
 from stochfric.surface.io import Surface
+from stochfric.surface.scans import PIXEL_RTOL, pixel_size_spread, pixel_sizes_agree, relabel_to_mean_pixel_size
 from stochfric.surface.summits import DEFAULT_SUMMIT_RULE, find_summits
 
 __all__ = [
@@ -76,7 +77,7 @@ BETWEEN_SCAN_POWER = 0.8
 #: measurement stored in two formats, 0.1 % apart from rounding the scan size — cannot be told apart
 #: by their pixel size and are pooled as they are, without interpolation.  Beyond it the scans are
 #: different pixel sizes: resample them (``--resample``) or measure them alike.
-POOL_PIXEL_RTOL = 5e-3
+POOL_PIXEL_RTOL = PIXEL_RTOL  # stochfric.surface.scans: pool_scans uses the same
 
 #: Windows per scan the between-scan test needs: 3 × 3 disjoint windows.  With 2 × 2 windows each scan
 #: gives 3 degrees of freedom to the within-scan variance, the Brown–Forsythe test compares spreads of
@@ -579,33 +580,10 @@ def scans_needed(
 # --------------------------------------------------------------------------------------------------
 
 
-def pixel_size_spread(spacings: Sequence[tuple[float, float]]) -> tuple[float, float]:
-    """The relative spread (max − min)/min of the scans' pixel sizes along x and along y."""
-    sp = np.asarray([[float(a), float(b)] for a, b in spacings], dtype=np.float64)
-    if sp.size == 0:
-        raise AnalysisError("no pixel size given")
-    if not np.all(np.isfinite(sp)) or np.any(sp <= 0):
-        raise AnalysisError(f"pixel sizes must be finite and > 0, got {sp.tolist()}")
-    lo, hi = sp.min(axis=0), sp.max(axis=0)
-    spread = (hi - lo) / lo
-    return float(spread[0]), float(spread[1])
-
-
-def pixel_sizes_agree(spacings: Sequence[tuple[float, float]], rtol: float = POOL_PIXEL_RTOL) -> bool:
-    """True when the scans' pixel sizes ``(Δx, Δy)`` [m] agree within ``rtol`` along each axis (relative
-    spread (max − min)/min, :func:`pixel_size_spread`); then they are one pixel size within the
-    instrument's lateral calibration (:data:`POOL_PIXEL_RTOL`, 0.5 %) and are pooled without
-    resampling."""
-    if not (math.isfinite(float(rtol)) and float(rtol) >= 0):
-        raise AnalysisError(f"the pixel-size tolerance must be a finite number >= 0, got {rtol!r}")
-    return max(pixel_size_spread(spacings)) <= float(rtol)
-
-
 def on_common_pixel_size(surfaces: Sequence[Surface], rtol: float = POOL_PIXEL_RTOL) -> list[Surface]:
-    """The scans with one pixel size, without interpolation: when their pixel sizes agree within ``rtol``
-    (:func:`pixel_sizes_agree`), every scan keeps its heights and gets the mean pixel size (its physical
-    size relabelled; the old pixel size recorded in ``info["pixel_size_relabelled_from"]``).  A scan already
-    at the mean pixel size is returned as it is.  :class:`AnalysisError` when they do not agree."""
+    """The scans with one pixel size, without interpolation
+    (:func:`stochfric.surface.scans.relabel_to_mean_pixel_size`, as ``pool_scans`` does);
+    :class:`AnalysisError` when their pixel sizes do not agree within ``rtol``."""
     spacings = [s.grid_spacing_m for s in surfaces]
     if not pixel_sizes_agree(spacings, rtol):
         sx, sy = pixel_size_spread(spacings)
@@ -613,18 +591,7 @@ def on_common_pixel_size(surfaces: Sequence[Surface], rtol: float = POOL_PIXEL_R
             f"the scans' pixel sizes differ by {sx:.3%} (x) and {sy:.3%} (y), more than {rtol:.3%}: resample "
             "them to one pixel size or measure them alike"
         )
-    dx = float(np.mean([sp[0] for sp in spacings]))
-    dy = float(np.mean([sp[1] for sp in spacings]))
-    out = []
-    for s in surfaces:
-        if s.grid_spacing_m == (dx, dy):
-            out.append(s)
-            continue
-        nx, ny = s.nb_grid_pts
-        out.append(Surface(heights_m=s.heights_m, physical_size_m=(nx * dx, ny * dy), source=s.source,
-                           n_undefined_filled=s.n_undefined_filled,
-                           info={**s.info, "pixel_size_relabelled_from": list(s.grid_spacing_m)}))  # fmt: skip
-    return out
+    return relabel_to_mean_pixel_size(surfaces)
 
 
 def require_summits_for_pooling(

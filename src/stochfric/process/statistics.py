@@ -58,7 +58,6 @@ from stochfric.process.ensemble import (
     SurrogateOptions,
     ensemble_contact,
     path_contact,
-    tile_contact,
     tile_grid,
 )
 from stochfric.process.estimators import linear_fit, mean_and_std_errors, mu_pdfs
@@ -78,15 +77,6 @@ __all__ = [
     "StatisticalContactAnalysis",
     "analyse",
 ]
-
-
-def _measured_tiles(scans: list[Surface], material: Material, u: FloatArray, tiles: int, rule: str) -> FloatArray:
-    """μ of the disjoint ``tiles × tiles`` windows of every scan, shape (scans·tiles², U)."""
-    rows = []
-    for scan in scans:
-        area, force, _count = tile_contact(scan.heights_m, scan.grid_spacing_m, material, u, tiles=tiles, rule=rule)
-        rows.append(bowden_tabor_mu(area, force, material.shear_strength_pa))
-    return np.concatenate(rows)
 
 
 def _full_map_mu(found: list[Summits], material: Material, u: FloatArray) -> FloatArray:
@@ -306,7 +296,7 @@ def _window_checks(
     scan_mu = _full_map_mu(found, material, u)
     measured_tile_mu = np.empty((0, u.size))
     if tiles is not None and ens.tile_samples is not None:
-        measured_tile_mu = _measured_tiles(scans, material, u, tiles, rule)
+        measured_tile_mu = np.concatenate(measured_window_mu(scans, material, u, tiles=tiles, rule=rule))
         i0, i1, j0, j1 = tile_grid(scans[0].nb_grid_pts, tiles)[0]
         dx, dy = scans[0].grid_spacing_m
         window_check = window_scatter_check(

@@ -10,7 +10,9 @@ recording what it did.  SI units throughout.
 
 from __future__ import annotations
 
+import math
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -22,12 +24,51 @@ from stochfric.surface.io import Surface, SurfaceError, default_surface_path, re
 from stochfric.surface.preprocess import Preparation, PreparationReport, prepare_with_report
 from stochfric.surface.summits import DEFAULT_SUMMIT_RULE, Summits, summits_of
 
-__all__ = ["PIXEL_RTOL", "PooledScans", "PreparedScan", "load_scan", "pool_scans"]
+__all__ = ["PIXEL_RTOL", "PooledScans", "PreparedScan", "load_scan", "pixel_size_spread", "pixel_sizes_agree",
+           "pool_scans", "relabel_to_mean_pixel_size"]
 
 #: Relative tolerance within which two scans' pixel sizes count as one when pooled: an instrument's lateral
 #: calibration is uncertain by about 0.5–1 %, so two files of one measurement (or two scans of one
 #: instrument) 0.1 % apart are one pixel size; they then get their mean pixel size without interpolation.
 PIXEL_RTOL = 5e-3
+
+
+def pixel_size_spread(spacings: Sequence[tuple[float, float]]) -> tuple[float, float]:
+    """The relative spread (max − min)/min of the scans' pixel sizes along x and along y."""
+    sp = np.asarray([[float(a), float(b)] for a, b in spacings], dtype=np.float64)
+    if sp.size == 0:
+        raise SurfaceError("no pixel size given")
+    if not np.all(np.isfinite(sp)) or np.any(sp <= 0):
+        raise SurfaceError(f"pixel sizes must be finite and > 0, got {sp.tolist()}")
+    lo, hi = sp.min(axis=0), sp.max(axis=0)
+    spread = (hi - lo) / lo
+    return float(spread[0]), float(spread[1])
+
+
+def pixel_sizes_agree(spacings: Sequence[tuple[float, float]], rtol: float = PIXEL_RTOL) -> bool:
+    """True when the pixel sizes ``(Δx, Δy)`` [m] agree within ``rtol`` along each axis (relative spread
+    (max − min)/min): one pixel size within the instrument's lateral calibration (:data:`PIXEL_RTOL`)."""
+    if not (math.isfinite(float(rtol)) and float(rtol) >= 0):
+        raise SurfaceError(f"the pixel-size tolerance must be a finite number >= 0, got {rtol!r}")
+    return max(pixel_size_spread(spacings)) <= float(rtol)
+
+
+def relabel_to_mean_pixel_size(surfaces: Sequence[Surface]) -> list[Surface]:
+    """Every scan with its heights and the mean pixel size (its physical size relabelled, the old pixel size
+    in ``info["pixel_size_relabelled_from"]``); a scan already at the mean is returned as it is."""
+    spacings = [s.grid_spacing_m for s in surfaces]
+    dx = float(np.mean([sp[0] for sp in spacings]))
+    dy = float(np.mean([sp[1] for sp in spacings]))
+    out = []
+    for s in surfaces:
+        if s.grid_spacing_m == (dx, dy):
+            out.append(s)
+            continue
+        nx, ny = s.nb_grid_pts
+        out.append(Surface(heights_m=s.heights_m, physical_size_m=(nx * dx, ny * dy), source=s.source,
+                           n_undefined_filled=s.n_undefined_filled,
+                           info={**s.info, "pixel_size_relabelled_from": list(s.grid_spacing_m)}))  # fmt: skip
+    return out
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -154,16 +195,9 @@ def pool_scans(scans: list[PreparedScan] | tuple[PreparedScan, ...], *, resample
         return PooledScans(scans=tuple(scans), surfaces=tuple(surfaces), warnings=warnings)
     spacings = [s.grid_spacing_m for s in surfaces]
     target: tuple[float, float] | None = None
-    if all(np.allclose(sp, spacings[0], rtol=PIXEL_RTOL, atol=0.0) for sp in spacings) and any(
-            sp != spacings[0] for sp in spacings):  # one pixel size within the calibration: relabel, no interpolation
-        mean = (float(np.mean([sp[0] for sp in spacings])), float(np.mean([sp[1] for sp in spacings])))
-        surfaces = [Surface(heights_m=s.heights_m, physical_size_m=(s.nb_grid_pts[0] * mean[0],
-                                                                    s.nb_grid_pts[1] * mean[1]),
-                            source=s.source, n_undefined_filled=s.n_undefined_filled,
-                            info={**s.info, "pixel_size_relabelled_from": list(s.grid_spacing_m)})
-                    for s in surfaces]
-        spacings = [mean] * len(surfaces)
-    if any(not np.allclose(sp, spacings[0], rtol=PIXEL_RTOL, atol=0.0) for sp in spacings):
+    if pixel_sizes_agree(spacings):  # one pixel size within the calibration: relabel, no interpolation
+        surfaces = relabel_to_mean_pixel_size(surfaces)
+    else:
         if not resample:
             listing = ", ".join(f"{s.path.name}: {sp[0] * 1e6:.4g}×{sp[1] * 1e6:.4g} µm"
                                 for s, sp in zip(scans, spacings, strict=True))
