@@ -400,6 +400,13 @@ def _print_evidence(analysis: StatisticalContactAnalysis) -> None:
         )
         typer.echo("          σ_μ over those windows " + " ".join(
             f"{s:.3g} [{lo:.3g}, {hi:.3g}]" for s, (lo, hi) in zip(mw.mu_std, mw.mu_std_ci95, strict=True)))
+    mi = analysis.model_intervals
+    if mi is not None:
+        what = " and surface sampling)" if mi.includes_sampling else " only: no measured windows)"
+        typer.echo(f"model     E[μ] (95 % interval: Monte Carlo{what} " + " ".join(
+            f"{m:.3g} [{lo:.3g}, {hi:.3g}]" for m, (lo, hi) in zip(mi.mu_mean, mi.mu_mean_ci95, strict=True)))
+        typer.echo("          σ_μ " + " ".join(
+            f"{s:.3g} [{lo:.3g}, {hi:.3g}]" for s, (lo, hi) in zip(mi.mu_std, mi.mu_std_ci95, strict=True)))
     ho = analysis.holdout
     if ho is not None:
         typer.echo(f"held out  {ho.method} surrogates from one half of the map tested on the other (2 folds, "

@@ -38,6 +38,7 @@ from stochfric.process.credibility import Credibility
 from stochfric.process.ensemble import ContactSamples, PathContact
 from stochfric.process.fit import ModelFit
 from stochfric.process.holdout import HoldoutValidation, MeasuredWindows
+from stochfric.process.model_intervals import ModelIntervals
 from stochfric.process.pooling import BetweenScanTest
 
 __all__ = ["EnsembleStatistics", "PathMoments", "PathSpectra", "StatisticalContactAnalysis", "SurrogateChecks"]
@@ -134,6 +135,8 @@ class StatisticalContactAnalysis(EnsembleStatistics, SurrogateChecks, PathMoment
     #: Validity of the model on this surface (:mod:`stochfric.contact.validity`): μ > 1,
     #: A_c/A_nom > 1 or beyond the non-interaction range, too few contacts, plasticity index.
     warnings: list[ValidityWarning] = field(default_factory=list)
+    #: 95 % intervals of the model's E[μ](p), σ_μ(p): Monte Carlo and surface sampling (issue 29, item 1).
+    model_intervals: ModelIntervals | None = None
 
     def __repr__(self) -> str:
         p = np.asarray(self.pressure_pa) / 1e6
@@ -171,6 +174,8 @@ class StatisticalContactAnalysis(EnsembleStatistics, SurrogateChecks, PathMoment
         model = f"surrogate model ({self.surrogate_choice.split(' ')[0] or self.config.surrogate})"
         return {
             "measured_windows": "measurement: disjoint windows of the prepared map(s), no model",
+            "model_intervals": ("surrogate-model values; 95 % intervals from the Monte Carlo error and the "
+                                "measurement's sampling uncertainty (measured_windows)"),
             "surrogate_check.measured": "measurement: the whole prepared map(s)",
             "holdout": "measurement (held-out half) against the surrogate model built from the other half",
             "ensemble": f"{model}: {self.config.realizations} surrogates of the map's size",
@@ -223,6 +228,7 @@ class StatisticalContactAnalysis(EnsembleStatistics, SurrogateChecks, PathMoment
             "holdout": None if self.holdout is None else self.holdout.to_dict(),
             "between_scans": None if self.between_scans is None else self.between_scans.to_dict(),
             "measured_windows": None if self.measured_windows is None else self.measured_windows.to_dict(),
+            "model_intervals": None if self.model_intervals is None else self.model_intervals.to_dict(),
             "sources": self.sources(),
             "sigma_zeta": self.sigma_zeta_table(),
             "process_check": self.process_check.to_dict(),
@@ -303,6 +309,8 @@ class StatisticalContactAnalysis(EnsembleStatistics, SurrogateChecks, PathMoment
             "holdout": json.dumps(None if self.holdout is None else self.holdout.to_dict(), sort_keys=True),
             "measured_windows": json.dumps(None if self.measured_windows is None else self.measured_windows.to_dict(),
                                            sort_keys=True),
+            "model_intervals": json.dumps(None if self.model_intervals is None else self.model_intervals.to_dict(),
+                                          sort_keys=True),
             "sources": json.dumps(self.sources(), sort_keys=True),
             "contact_fraction_fit": json.dumps(self.contact_fraction_fit, sort_keys=True),
             "window_shift_m": self.path.window_shift_m,

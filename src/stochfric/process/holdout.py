@@ -35,7 +35,9 @@ probability at these numbers of windows and surrogates (median over the approach
 measurement — numbers that rest on the measurement alone, with their sampling uncertainty: the jackknife
 SE over windows and 95 % intervals, and the effective number of independent windows from the correlation
 of neighbouring windows (n_eff = J (1 − ρ₁)/(1 + ρ₁), ρ₁ ≥ 0 the lag-1 correlation of μ between
-neighbouring windows).
+neighbouring windows).  The jackknife treats the J windows as independent; the SE is scaled by
+√(J/n_eff) and the t quantile taken at n_eff − 1 degrees of freedom, so correlated windows widen the
+intervals as their lost information demands.
 """
 
 from __future__ import annotations
@@ -170,8 +172,9 @@ class MeasuredWindows:
     effective_windows: FloatArray
     source: str = "measurement"
     rule: str = ("disjoint t x t windows of every prepared scan, each referenced to its own highest summit; mean "
-                 "and sd over the windows with jackknife 95 % intervals (t quantile, J - 1); effective windows "
-                 "J (1 - rho1)/(1 + rho1), rho1 >= 0 the lag-1 correlation of neighbouring windows")
+                 "and sd over the windows with jackknife 95 % intervals, the SE scaled by sqrt(J / n_eff) and the t "
+                 "quantile at n_eff - 1; effective windows n_eff = J (1 - rho1)/(1 + rho1), rho1 >= 0 the lag-1 "
+                 "correlation of neighbouring windows")
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON form."""
@@ -407,15 +410,20 @@ def measured_windows(scans: Sequence[Surface], material: Material, approach_m: F
     loo_std = np.stack([np.nanstd(np.delete(mu_all, i, axis=0), axis=0, ddof=1) for i in range(j)])
     se_mean = np.sqrt((j - 1) / j * np.sum((loo_mean - loo_mean.mean(axis=0)) ** 2, axis=0))
     se_std = np.sqrt((j - 1) / j * np.sum((loo_std - loo_std.mean(axis=0)) ** 2, axis=0))
-    tq = float(sps.t.ppf(0.975, j - 1))
     rho1 = np.clip(np.nanmean(np.stack(rho), axis=0), 0.0, 0.99)
+    n_eff = j * (1.0 - rho1) / (1.0 + rho1)
+    # the jackknife treats the windows as independent: neighbours correlated by rho1 carry only n_eff windows'
+    # information, so the SE grows by sqrt(J / n_eff) and the t quantile has n_eff - 1 degrees of freedom
+    inflate = np.sqrt(j / n_eff)
+    se_mean, se_std = se_mean * inflate, se_std * inflate
+    tq = sps.t.ppf(0.975, np.maximum(n_eff - 1.0, 1.0))
     i0, i1, j0, j1 = tile_grid(scans[0].nb_grid_pts, t)[0]
     dx, dy = scans[0].grid_spacing_m
     return MeasuredWindows(
         tiles=t, window_size_m=((i1 - i0) * dx, (j1 - j0) * dy), windows=j, mu=mu_all, mu_mean=mean,
         mu_mean_ci95=np.stack([mean - tq * se_mean, mean + tq * se_mean], axis=1), mu_std=std,
         mu_std_ci95=np.stack([np.maximum(std - tq * se_std, 0.0), std + tq * se_std], axis=1),
-        neighbour_correlation=rho1, effective_windows=j * (1.0 - rho1) / (1.0 + rho1),
+        neighbour_correlation=rho1, effective_windows=n_eff,
     )  # fmt: skip
 
 

@@ -29,12 +29,13 @@ import numpy.typing as npt
 
 from stochfric.arrays import FloatArray
 from stochfric.contact.asperity import ApproachRule, default_approach_m
-from stochfric.contact.materials import Material, load_material
+from stochfric.contact.materials import Material, get_material, load_material
 from stochfric.errors import AnalysisError
 from stochfric.io_utils import check_output_path
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
-from stochfric.process.ensemble import default_window_shift_points
+from stochfric.process.checks import WINDOW_TILES, window_tiles
+from stochfric.process.ensemble import default_window_shift_points, tile_contact
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.pooling import require_summits_for_pooling
 from stochfric.process.statistics import analyse
@@ -51,6 +52,7 @@ __all__ = [
     "ApproachRule",
     "ScanAnalysis",
     "analyse_scans",
+    "cap_on_windows",
     "choose_approach",
     "window_shift_points",
 ]
@@ -67,16 +69,64 @@ EXPLICIT_APPROACH = "explicit"
 def choose_approach(
     surfaces: Sequence[Surface], *, summit_rule: str, approach_m: npt.ArrayLike | None = None,
     rule: ApproachRule | str = ApproachRule.CONTACTS, max_area_fraction: float = DEFAULT_MAX_AREA_FRACTION,
+    window_tiles_max: int = WINDOW_TILES,
 ) -> FloatArray:
     """The approaches u [m]: ``approach_m`` when given, else the default range by ``rule`` on the scan
-    with the fewest summits (at least 2 are needed on every scan)."""
+    with the fewest summits (at least 2 are needed on every scan), capped on the analysis's own windows
+    (:func:`cap_on_windows`)."""
     summit_sets = [summits_of(s, rule=summit_rule) for s in surfaces]
     fewest = min(summit_sets, key=lambda x: x.count)
     if fewest.count < 2:
         raise AnalysisError(f"the prepared surface has {fewest.count} summit(s); at least 2 are needed")
     if approach_m is not None:
         return np.asarray(approach_m, dtype=np.float64)
-    return default_approach_m(fewest, rule=ApproachRule(rule).value, max_area_fraction=max_area_fraction)
+    u = default_approach_m(fewest, rule=ApproachRule(rule).value, max_area_fraction=max_area_fraction)
+    tiles = window_tiles(fewest.count, window_tiles_max) or 1
+    # the contacts rule promises the non-interaction range; the thesis's sigma rule only full contact
+    limit = max_area_fraction if ApproachRule(rule) == ApproachRule.CONTACTS else None
+    return cap_on_windows(surfaces, u, summit_rule=summit_rule, tiles=tiles, mean_area_fraction=limit)
+
+
+#: Approaches tried between 0 and the default u_hi when the range is capped on the windows.
+CAP_GRID = 256
+
+
+def cap_on_windows(
+    surfaces: Sequence[Surface], u: FloatArray, *, summit_rule: str, tiles: int, mean_area_fraction: float | None,
+) -> FloatArray:
+    """Cap a default approach range on the windows the analysis evaluates (issue 29, item 7).
+
+    The default rules read the range from the whole map with the flat at its highest summit.  The analysis
+    also evaluates the map's disjoint ``tiles × tiles`` windows (measured windows, held-out test), each
+    referenced to its *own* highest summit, so at the same u a window is pressed further than the map: on
+    the shared files up to A_c/A_nom = 1.6 in one window at the rule's u_hi.  The largest approach kept is
+    the largest u at which (a) no such window's GW contact area exceeds its nominal area (A_c/A_nom ≤ 1:
+    beyond it the model has no meaning) and (b) the mean A_c/A_nom of the whole scans (the model's
+    windows) stays within ``mean_area_fraction`` (the contacts rule's non-interaction limit, which the rule
+    already meets on the scan it reads; None: only (a)).  A capped range keeps its number of points: from
+    the rule's u_lo to the cap, or from cap/num when the cap lies below u_lo.  An uncapped range is returned
+    unchanged."""
+    u = np.asarray(u, dtype=np.float64)
+    probe = np.linspace(0.0, float(u[-1]), CAP_GRID + 1)[1:]
+    mat = get_material("dc04")  # A_c of GW does not depend on E*: any material gives the same areas
+    ok = np.ones(probe.size, dtype=bool)
+    whole = []
+    for s in surfaces:
+        z = np.asarray(s.heights_m)
+        for t in {tiles, 1}:
+            area, _force, _n = tile_contact(z, s.grid_spacing_m, mat, probe, tiles=t, rule=summit_rule)
+            frac = np.asarray(area) / (s.physical_size_m[0] * s.physical_size_m[1] / (t * t))
+            ok &= frac.max(axis=0) <= 1.0
+            if t == 1:
+                whole.append(frac[0])
+    if mean_area_fraction is not None:
+        ok &= np.mean(np.stack(whole), axis=0) <= mean_area_fraction * (1.0 + 1e-9)
+    if ok.all():
+        return u
+    first_bad = int(np.argmin(ok))
+    cap = float(probe[first_bad - 1]) if first_bad > 0 else float(probe[0])
+    n = u.size
+    return np.linspace(float(u[0]), cap, n) if cap > u[0] else np.linspace(cap / n, cap, n)
 
 
 def window_shift_points(surface: Surface, window_shift_m: float | None, length_factor: int) -> int:
@@ -219,7 +269,7 @@ def analyse_scans(
         require_summits_for_pooling([summits_of(s, rule=cfg.summit_rule).count for s in surfaces],
                                     names=[s.path.name for s in pooled.scans], resampled_to_m=pooled.resampled_to_m)
     u = choose_approach(surfaces, summit_rule=cfg.summit_rule, approach_m=approach_m, rule=approach_rule,
-                        max_area_fraction=cfg.max_area_fraction)
+                        max_area_fraction=cfg.max_area_fraction, window_tiles_max=cfg.window_tiles)
     cfg = replace(cfg, window_shift_points=window_shift_points(surfaces[0], window_shift_m, cfg.length_factor))
     if notify is not None:
         notify_cost(surfaces[0], cfg, notify)

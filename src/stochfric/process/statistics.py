@@ -64,6 +64,7 @@ from stochfric.process.estimators import linear_fit, mean_and_std_errors, mu_pdf
 from stochfric.process.fit import ModelFit, fit_mask, fit_model_function
 from stochfric.process.holdout import HoldoutValidation, holdout_validation, measured_windows
 from stochfric.process.memory import check_memory, sample_arrays_bytes, workers_that_fit
+from stochfric.process.model_intervals import model_intervals
 from stochfric.process.parallel import default_workers
 from stochfric.process.pooling import BetweenScanTest, between_scan_test, measured_window_mu
 from stochfric.progress import Progress, StagedProgress
@@ -166,6 +167,9 @@ def analyse(
                              measured_windows=measured_windows(scans, material, u, rule=cfg.summit_rule),
                              between_scans=_between_scans(scans, material, u, cfg.summit_rule))
     moments, spectra = _path_moments(path), _path_spectra(path)
+    intervals = model_intervals(pressure_pa=moments.pressure_pa, mu_mean=moments.mu_mean,
+                                mu_mean_se=moments.mu_mean_se, mu_std=moments.mu_std, mu_std_se=moments.mu_std_se,
+                                measured=checks.measured_windows)
     fits = _fit_all(moments, spectra, path.samples.mu.shape[0], cfg)
     notes += [fits.note] if fits.note else []
     notes += _uncertain_fits(fits.fits)[1]
@@ -186,7 +190,7 @@ def analyse(
         ensemble=ens, path=path, **_fields(ens_stats), **_fields(checks), credibility=credibility,
         surrogate_choice=surrogate_choice, **_fields(moments), **_fields(spectra), fits=fits.fits, model=model,
         process_check=_process_check(model, moments.pressure_pa[fits.mask], cfg, s_check), notes=notes,
-        warnings=validity,
+        warnings=validity, model_intervals=intervals,
     )  # fmt: skip
 
 
@@ -407,7 +411,19 @@ def _process_model(
         sigma_zeta_rule=cfg.sigma_zeta_rule,
         psd_level=fits["psd_level"].model_function(),
         window_length_m=path.window_length_m,
+        fitted_range_pa=_fitted_range(fits),
     )
+
+
+def _fitted_range(fits: dict[str, ModelFit]) -> tuple[float, float]:
+    """(p_min, p_max) [Pa] of the pressures both the E[μ] and the σ_μ fit used (issue 30, item 3)."""
+    used = np.ones(len(fits["mu_mean"].pressure_pa), dtype=bool)
+    for key in ("mu_mean", "mu_std"):
+        used &= np.asarray(fits[key].used, dtype=bool)
+    p = np.asarray(fits["mu_mean"].pressure_pa, dtype=np.float64)[used]
+    if p.size == 0:
+        p = np.asarray(fits["mu_mean"].pressure_pa, dtype=np.float64)
+    return float(p.min()), float(p.max())
 
 
 def _plasticity_index(found: list[Summits], material: Material) -> float | None:

@@ -24,13 +24,7 @@ def friction_process_section(directory: Path, ch3: Chapter3) -> str:
     def f(v: Any, spec: str = ".4g") -> str:
         return "—" if v is None or not math.isfinite(float(v)) else format(float(v), spec)
 
-    rows = "".join(
-        f"<tr><td>{f(a.pressure_pa[k] / 1e6)}</td><td>{f(a.mu_mean[k], '.4f')}</td>"
-        f"<td>{f(a.mu_std[k], '.4f')}</td>"
-        f"<td>{f(a.correlation_length_m[k] * 1e6)}</td>"
-        f"<td>{f(a.psd_level[k], '.3g')}</td></tr>"
-        for k in range(len(a.pressure_pa))
-    )
+    rows = _model_rows(a, f)
     fits = "".join(
         f"<tr><td>{label}</td><td>{f(a.fits[key].a)} ± {f(a.fits[key].a_se, '.2g')}</td>"
         f"<td>{f(a.fits[key].b)} ± {f(a.fits[key].b_se, '.2g')}</td>"
@@ -117,6 +111,10 @@ def friction_process_section(directory: Path, ch3: Chapter3) -> str:
         f"Model file <code>{html.escape(model_path.relative_to(directory).as_posix())}</code>, statistics "
         f"<code>{html.escape(Path(nc_path).relative_to(directory).as_posix())}</code> "
         "(use with <code>stochfric simulate --model contact --process FILE</code>).</p>",
+        "<p>E[μ] and σ_μ of the model with 95 % intervals: "
+        + ("Monte Carlo and the sampling uncertainty of the measurement (its effective independent windows; "
+           "more surrogates cannot shrink that part)" if getattr(a.model_intervals, "includes_sampling", False)
+           else "Monte Carlo only (the map holds too few summits for measured windows)") + ".</p>"
         "<table><tr><th>p [MPa]</th><th>E[μ]</th><th>σ_μ</th><th>ℓ_corr [µm] (integral scale)</th>"
         "<th>E[S] [m]</th></tr>"
         + rows + "</table>",
@@ -131,3 +129,22 @@ def friction_process_section(directory: Path, ch3: Chapter3) -> str:
             "(thesis Fig. 3.16–3.23 analogues)</figcaption></figure>"
         )
     return "".join(parts)
+
+
+def _model_rows(a: Any, f: Any) -> str:
+    """The rows p, E[μ] [interval], σ_μ [interval], ℓ_corr, E[S] of the model table."""
+    mi = a.model_intervals
+
+    def ci(key: str, k: int) -> str:
+        if mi is None:
+            return ""
+        lo, hi = getattr(mi, key)[k]
+        return f" [{f(lo, '.3g')}, {f(hi, '.3g')}]"
+
+    return "".join(
+        f"<tr><td>{f(a.pressure_pa[k] / 1e6)}</td><td>{f(a.mu_mean[k], '.4f')}{ci('mu_mean_ci95', k)}</td>"
+        f"<td>{f(a.mu_std[k], '.4f')}{ci('mu_std_ci95', k)}</td>"
+        f"<td>{f(a.correlation_length_m[k] * 1e6)}</td>"
+        f"<td>{f(a.psd_level[k], '.3g')}</td></tr>"
+        for k in range(len(a.pressure_pa))
+    )

@@ -1,11 +1,12 @@
 """Reading measured height maps (method §1, thesis 3.2 / 3.3).
 
 Instrument files (every format SurfaceTopography knows) are read through
-:func:`SurfaceTopography.open_topography`; plain matrices (``.npy``, ``.txt``, ``.csv``) need their
-physical size and height unit given.  A :class:`Surface` holds heights in metres, ``z[i, j]`` at
-``x = i Δx``, ``y = j Δy`` with ``Δx = ℓx / nx``, and never a NaN: undefined points are reported and
-filled by harmonic interpolation or refused.  Checksums (x3p) and a plausibility check guard against
-corrupted files (docs/surface_contact.md, "Reading").
+:func:`SurfaceTopography.open_topography`; so are ``.txt`` files with a header SurfaceTopography's
+text reader understands (size, unit, height conversion factor).  Plain matrices (``.npy``, ``.csv``,
+``.txt`` without such a header) need their physical size and height unit given.  A :class:`Surface`
+holds heights in metres, ``z[i, j]`` at ``x = i Δx``, ``y = j Δy`` with ``Δx = ℓx / nx``, and never a
+NaN: undefined points are reported and filled by harmonic interpolation or refused.  Checksums (x3p)
+and a plausibility check guard against corrupted files (docs/surface_contact.md, "Reading").
 """
 
 from __future__ import annotations
@@ -27,6 +28,7 @@ from stochfric.units import length_to_m
 
 __all__ = [
     "DEFAULT_SURFACE_NAME",
+    "HEADER_TEXT_SUFFIXES",
     "MATRIX_SUFFIXES",
     "MIN_GRID_POINTS",
     "SPIKE_SQ",
@@ -43,8 +45,19 @@ __all__ = [
 #: File name of the measured surface shipped with the package (see ``data/NOTICE.md``).
 DEFAULT_SURFACE_NAME = "al3d-1.al3d"
 
-#: Suffixes read as plain height matrices with numpy (size and unit must be given).
+#: Suffixes read as plain height matrices with numpy (size and unit must be given), unless the
+#: file is one of :data:`HEADER_TEXT_SUFFIXES` and carries a header SurfaceTopography reads.
 MATRIX_SUFFIXES = (".npy", ".txt", ".csv")
+
+#: Matrix suffixes first offered to SurfaceTopography's text reader (format ``asc``, which claims
+#: ``.txt``, ``.asc``, ``.dat``; the last two always go through SurfaceTopography).  If that reader
+#: finds a physical size, a unit or a height conversion factor in the file, the file is read by it
+#: (an instrument file); otherwise it is a plain matrix for numpy.  ``.csv`` (comma separated) and
+#: ``.npy`` are never offered: SurfaceTopography's text reader splits on whitespace.
+HEADER_TEXT_SUFFIXES = (".txt",)
+
+#: SurfaceTopography format identifier of its header-parsing text reader (``AscReader``).
+_TEXT_READER_FORMAT = "asc"
 
 #: The summit rule needs two neighbours on each side, so a grid needs at least 5 points.
 MIN_GRID_POINTS = 5
@@ -196,7 +209,12 @@ def read_surface(
     ----------
     path:
         An instrument file (any format of SurfaceTopography) or a plain matrix
-        (``.npy``, ``.txt`` whitespace separated, ``.csv`` comma separated).
+        (``.npy``, ``.txt`` whitespace separated, ``.csv`` comma separated).  A ``.txt`` file
+        whose header gives a size, a unit or a height conversion factor that SurfaceTopography's
+        text reader understands (``# Width: 10 um``, ``# Height: 12 um``, ``# Value units: nm``,
+        ``# height conversion factor (-> nm) = 0.5``, Gwyddion/SPIP/Nova/Wyko headers) is read
+        by that reader, in its layout (each line of the file is one ``y``, values run along
+        ``x``); a ``.txt`` file without one is a plain matrix (line ``i`` is ``x = iΔx``).
     physical_size_m:
         ``(ℓx, ℓy)`` [m]. Required for plain matrices and for instrument files that do not
         store it; refused for files that store it.
@@ -219,7 +237,9 @@ def read_surface(
     if not p.is_file():
         raise SurfaceError(f"no such file: {p}")
     info: dict[str, Any] = {"file": p.name, "sha256": file_sha256(p)}
-    if p.suffix.lower() in MATRIX_SUFFIXES:
+    suffix = p.suffix.lower()
+    text_reader = _text_reader_with_header(p) if suffix in HEADER_TEXT_SUFFIXES else None
+    if suffix in MATRIX_SUFFIXES and text_reader is None:
         surface = _read_matrix(
             p,
             physical_size_m=physical_size_m,
@@ -236,6 +256,7 @@ def read_surface(
             fill_undefined=fill_undefined,
             channel=channel,
             info=info,
+            reader=text_reader,
         )
     surface.info["warnings"] = plausibility_warnings(surface.heights_m, name=p.name)
     return surface
@@ -356,6 +377,44 @@ def _unit_factor(unit: str, what: str) -> float:
         raise SurfaceError(f"{what}: {exc}") from None
 
 
+def _text_reader_with_header(p: Path) -> Any:
+    """SurfaceTopography's text reader on ``p`` if it finds a size, a unit or a height conversion
+    factor in the file (any channel); ``None`` for a plain matrix or a file that reader cannot read
+    (the numpy reader then decides, with today's messages).  The header is parsed by SurfaceTopography
+    only: whatever its text reader understands counts, nothing else."""
+    from SurfaceTopography import open_topography
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        try:
+            reader = open_topography(str(p), format=_TEXT_READER_FORMAT)
+            channels = list(reader.channels)
+        except Exception:  # not a text matrix SurfaceTopography reads: a case for numpy
+            return None
+    for ch in channels:
+        if (ch.physical_sizes is not None or ch.unit is not None
+                or getattr(ch, "height_scale_factor", None) is not None):  # fmt: skip
+            return reader
+    return None
+
+
+def _raw_lateral_units(reader: Any, ch: Any) -> tuple[str, str] | None:
+    """Lateral units ``(x, y)`` of the physical size a SurfaceTopography *text* file stores without
+    a height unit (``# Width: 10 um`` but no ``# Value units``): its text reader then leaves the
+    size in those units and reports no unit.  ``None`` for other readers or a size without a unit."""
+    from SurfaceTopography.IO.Text import AscReader
+
+    if not isinstance(reader, AscReader):
+        return None
+    raw = (getattr(ch, "info", None) or {}).get("raw_metadata") or {}
+    ux, uy = raw.get("xunit"), raw.get("yunit")
+    if ux is None and uy is None:
+        return None
+    ux = ux if ux is not None else uy  # one lateral unit applies to both directions (as SurfaceTopography)
+    uy = uy if uy is not None else ux
+    return str(AscReader._normalize_unit(str(ux))), str(AscReader._normalize_unit(str(uy)))  # e.g. μm -> µm
+
+
 def _read_matrix(
     p: Path,
     *,
@@ -413,7 +472,12 @@ def _read_instrument(
     fill_undefined: bool,
     channel: int | None,
     info: dict[str, Any],
+    reader: Any = None,
 ) -> Surface:
+    """Read ``p`` through SurfaceTopography (``reader``: an already opened reader of ``p``, else the
+    format is detected).  Size, unit and height conversion factor stored in the file are used and
+    recorded in ``info``; ``physical_size_m`` / ``height_unit`` complete what the file lacks and are
+    refused for what it stores."""
     # Imported here: SurfaceTopography registers its readers at import time, and importing
     # stochfric should do no work.
     from SurfaceTopography import open_topography
@@ -421,15 +485,16 @@ def _read_instrument(
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        try:
-            reader = open_topography(str(p))
-        except CannotDetectFileFormat:
-            raise SurfaceError(
-                f"cannot read {p.name}: no SurfaceTopography reader recognises this file "
-                "(unknown format or corrupt file)"
-            ) from None
-        except Exception as exc:
-            raise SurfaceError(f"cannot read {p.name}: {_one_line(exc)}") from None
+        if reader is None:
+            try:
+                reader = open_topography(str(p))
+            except CannotDetectFileFormat:
+                raise SurfaceError(
+                    f"cannot read {p.name}: no SurfaceTopography reader recognises this file "
+                    "(unknown format or corrupt file)"
+                ) from None
+            except Exception as exc:
+                raise SurfaceError(f"cannot read {p.name}: {_one_line(exc)}") from None
         channels = reader.channels
         if channel is None:
             ch = reader.default_channel
@@ -452,6 +517,12 @@ def _read_instrument(
             )
         if ch.physical_sizes is not None and physical_size_m is not None:
             raise SurfaceError(f"{p.name} stores its physical size; a size can only be given for files without one")
+        file_sizes = None if ch.physical_sizes is None else [float(v) for v in ch.physical_sizes]
+        if file_sizes is not None and len(file_sizes) != 2:
+            raise SurfaceError(
+                f"{p.name} stores its physical size in one direction only ({file_sizes[0]:g}); a height map "
+                "needs both (in a text file: a Width and a Height line)"
+            )
         unit = file_unit if file_unit is not None else height_unit
         if unit is None:
             raise SurfaceError(f"{p.name} does not store a length unit, or is not a valid {p.suffix} file (its "
@@ -475,16 +546,30 @@ def _read_instrument(
             raise SurfaceError(f"{p.name} is not a height map on a uniform 2-D grid")
         heights = np.ma.asarray(topo.heights(), dtype=np.float64)
         sizes = topo.physical_sizes
+        # A size stored without a height unit is in the file's lateral unit(s) where the file names
+        # them (a text header "Width: 10 um"), else in the unit of the heights (SurfaceTopography).
+        lateral = _raw_lateral_units(reader, ch) if file_sizes is not None and file_unit is None else None
+        if lateral is None:
+            size_factors = (factor, factor)
+            size_units = None if file_sizes is None else [str(unit), str(unit)]
+        else:
+            size_factors = (_unit_factor(lateral[0], f"{p.name} (its lateral unit)"),
+                            _unit_factor(lateral[1], f"{p.name} (its lateral unit)"))  # fmt: skip
+            size_units = list(lateral)
+        scale = getattr(ch, "height_scale_factor", None)
     info.update(
         {
             "reader": type(reader).__name__,
             "file_unit": None if file_unit is None else str(file_unit),
             "height_unit": str(unit),
+            "file_physical_size": file_sizes,
+            "file_size_units": size_units,
+            "file_height_scale_factor": None if scale is None else float(scale),
         }
     )
     return _finish(
         np.ma.masked_invalid(heights * factor),
-        physical_size_m=(float(sizes[0]) * factor, float(sizes[1]) * factor),
+        physical_size_m=(float(sizes[0]) * size_factors[0], float(sizes[1]) * size_factors[1]),
         fill_undefined=fill_undefined,
         source=str(p),
         info=info,

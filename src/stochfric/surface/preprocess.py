@@ -2,7 +2,8 @@
 
 In the vocabulary of ISO 25178-2 / ISO 16610 and in this order, each step chosen by the user or by
 a stated rule and recorded (:func:`prepare_with_report`): 1 undefined points, 2 quantisation check,
-3 outlier removal, 4 form removal, 5 rough-surface check, 6 quantisation treatment, 7 median filter
+3 outlier removal, 4 form removal, 5 rough-surface check (lateral scale, step, part outline, embossed
+relief: :mod:`stochfric.surface.plausibility`), 6 quantisation treatment, 7 median filter
 (thesis r = 5 / 6, edges mirrored), 8 coarse discretisation (thesis k = 10).  Steps 1–7 give the
 *fine* surface, step 8 the *coarse* one (rules and numbers: :mod:`stochfric.surface.prepare_checks`
 and docs/surface_contact.md, "Preparation").
@@ -21,6 +22,7 @@ import numpy.typing as npt
 from scipy import ndimage
 
 from stochfric.arrays import FloatArray
+from stochfric.surface import plausibility as pl
 from stochfric.surface import prepare_checks as pc
 from stochfric.surface.io import MIN_GRID_POINTS, Surface, SurfaceError, _fill_harmonic
 
@@ -108,7 +110,8 @@ class Preparation:
     max_undefined:
         Largest fraction of undefined (filled) points accepted, in (0, 1] (default 0.05).
     rough_check:
-        Refuse maps that are not a rough surface (step, part outline); default True.
+        Refuse maps that are not a rough surface (step, part outline, embossed relief) or whose stated lateral
+        size no instrument measures (:mod:`stochfric.surface.plausibility`); default True.
     """
 
     detrend: str = "auto"
@@ -247,7 +250,8 @@ class PreparationReport:
     ``undefined`` (step 1: count, fraction, border fraction, limit), ``quantisation`` (steps 2 and 6: tie
     fractions, height quantum, whether dithered), ``outliers`` (step 3: count, fraction, positions, the
     rule's scales), ``form`` (step 4: requested and applied form, Sq before and after, Sq by degree, the
-    ``auto`` rule), ``rough_surface`` (step 5: the verdict); ``median_radius`` and ``step`` are steps 7
+    ``auto`` rule), ``rough_surface`` (step 5: the verdict, with the ``lateral_scale`` and
+    ``relief`` records of :mod:`~stochfric.surface.plausibility`); ``median_radius`` and ``step`` are steps 7
     and 8, ``settings`` the complete :class:`Preparation`.  :meth:`to_dict` gives the JSON record
     (``preparation.preparation_report`` of the command outputs, ``fine.info["preparation"]``).
     """
@@ -311,14 +315,14 @@ def prepare_with_report(
     quantisation = _quantisation_check(read, prep)
     cleaned, outliers, warnings = _remove_outliers(read, surface, prep, name)
     h, form = _remove_form(cleaned, read, surface, prep, name)
-    rough = _rough_surface_check(h, cleaned, undefined["border_fraction"], prep, name)
+    rough, plausibility = _rough_surface_check(h, cleaned, surface, undefined, quantisation, prep, name)
     h, quantised = _treat_quantisation(h, quantisation, prep, name)
     h = median_filter(h, prep.median_radius)
     report = PreparationReport(order=STEP_ORDER, settings=prep.settings(), undefined=undefined,
                                quantisation=quantisation, outliers=outliers, form=form, rough_surface=rough,
                                median_radius=prep.median_radius, step=prep.step)  # fmt: skip
     info = dict(surface.info)
-    info["warnings"] = [dict(w) for w in surface.info.get("warnings", [])] + warnings + quantised
+    info["warnings"] = [dict(w) for w in surface.info.get("warnings", [])] + warnings + plausibility + quantised
     info["preparation"] = report.to_dict()
     fine = Surface(
         heights_m=h,
@@ -455,10 +459,27 @@ def _remove_form(
 
 
 def _rough_surface_check(
-    h: FloatArray, before_form: FloatArray, border_fraction: float, prep: Preparation, name: str
-) -> dict[str, Any]:
-    """Step 5: a step / two-level map (Otsu) or a part outline is refused (unless ``rough_check`` is off);
-    the verdict on the form-removed heights, or on the plane residual where that one finds a step."""
+    h: FloatArray, before_form: FloatArray, surface: Surface, undefined: dict[str, Any], quant: dict[str, Any],
+    prep: Preparation, name: str,
+) -> tuple[dict[str, Any], list[dict[str, Any]]]:
+    """Step 5: is the form-removed map a plausible measurement of a rough surface?  The verdict and the coded
+    warnings.
+
+    First the lateral scale (:func:`~stochfric.surface.plausibility.lateral_scale_verdict`: a stated size no
+    instrument measures is refused, a pixel size implausibly large for the heights warned about), then the
+    rough-surface verdict: a step / two-level map (Otsu), a part outline, an embossed relief (non-stationary
+    local roughness, :func:`~stochfric.surface.plausibility.relief_verdict`) are refused.  The step is judged on
+    the form-removed heights, or on the plane residual where that one finds a step.  ``rough_check`` off: nothing
+    is refused; the verdict is recorded and an implausible lateral size becomes a warning.
+    """
+    lateral = pl.lateral_scale_verdict(h, surface.physical_size_m, reader=surface.info.get("reader"), name=name)
+    warnings = [lateral.pop("warning")] if lateral["warning"] is not None else []
+    if not lateral["plausible"]:
+        if prep.rough_check:
+            raise SurfaceError(f"{name}: {lateral['reason']}; pass --no-rough-check only if the stated size is right")
+        warnings.insert(0, {"code": "implausible-lateral-size", "physical_size_m": lateral["physical_size_m"],
+                            "message": f"{name}: {lateral['reason']} (analysed anyway: --no-rough-check)"})
+    border_fraction = undefined["border_fraction"]
     verdict = pc.rough_surface_verdict(h, undefined_border_fraction=border_fraction)
     if verdict["rough"]:
         # a higher-order form (or an L-filter) can absorb part of a step: judge the plane residual too
@@ -466,13 +487,17 @@ def _rough_surface_check(
         if not plane_verdict["rough"]:
             verdict = {**plane_verdict, "reason": f"{plane_verdict['reason']}, after a plane fit",
                        "undefined_border_fraction": border_fraction}
-    verdict["checked"] = prep.rough_check
+    relief = pl.relief_verdict(h, quantum_m=quant["quantum_m"], undefined_fraction=undefined["fraction"])
+    if relief["relief"]:
+        reasons = [relief["reason"]] + ([verdict["reason"]] if verdict["reason"] else [])
+        verdict.update(rough=False, reason="; ".join(reasons))
+    verdict.update(relief=relief, lateral_scale=lateral, checked=prep.rough_check)
     if prep.rough_check and not verdict["rough"]:
         raise SurfaceError(
-            f"{name} is not a rough surface ({verdict['reason']}); crop the map to one level or to the "
-            "part, or pass --no-rough-check to analyse it anyway"
+            f"{name} is not a rough surface ({verdict['reason']}); crop the map to one level, to the part or to "
+            "a rough region, or pass --no-rough-check to analyse it anyway"
         )
-    return verdict
+    return verdict, warnings
 
 
 def _treat_quantisation(
