@@ -43,10 +43,18 @@ def test_simulate_dimensionless_thesis_demo_matches_closed_form() -> None:
 
 
 def test_simulate_forced_with_coarse_step_warns_in_json() -> None:
-    d = _json(["simulate", "--gamma0", "1", "--n", "10", "--q", "0.5", "--eta", "1.15",
+    # Euler named: a forced run takes the converged integrator by default (issue 30, item 5)
+    d = _json(["simulate", "--gamma0", "1", "--n", "10", "--q", "0.5", "--eta", "1.15", "--integrator", "euler",
                "--x0", "3.2", "1", "--dt", "0.1", "--tau-end", "20", "--json"])
     assert [w["code"] for w in d["warnings"]] == ["coarse-time-step"]
     assert d["x0"] == [3.2, 1.0]
+
+
+def test_a_forced_run_takes_the_converged_integrator_by_default() -> None:
+    forced = _json(["simulate", "--gamma0", "1", "--n", "10", "--q", "0.5", "--eta", "1.15", "--tau-end", "5",
+                    "--json"])
+    unforced = _json(["simulate", "--gamma0", "1", "--n", "10", "--tau-end", "5", "--json"])
+    assert forced["integrator"] == "accurate" and unforced["integrator"] == "euler"
 
 
 def test_simulate_writes_netcdf_and_plot(tmp_path) -> None:

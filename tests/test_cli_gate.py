@@ -33,7 +33,7 @@ def soft_material(tmp_path_factory: pytest.TempPathFactory) -> Path:
     """A pairing whose Hertz pressure on the shipped surface is far below τ_max: μ ≫ 1.5."""
     p = tmp_path_factory.mktemp("mat") / "soft.json"
     p.write_text(json.dumps({"name": "soft", "e1_pa": 1e7, "nu1": 0.3, "e2_pa": None, "nu2": 0.3,
-                             "yield_strength_pa": 3e5, "shear_strength_pa": 35e6}), encoding="utf-8")
+                             "yield_strength_pa": 1e8, "shear_strength_pa": 35e6}), encoding="utf-8")
     return p
 
 

@@ -16,6 +16,7 @@ from typer.core import TyperGroup
 
 from .. import __version__
 from ..errors import StochfricError
+from .assess import register as register_assess_command
 from .options import fail, write_failed
 from .process import register as register_process_commands
 from .simulate import register as register_simulate_command
@@ -69,6 +70,7 @@ register_simulate_command(app)
 register_surface_commands(app)
 register_process_commands(app)
 register_study_commands(app)
+register_assess_command(app)
 
 
 def main() -> None:

@@ -15,6 +15,7 @@ from typing import Annotated, Any
 import numpy as np
 import typer
 from rich.console import Console
+from rich.markup import escape
 from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 from rich.table import Table
 
@@ -41,6 +42,7 @@ from ..oscillator import (
     build_case,
     integrate,
 )
+from ..oscillator.options import default_integrator
 from ..report.figures import plot_phase_portrait
 from .options import GROUP, LawChoice, fail, in_flags, option_group, write_failed
 
@@ -142,6 +144,16 @@ def simulate(
         PresetName | None,
         typer.Option(help="Thesis case: oscillator, contact area, friction-process model."),
     ] = None,
+    machine: Annotated[
+        str | None,
+        typer.Option(help="Machine description instead of --preset: a TOML file (docs/machines.md) or a shipped "
+                          "name (brake, sheet, example-calliper); one that is not a thesis case needs --process."),
+    ] = None,
+    allow_extrapolation: Annotated[
+        bool,
+        typer.Option(help="Use the process model outside the pressures it was fitted on (the output is stamped) "
+                          "instead of refusing."),
+    ] = False,
     model: Annotated[Model, typer.Option(
         help="Friction model (method §5): deterministic = the friction law alone; white = phenomenological "
              "white noise in time, σ_ζ a free intensity that no surface measurement fixes (not the small-ℓ "
@@ -166,7 +178,10 @@ def simulate(
     ] = None,
     tau_end: Annotated[float | None, typer.Option(help="End time τ_end (default 50).")] = None,
     dt: Annotated[float | None, typer.Option(help="Time step Δτ (default 0.005).")] = None,
-    integrator: Annotated[Integrator, typer.Option(help="Integrator.")] = Integrator.EULER,
+    integrator: Annotated[Integrator | None, typer.Option(
+        help="Integrator (default: accurate for a forced deterministic or contact run, where Euler at the "
+             "thesis's Δτ locks into spurious cycles; euler otherwise, and for the white-noise SDE). euler is the "
+             "thesis's reproduction mode.", show_default="auto")] = None,
     runs: Annotated[int, typer.Option(min=1, help="Monte Carlo runs.")] = 1,
     seed: Annotated[int | None, typer.Option(min=0, help="Root seed (recorded).")] = None,
     sigma_zeta: Annotated[
@@ -214,13 +229,18 @@ def simulate(
     save_traj = plot is not None or out is not None
     try:
         _check_outputs(out, plot)
+        if machine is not None and preset is not None:
+            raise fail("give --preset or --machine, not both")
         case = build_case(
-            preset, model=model, tau_end=tau_end, dt=dt, physical=physical, dimensionless=dimensionless,
+            machine if machine is not None else preset, model=model, tau_end=tau_end, dt=dt, physical=physical,
+            dimensionless=dimensionless,
             friction=FrictionInput(friction_law=friction_law.value if friction_law else None, mu0=mu0,
                                    process_file=process_file, process_length=process_length,
                                    process_level=process_level, white_intensity=white_intensity,
-                                   sigma_zeta=sigma_zeta),
+                                   sigma_zeta=sigma_zeta, allow_extrapolation=allow_extrapolation),
         )
+        if integrator is None:
+            integrator = default_integrator(model, forced=case.params.q > 0.0)
         _check_resources(case, model, runs, save_every=save_every, trajectories=save_traj, workers=workers)
         result = _run_with_progress(
             case, model=model, x0=(float(x0[0]), float(x0[1])) if x0 else None, runs=runs, seed=seed,
@@ -347,6 +367,8 @@ def _print_summary(result: Any, summary: dict[str, Any], out: Path | None, plot:
     con.print(table)
     for w in result.warnings:
         con.print(f"[yellow]warning[/] ({w.code}): {w.message}")
+    if summary.get("extrapolation"):
+        con.print(f"[bold red]{escape(summary['extrapolation'])}[/] (--allow-extrapolation)")
     if out is not None:
         con.print(f"wrote {out / 'simulation.nc'} and {out / 'simulation.json'}")
     if plot is not None:

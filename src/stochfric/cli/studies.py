@@ -31,6 +31,7 @@ from ..studies.damping import DampingSummary
 from ..studies.errors import StudyConfigError, StudyError, format_validation_errors
 from ..studies.executors import ExecutorKind, SweepInterrupted
 from ..studies.kinds import study_kind
+from ..studies.refine import width_text
 from .options import GROUP, fail, flag_of, option_group
 from .white_limit import white_limit_command
 
@@ -41,6 +42,12 @@ reproduce_mod = importlib.import_module("..studies.reproduce", __package__)
 ForcedDampingOpt = Annotated[float | None, typer.Option("--damping-ratio", help="D (default 5e-6).")]
 ModelsOpt = Annotated[str | None, typer.Option("--models", help="Comma-separated: deterministic,white,contact.")]
 PresetOpt = Annotated[str, typer.Option("--preset", help="Thesis case: brake | sheet.")]
+MachineOpt = Annotated[str | None, typer.Option(
+    "--machine", help="Machine description instead of --preset: a TOML file (docs/machines.md) or a shipped name "
+                      "(brake, sheet, example-calliper); a machine that is not a thesis case needs --process.")]
+ExtrapOpt = Annotated[bool, typer.Option(
+    "--allow-extrapolation", help="Use the process model outside the pressures it was fitted on (every output is "
+                                  "stamped) instead of refusing.")]
 ProcessOpt = Annotated[Path | None, typer.Option("--process", help="Friction-process model file (JSON).")]
 RunsOpt = Annotated[int | None, typer.Option("--runs", help="Monte Carlo runs per cell.")]
 SeedOpt = Annotated[int, typer.Option("--seed", min=0, help="Root seed.")]
@@ -56,6 +63,10 @@ ForcingQOpt = Annotated[str | None, typer.Option(
 EtaOpt = Annotated[str | None, typer.Option(
     "--eta", help="η = Ω/ω0 grid START:STOP:NUM or list (default: forcing 0:3:61, lyapunov 0.1:3:30).")]
 PhaseRunsOpt = Annotated[int, typer.Option("--phase-runs", min=0, help="Runs kept for the phase diagrams (0: none).")]
+# issue 30: closing the D_max(α) interval (numbers as text: the config validates them, one line on error)
+BudgetOpt = Annotated[str | None, typer.Option(
+    "--run-budget", metavar="<int>", help="Most runs the refinement adds, all models, forces and D together "
+                                            "(default 20000).")]
 ExecOpt = Annotated[str, typer.Option(
     "--executor", help=f"{ExecutorKind.SERIAL} | {ExecutorKind.PROCESSES} (local) ; see --scheduler.")]
 WorkersOpt = Annotated[int | None, typer.Option("--workers", help="Processes (or threads for serial).")]
@@ -167,6 +178,16 @@ def _check_dirs(**dirs: Path | str | None) -> None:
                 raise StudyError(str(exc)) from None
 
 
+def _whole(value: str | None, flag: str) -> int | None:
+    """A whole-number option given as text (``None``: not given); one line naming ``flag`` otherwise."""
+    if value is None:
+        return None
+    try:
+        return int(value.strip())
+    except ValueError:
+        raise fail(f"{flag}: {value!r} is not a whole number") from None
+
+
 def _models(spec: str | None) -> dict[str, Any]:
     if spec is None:
         return {}
@@ -177,6 +198,7 @@ def study_options(
     preset: PresetOpt = "brake", runs: RunsOpt = None, seed: SeedOpt = 0, models: ModelsOpt = None,
     process: ProcessOpt = None, tau_end: TauOpt = None, dt: DtOpt = None, integrator: IntOpt = None,
     path_coordinate: PathOpt = "mass", white_intensity: WhiteOpt = "sigma_mu", process_level: LevelOpt = "sigma_mu",
+    machine: MachineOpt = None, allow_extrapolation: ExtrapOpt = False,
 ) -> dict[str, Any]:
     """The config fields every study command shares (case, Monte Carlo, modelling choices); options
     left out take the config's defaults (:func:`~stochfric.cli.options.option_group`)."""
@@ -184,6 +206,10 @@ def study_options(
                          "white_intensity": white_intensity, "process_level": process_level, **_models(models)}
     if integrator is not None:
         d["integrator"] = integrator
+    if machine is not None:
+        d["machine"] = machine
+    if allow_extrapolation:
+        d["allow_extrapolation"] = True
     if process is not None:
         d["process_file"] = str(process)
     if runs is not None:
@@ -243,7 +269,7 @@ def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:
         ex = executors.make_executor(executor, workers=workers, scheduler=scheduler)
         t0 = time.perf_counter()
         with _StudyProgress(not json_out) as prog:
-            prog.start(f"{cfg.kind} ({cfg.preset})")
+            prog.start(f"{cfg.kind} ({cfg.case_label()})")
             res = reproduce_mod.run_study(cfg, executor=ex, checkpoint=str(checkpoint) if checkpoint else None,
                             progress=prog.tasks)
             prog.end(res.stats.computed, res.stats.loaded)
@@ -256,7 +282,7 @@ def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:
     except (ValueError, OSError) as exc:  # StudyError and the package's other input errors are ValueErrors
         raise fail(str(exc)) from None
     except KeyboardInterrupt as exc:
-        raise _interrupted(exc, f"{cfg.kind} ({cfg.preset})", checkpoint) from None
+        raise _interrupted(exc, f"{cfg.kind} ({cfg.case_label()})", checkpoint) from None
     payload = res.to_json_dict()
     payload["wall_time_s"] = wall
     payload["tasks"] = {"computed": res.stats.computed, "loaded_from_checkpoint": res.stats.loaded}
@@ -265,6 +291,39 @@ def _execute(kind: str, fields: dict[str, Any], run: ExecutionOptions) -> None:
         typer.echo(json.dumps(payload, allow_nan=False))
         return
     _print_summary(res, wall, files)
+
+
+def _closure_lines(s: DampingSummary) -> list[str]:
+    """Per stochastic model and force how far the D_max(α) interval of the refined α (else the first) is closed,
+    and how to close the open ones (docs/studies.md, "Closing the D_max(α) interval")."""
+    alpha = s.refinement.risk_level if s.refinement is not None else s.risk_levels[0]
+    j = s.risk_levels.index(alpha)
+    lines = [f"D_max({100 * alpha:g} %) {m}, N = {nf:g} N: {width_text(s.d_max_risk_width[m][i][j])}"
+             for m in s.d_max_risk_width for i, nf in enumerate(s.normal_force_n)]
+    if s.refinement is not None:
+        r = s.refinement
+        lines.append(f"refinement: {r.runs_added} runs added in {r.rounds} rounds (budget {r.run_budget}, at most "
+                     f"{r.max_runs_per_cell} runs per cell); stopped: {r.stop}")
+    elif any(not w[j].closed and w[j].status == "open" for per in s.d_max_risk_width.values() for w in per):
+        lines.append("to close the open intervals: --refine (adds runs where the band still holds α; "
+                     "--run-budget N, default 20000)")
+    return lines
+
+
+def _closure_brief(s: DampingSummary) -> str:
+    """One line: how many D_max(α) intervals (stochastic models × forces, α refined or the first) are closed, and
+    how to close the open ones."""
+    alpha = s.refinement.risk_level if s.refinement is not None else s.risk_levels[0]
+    j = s.risk_levels.index(alpha)
+    ws = [w[j] for per in s.d_max_risk_width.values() for w in per]
+    count = {st: sum(w.status == st for w in ws) for st in ("closed", "open", "beyond-grid", "below-grid")}
+    text = (f"D_max({100 * alpha:g} %) intervals: {count['closed']} of {len(ws)} closed (at most "
+            f"{ws[0].target_steps if ws else 2} grid steps)" + "".join(
+                f", {count[st]} {st}" for st in ("open", "beyond-grid", "below-grid") if count[st]))
+    if count["open"]:
+        text += ("; the refinement's budget is spent" if s.refinement is not None and s.refinement.stop == "budget"
+                 else "") + " — close them with --refine (--run-budget N, default 20000)"
+    return text
 
 
 def _damping_table(s: DampingSummary) -> Table:
@@ -291,6 +350,8 @@ def _print_summary(res: StudyResult[Any], wall: float, files: list[str]) -> None
               f"({wall:.1f} s; tasks computed {res.stats.computed}, from checkpoint {res.stats.loaded})")
     if isinstance(s, DampingSummary):
         con.print(_damping_table(s))
+        for line in _closure_lines(s):
+            con.print(escape(line))
     _, reading = report_html.SECTIONS[res.kind].reading(s)
     con.print(escape(reading))
     con.print(report_html.model_choices_text(s))
@@ -323,14 +384,34 @@ def damping_command(
         "--phase-damping", help="D values of the phase diagrams, list or A:B:NUM (default: 5 grid values from the "
                                 "lowest D to the first grid D above the largest D_max at the phase force).")] = None,
     phase_runs: PhaseRunsOpt = 3,
+    refine: Annotated[bool, typer.Option(
+        "--refine", help="Close the D_max(α) interval adaptively: add runs at the D whose Clopper–Pearson band still "
+                         "holds α between its ends, until it is at most --target-steps grid steps wide or --run-budget "
+                         "runs are added (docs/studies.md).")] = False,
+    run_budget: BudgetOpt = None,
+    max_runs_per_cell: Annotated[str | None, typer.Option(
+        "--max-runs-per-cell", metavar="<int>", help="Most runs of one (N, D) cell under --refine (default 1000).")
+    ] = None,
+    target_steps: Annotated[str | None, typer.Option(
+        "--target-steps", metavar="<int>", help="Width in grid steps at which a D_max(α) interval counts as closed "
+                                                  "(default 2).")] = None,
+    refine_risk_level: Annotated[str | None, typer.Option(
+        "--refine-risk-level", metavar="<float>", help="α whose interval --refine closes, one of --risk-levels "
+                                                     "(default: the first).")] = None,
     run: ExecutionOptions = GROUP,
 ) -> None:
     """Damping study: P(stick-slip | D), D_max(α) with interval, D_max^d, D_H, M_diff, M_quot, phase diagrams
-    over D (method §6.2)."""
+    over D (method §6.2); --refine closes the D_max(α) interval adaptively."""
+    lone = [f for f, v in (("--run-budget", run_budget), ("--max-runs-per-cell", max_runs_per_cell),
+                           ("--refine-risk-level", refine_risk_level)) if v is not None and not refine]
+    if lone:
+        raise fail(f"{lone[0]}: it sets the refinement; give --refine with it")
     _execute("damping", {**common, "stick_window": stick_window,
                          "normal_forces": normal_force, "damping_ratios": damping_ratio, "confidence": confidence,
                          "p_detect": p_detect, "risk_levels": risk_levels, "x0": x0, "phase_normal_force": phase_force,
-                         "phase_damping_ratios": phase_damping, "phase_runs": phase_runs}, run)
+                         "phase_damping_ratios": phase_damping, "phase_runs": phase_runs, "refine": refine or None,
+                         "run_budget": run_budget, "max_runs_per_cell": max_runs_per_cell,
+                         "target_steps": target_steps, "refine_risk_level": refine_risk_level}, run)
 
 
 @option_group("common", study_options)
@@ -397,11 +478,11 @@ def run_command(
         out = Path(rf.output.dir)
         with _StudyProgress(not json_out, len(rf.study)) as prog:
             for i, cfg in enumerate(rf.study):
-                what = f"study[{i}] {cfg.kind} ({cfg.preset})"
+                what = f"study[{i}] {cfg.kind} ({cfg.case_label()})"
                 prog.start(what)
                 res = reproduce_mod.run_study(cfg, executor=ex, checkpoint=rf.execution.checkpoint,
                                               progress=prog.tasks)
-                res.save(out / f"{i:02d}_{cfg.kind}_{cfg.preset}")
+                res.save(out / f"{i:02d}_{cfg.kind}_{cfg.case_label()}")
                 prog.end(res.stats.computed, res.stats.loaded)
                 results.append(res)
         index = report_html.write_report(results, out) if rf.output.report else None
@@ -427,15 +508,29 @@ def reproduce_command(
                                                         "in the README).")] = False,
     out: Annotated[Path, typer.Option("--out", help="Output directory.")] = Path("reproduce"),
     seed: SeedOpt = 2013,
+    runs: Annotated[str | None, typer.Option(
+        "--runs", metavar="<int>", help="Monte Carlo runs per cell of every study (default: the thesis's, 10; 30 for "
+                                          "the normal-force study).")] = None,
+    refine: Annotated[bool, typer.Option(
+        "--refine", help="Damping studies: close the D_max(10 %) interval adaptively within --run-budget added runs "
+                         "(only P(stick-slip | D) and D_max(α) take them; default: the thesis's fixed runs).")] = False,
+    run_budget: BudgetOpt = None,
     executor: ExecOpt = ExecutorKind.SERIAL, workers: WorkersOpt = None, scheduler: SchedOpt = None,
     json_out: JsonOpt = False,
 ) -> None:
     """All studies of thesis chapter 4 for brake and sheet, results and DIR/index.html."""
     what = "reproduce"
+    n_runs, budget = _whole(runs, "--runs"), _whole(run_budget, "--run-budget")
+    if budget is not None and not refine:
+        raise fail("--run-budget: it bounds the refinement; give --refine with it")
+    try:  # every config before any work: a bad --runs or --run-budget ends with one line naming the flag
+        plan = reproduce_mod.configure(reproduce_mod.plan(quick, seed), runs=n_runs, refine=refine, run_budget=budget)
+    except StudyConfigError as exc:
+        raise fail(format_validation_errors(exc.validation_error, flag_of)) from None
     try:
         _check_dirs(out=out)
         ex = executors.make_executor(executor, workers=workers, scheduler=scheduler)
-        with _StudyProgress(not json_out, len(reproduce_mod.plan(quick, seed))) as prog:
+        with _StudyProgress(not json_out, len(plan)) as prog:
             def on_tasks(label: str, d: int, n: int) -> None:
                 nonlocal what
                 if label != prog.label:
@@ -443,7 +538,8 @@ def reproduce_command(
                     prog.start(label)
                 prog.tasks(d, n)
 
-            results, timings = reproduce_mod.reproduce(out, quick=quick, seed=seed, executor=ex, progress=on_tasks,
+            results, timings = reproduce_mod.reproduce(out, quick=quick, seed=seed, runs=n_runs, refine=refine,
+                                                       run_budget=budget, executor=ex, progress=on_tasks,
                                          study_done=lambda res: prog.end(res.stats.computed, res.stats.loaded),
                                          report=report_html.write_report)
     except (ValueError, OSError) as exc:  # StudyError and the package's other input errors are ValueErrors
@@ -459,6 +555,8 @@ def reproduce_command(
         return
     for r in results:
         typer.echo(f"{r.kind} ({r.summary.preset}): {report_html.SECTIONS[r.kind].reading(r.summary)[1]}")
+        if isinstance(r.summary, DampingSummary):
+            typer.echo(f"  {_closure_brief(r.summary)}")
     split = ", ".join(f"{k} {v:.1f} s" + (" (while the report draws)" if k == "chapter3" else "")
                       for k, v in timings.items() if k not in ("studies_total", "total"))
     typer.echo(f"time per step: {split}")

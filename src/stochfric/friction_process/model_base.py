@@ -33,10 +33,14 @@ from stochfric.validation import positive
 
 __all__ = [
     "LOW_FREQUENCY_FRACTION",
+    "PRESSURE_RANGE_RTOL",
     "SCHEMA_VERSION",
+    "ExtrapolationError",
     "FrictionProcessModel",
     "ProcessModelBase",
     "SigmaZetaRule",
+    "check_pressure_range",
+    "fitted_pressure_range",
     "low_frequency_level",
 ]
 
@@ -278,3 +282,52 @@ class ProcessModelBase:
     def save(self, path: str | os.PathLike[str]) -> Path:
         """Write :meth:`to_dict` as JSON to ``path`` atomically (temporary file + rename); returns the path."""
         return write_json_atomic(path, self.to_dict())
+
+
+class ExtrapolationError(ProcessModelError):
+    """A friction-process model is asked for pressures outside the range it was fitted on (issue 30)."""
+
+
+#: Relative tolerance at the ends of a fitted pressure range (pressures are recorded to float precision).
+PRESSURE_RANGE_RTOL = 1e-9
+
+
+def fitted_pressure_range(model: Any) -> tuple[float, float] | None:
+    """(p_min, p_max) [Pa] a process model was fitted on, or None where it records none (the thesis's preset
+    models: Tables 3.3/3.6 give no range).  A wrapper (``base``) reports its base model's range."""
+    method = getattr(model, "pressure_range_pa", None)
+    if callable(method):
+        lo, hi = method()
+        return float(lo), float(hi)
+    base = getattr(model, "base", None)
+    return fitted_pressure_range(base) if base is not None else None
+
+
+def check_pressure_range(model: Any, pressures_pa: ArrayLike, *, allow: bool = False, context: str = "") -> str | None:
+    """No silent extrapolation (issue 30, item 3): None when every pressure [Pa] lies in the model's fitted
+    range (or the model records none); otherwise the stamp every output must carry when ``allow``, else
+    :class:`ExtrapolationError` with the range and what to do.  ``context`` says who asks (e.g. ``"N = 500 N
+    over A = 0.016 m²"``)."""
+    rng = fitted_pressure_range(model)
+    p = np.atleast_1d(np.asarray(pressures_pa, dtype=np.float64))
+    if rng is None or p.size == 0:
+        return None
+    lo, hi = rng
+    outside = (p < lo * (1.0 - PRESSURE_RANGE_RTOL)) | (p > hi * (1.0 + PRESSURE_RANGE_RTOL))
+    if not outside.any():
+        return None
+    bad = p[outside]
+    span = (f"{bad.min() / 1e6:.4g} MPa" if bad.min() == bad.max()
+            else f"{bad.min() / 1e6:.4g}–{bad.max() / 1e6:.4g} MPa")
+    name = getattr(model, "name", "the friction-process model")
+    where = f" ({context})" if context else ""
+    stamp = (f"EXTRAPOLATED: the friction-process model {name!r} was fitted on p = {lo / 1e6:.4g}–{hi / 1e6:.4g} MPa "
+             f"and is used at p = {span}{where}, outside that range")
+    if allow:
+        return stamp
+    raise ExtrapolationError(
+        f"the friction-process model {name!r} was fitted on p = {lo / 1e6:.4g}–{hi / 1e6:.4g} MPa; this run needs "
+        f"p = {span}{where}, outside it, where its E[mu](p) and sigma_mu(p) are an extrapolation of the fit. "
+        "Analyse the surface at these pressures (stochfric assess with the machine, or friction-process with an "
+        "approach range that covers them), or pass --allow-extrapolation to use the model anyway (every output "
+        "is then stamped)")

@@ -108,6 +108,10 @@ class TabulatedProcessModel(ProcessModelBase):
     #: Why the analysis that made this model was not credible (empty: it was); a model written
     #: with ``--accept-not-credible`` carries the reasons and every command that reads it warns.
     not_credible: tuple[str, ...] = ()
+    #: (p_min, p_max) [Pa] of the pressures the model functions were fitted on (None: the tabulated
+    #: pressures' range, for files written before it was recorded); use outside it is refused
+    #: (:func:`~stochfric.friction_process.model_base.check_pressure_range`).
+    fitted_range_pa: tuple[float, float] | None = None
 
     def __post_init__(self) -> None:
         if self.window_length_m is not None:
@@ -134,6 +138,13 @@ class TabulatedProcessModel(ProcessModelBase):
             raise ProcessModelError("table_psd must be finite and >= 0 [m]")
         object.__setattr__(self, "pressures_pa", p)
         object.__setattr__(self, "table_frequencies", f)
+        if self.fitted_range_pa is not None:
+            rng = finite_tuple("fitted_range_pa", self.fitted_range_pa, error=ProcessModelError)
+            lo, hi = (rng[0], rng[-1]) if len(rng) == 2 else (math.nan, math.nan)
+            if not 0.0 < lo <= hi:
+                raise ProcessModelError(f"fitted_range_pa must be (p_min, p_max) with 0 < p_min <= p_max Pa, "
+                                        f"got {self.fitted_range_pa!r}")
+            object.__setattr__(self, "fitted_range_pa", (lo, hi))
         object.__setattr__(self, "table_psd", tuple(tuple(float(v) for v in row) for row in table))
         for attr, rule in (("pressure_rule", PressureRule), ("variance_rule", VarianceRule)):
             if getattr(self, attr) not in tuple(rule):
@@ -205,6 +216,12 @@ class TabulatedProcessModel(ProcessModelBase):
             return 0.5 * low_frequency_level(spec)
         return 0.5 * psd_level(band, spec, self.window_length_m)
 
+    def pressure_range_pa(self) -> tuple[float, float]:
+        """(p_min, p_max) [Pa] the model was fitted on (:attr:`fitted_range_pa`, else the tabulated range)."""
+        if self.fitted_range_pa is not None:
+            return self.fitted_range_pa
+        return self.pressures_pa[0], self.pressures_pa[-1]
+
     # --- serialisation -----------------------------------------------------------------
 
     def to_dict(self) -> dict[str, Any]:
@@ -220,6 +237,7 @@ class TabulatedProcessModel(ProcessModelBase):
             "psd_level": None if self.psd_level is None else self.psd_level.to_dict(),
             "window_length_m": self.window_length_m,
             "not_credible": list(self.not_credible),
+            "fitted_range_pa": None if self.fitted_range_pa is None else list(self.fitted_range_pa),
             **self._dict_tail(),
         }
 
@@ -243,4 +261,5 @@ class TabulatedProcessModel(ProcessModelBase):
             not_credible=tuple(str(r) for r in data.get("not_credible", ())),
             psd_level=None if level is None else ModelFunction.from_dict(level),
             window_length_m=data.get("window_length_m"),
+            fitted_range_pa=None if data.get("fitted_range_pa") is None else tuple(data["fitted_range_pa"]),
         )

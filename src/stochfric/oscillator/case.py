@@ -29,29 +29,36 @@ command line shows its flags instead.
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from ..friction_process.model import FrictionProcessModel, SigmaZetaRule, load_process_model
+from ..friction_process.model_base import check_pressure_range
 from ..friction_process.presets import ProcessLevel
-from .friction_laws import FrictionLaw, get_law, pressure_law
+from .friction_laws import MU0, FrictionLaw, get_law, pressure_law
+from .machine import Machine, MachineError, load_machine
 from .options import Model, WhiteIncrement, WhiteIntensity, white_increment_of
-from .parameters import OscillatorParameters, ParameterError, PhysicalParameters
+from .parameters import OscillatorParameters, ParameterError, physical_parameters
 from .presets import Preset, PresetName, get_preset
 
 __all__ = [
+    "MU0",
     "WHITE_MODEL_STANDING",
     "Case",
     "CaseError",
     "CaseSetup",
     "DimensionlessInput",
     "FrictionInput",
+    "MachineLike",
     "PhysicalInput",
     "build_case",
     "case_setup",
     "law_for",
+    "machine_preset",
     "physical_parameters",
+    "pressure_check",
     "process_rule_of",
     "resolve_process",
     "with_white_intensity",
@@ -63,8 +70,6 @@ WHITE_MODEL_STANDING = ("phenomenological white noise in time: its intensity σ_
                         "and it is not the limit of the contact process (at a fixed spectral level σ(X_gh) grows as "
                         "ℓ^β, β ≈ −0.2 … −0.3, as the correlation length ℓ shrinks; method §5.1a)")
 
-#: Static coefficient μ0 of the pressure law (4.13), thesis value.
-MU0 = 0.4
 
 
 class CaseError(ParameterError):
@@ -147,23 +152,6 @@ def resolve_process(
     return process, source
 
 
-def physical_parameters(
-    mass: float, stiffness: float, belt_speed: float, normal_force: float, *,
-    damping_ratio: float | None = None, damping_coefficient: float | None = None,
-    forcing_amplitude: float = 0.0, eta: float = 0.0, contact_area: float | None = None,
-) -> OscillatorParameters:
-    """Dimensionless parameters (4.6/4.7) from SI input (kg, N/m, m/s, N, N s/m, N, m²); Ω = η ω0 and
-    η kept exactly as given."""
-    phys = PhysicalParameters(
-        mass=mass, stiffness=stiffness, belt_speed=belt_speed, normal_force=normal_force,
-        damping_coefficient=damping_coefficient, damping_ratio=damping_ratio,
-        forcing_amplitude=forcing_amplitude, contact_area=contact_area,
-    )
-    phys = dataclasses.replace(phys, forcing_frequency=eta * phys.omega0)  # ω0 of the validated m, c
-    # η exactly as given (Ω = η ω0 and back may differ in the last bit)
-    return phys.to_dimensionless().replace(eta=float(eta))
-
-
 def law_for(process: FrictionProcessModel, params: OscillatorParameters, mu0: float = MU0) -> FrictionLaw:
     """The pressure law (4.13/4.33) with μ_fit = E[μ](p) of the process model, p = N/A."""
     p = params.pressure_pa
@@ -199,6 +187,8 @@ class Case:
     white_intensity: WhiteIntensity | None = None
     sigma_zeta: float | None = None
     process_level: ProcessLevel = ProcessLevel.SIGMA_MU
+    #: The stamp of a process model used outside its fitted pressures (allowed explicitly), else None.
+    extrapolation: str | None = None
 
     def modes(self, model: Model | str) -> dict[str, str]:
         """The case's modelling modes as plain strings (recorded in every output): the σ_ζ rule of
@@ -209,6 +199,8 @@ class Case:
                "process_level": str(self.process_level) if model == Model.CONTACT else "n/a"}
         if model == Model.WHITE:
             out["white_model"] = WHITE_MODEL_STANDING
+        if self.extrapolation:
+            out["extrapolation"] = self.extrapolation
         return out
 
     def white_increment(self, model: Model | str) -> WhiteIncrement:
@@ -227,6 +219,10 @@ class CaseSetup:
     dt: float
     white_intensity: WhiteIntensity = WhiteIntensity.SIGMA_MU
     process_level: ProcessLevel = ProcessLevel.SIGMA_MU
+    #: Use the process model outside its fitted pressures (stamped) instead of refusing (issue 30, item 3).
+    allow_extrapolation: bool = False
+    #: Static coefficient μ0 of the pressure law (4.13): the machine's ``[friction_law] mu0``, else the thesis's.
+    mu0: float = MU0
 
     @property
     def white_increment(self) -> WhiteIncrement:
@@ -250,9 +246,29 @@ class CaseSetup:
 
     def case_of(self, params: OscillatorParameters) -> Case:
         """The :class:`Case` of parameters of this setup (:meth:`parameters`) with the pressure law (4.13)."""
-        return Case(params=params, law=law_for(self.process, params), process=self.process,
+        stamp = pressure_check(self.process, params, allow=self.allow_extrapolation)
+        return Case(params=params, law=law_for(self.process, params, self.mu0), process=self.process,
                     tau_end=self.tau_end, dt=self.dt, preset=self.preset, process_source=self.process_source,
-                    white_intensity=self.white_intensity, process_level=self.process_level)
+                    white_intensity=self.white_intensity, process_level=self.process_level, extrapolation=stamp)
+
+    def extrapolation_stamps(self, normal_forces: Sequence[float]) -> list[str]:
+        """The stamps of the forces [N] at which the process model is used outside its fitted pressures
+        (empty: none; refused unless :attr:`allow_extrapolation`)."""
+        stamps = [check_pressure_range(self.process, float(nf) / self.preset.contact_area, allow=True,
+                                       context=f"N = {float(nf):g} N over A = {self.preset.contact_area:g} m²")
+                  for nf in normal_forces]
+        return [st for st in stamps if st]
+
+    def check_forces(self, normal_forces: Sequence[float]) -> list[str]:
+        """Refuse, before any work, forces [N] outside the model's fitted pressures (issue 30, item 3) unless
+        :attr:`allow_extrapolation`; the stamps of the allowed ones."""
+        forces = [float(nf) for nf in normal_forces]
+        if forces and not self.allow_extrapolation:
+            p = [nf / self.preset.contact_area for nf in forces]
+            check_pressure_range(self.process, p, allow=False,
+                                 context=f"N = {min(forces):g}–{max(forces):g} N over A = "
+                                         f"{self.preset.contact_area:g} m²")
+        return self.extrapolation_stamps(forces)
 
     def sigma_zeta(self, normal_force: float) -> float:
         """σ_ζ of the white-noise model at N [N] (p = N/A) under the setup's σ_ζ rule (for ``thesis``:
@@ -284,35 +300,87 @@ class CaseSetup:
             "white_intensity": str(self.white_intensity),
             "white_increment": str(self.white_increment),
             "process_level": str(self.process_level),
+            "allow_extrapolation": self.allow_extrapolation,
         }
 
 
-def _preset(name: PresetName | str) -> Preset:
+def pressure_check(process: Any, params: OscillatorParameters, *, allow: bool) -> str | None:
+    """:func:`~stochfric.friction_process.model_base.check_pressure_range` at the case's p = N/A (None without
+    a process model or a pressure)."""
+    p = params.pressure_pa
+    if process is None or p is None:
+        return None
+    nf = params.normal_force
+    context = f"N = {nf:g} N over A = {params.contact_area:g} m²" if nf is not None and params.contact_area else ""
+    return check_pressure_range(process, p, allow=allow, context=context)
+
+
+def _preset(name: PresetName | str | Preset) -> Preset:
+    if isinstance(name, Preset):
+        return name
     try:
         return get_preset(name)
     except ValueError as exc:
         raise CaseError(str(exc)) from None
 
 
+#: What a case's machine may be given as: a thesis preset name, a machine file or shipped name, or the object.
+MachineLike = PresetName | str | Path | Preset | Machine
+
+
+def machine_preset(machine: MachineLike, process_file: str | Path | None = None) -> Preset:
+    """The :class:`Preset` (oscillator, contact area, envelope, study settings, process model) of a thesis
+    preset name, a :class:`~.machine.Machine`, a machine TOML file or a shipped machine name (issue 30).
+
+    The thesis's ``brake`` and ``sheet`` (names or their shipped machine files) keep their preset's process
+    model (Tables 3.3/3.6) unless ``process_file`` replaces it; any other machine needs ``process_file`` (the
+    friction-process model of the user's surface: ``stochfric friction-process`` or ``assess``)."""
+    if isinstance(machine, Preset):
+        return machine
+    if isinstance(machine, str) and not isinstance(machine, Machine) and str(machine).lower() in tuple(PresetName):
+        return _preset(str(machine).lower())
+    try:
+        m = load_machine(machine)
+    except MachineError as exc:
+        raise CaseError(f"{exc} (thesis presets: {', '.join(str(p) for p in PresetName)})") from None
+    if process_file is not None:
+        return m.to_preset(load_process_model(process_file))
+    if m.name in tuple(PresetName):
+        thesis = get_preset(m.name)
+        return m.to_preset(thesis.process, thesis.recorded_psd_level_fit)
+    raise CaseError(f"the machine {m.name!r} has no friction-process model of its own: give the model of its "
+                    "surface (--process FILE from `stochfric friction-process`, or run `stochfric assess`)")
+
+
 def case_setup(
-    preset: PresetName | str = PresetName.BRAKE,
+    preset: MachineLike = PresetName.BRAKE,
     process_file: str | Path | None = None,
     tau_end: float | None = None,
     dt: float | None = None,
     white_intensity: WhiteIntensity | str = WhiteIntensity.SIGMA_MU,
     process_level: ProcessLevel | str = ProcessLevel.SIGMA_MU,
+    *,
+    allow_extrapolation: bool = False,
 ) -> CaseSetup:
     """Resolve a preset name and an optional friction-process model file; the σ_ζ rule
     ``white_intensity`` is applied to the process model (it overrides a file's own).
     ``process_level`` ``"psd_level"`` (reproduction mode, presets only) replaces the preset's
     process by :class:`~stochfric.friction_process.presets.PsdLevelProcessModel`."""
-    pre = _preset(preset)
+    pre = machine_preset(preset, process_file)
     process, source = resolve_process(pre, process_file, white_intensity=white_intensity,
                                       process_level=process_level)
     te = float(tau_end) if tau_end is not None else pre.tau_end
     step = float(dt) if dt is not None else pre.dt
     return CaseSetup(preset=pre, process=process, process_source=source, tau_end=te, dt=step,
-                     white_intensity=WhiteIntensity(white_intensity), process_level=ProcessLevel(process_level))
+                     white_intensity=WhiteIntensity(white_intensity), process_level=ProcessLevel(process_level),
+                     allow_extrapolation=bool(allow_extrapolation), mu0=machine_mu0(preset))
+
+
+def machine_mu0(machine: MachineLike) -> float:
+    """μ0 of the pressure law: the machine's ``[friction_law] mu0``; the thesis's 0.4 for a preset."""
+    if isinstance(machine, Preset) or (isinstance(machine, str) and str(machine).lower() in tuple(PresetName)):
+        return MU0
+    return float(load_machine(machine).friction_law.mu0)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -367,6 +435,8 @@ class FrictionInput:
     process_level: ProcessLevel | None = None
     white_intensity: WhiteIntensity | None = None
     sigma_zeta: float | None = None
+    #: Use the process model outside its fitted pressures (every output stamped) instead of refusing.
+    allow_extrapolation: bool = False
 
 
 def _parameters(pre: Preset | None, phys: PhysicalInput, dim: DimensionlessInput) -> OscillatorParameters:
@@ -424,7 +494,7 @@ def _parameters(pre: Preset | None, phys: PhysicalInput, dim: DimensionlessInput
 
 
 def build_case(
-    preset: PresetName | str | None = None,
+    preset: MachineLike | None = None,
     *,
     physical: PhysicalInput | None = None,
     dimensionless: DimensionlessInput | None = None,
@@ -443,14 +513,15 @@ def build_case(
     and contact need a process model, white may have ``sigma_zeta`` instead).  τ_end, Δτ default to
     the preset's (else 50, 0.005).  Raises :class:`CaseError` with a message that names the input to change.
     """
-    pre = _preset(preset) if preset else None
-    params = _parameters(pre, physical or PhysicalInput(), dimensionless or DimensionlessInput())
     fr = friction or FrictionInput()
+    pre = machine_preset(preset, fr.process_file) if preset else None
+    params = _parameters(pre, physical or PhysicalInput(), dimensionless or DimensionlessInput())
     if fr.white_intensity is not None and fr.sigma_zeta is not None:
         raise CaseError("give either `sigma_zeta` or `white_intensity`, not both")
     level = fr.process_level or ProcessLevel.SIGMA_MU
     process, source = resolve_process(pre, fr.process_file, white_intensity=fr.white_intensity,
                                       process_level=level, process_length=fr.process_length)
+    stamp = pressure_check(process, params, allow=fr.allow_extrapolation)
     law_name = fr.friction_law or ("pressure" if process is not None and params.pressure_pa is not None else "III")
     if law_name == "pressure":
         if process is None or params.pressure_pa is None:
@@ -476,5 +547,5 @@ def build_case(
         dt=dt if dt is not None else (pre.dt if pre else 0.005),
         preset=pre, process_source=source,
         white_intensity=WhiteIntensity(fr.white_intensity) if fr.white_intensity is not None else None,
-        sigma_zeta=fr.sigma_zeta, process_level=ProcessLevel(level),
+        sigma_zeta=fr.sigma_zeta, process_level=ProcessLevel(level), extrapolation=stamp,
     )

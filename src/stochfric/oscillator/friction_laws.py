@@ -29,6 +29,9 @@ from stochfric.errors import InputError
 
 SHAPE_CONSTANT, SHAPE_RATIONAL = range(2)
 
+#: Static coefficient μ0 of the pressure law (4.13), thesis value.
+MU0 = 0.4
+
 #: Codes of the compiled shapes understood by :func:`mu_kinetic`.
 SHAPES: dict[str, int] = {
     "constant": SHAPE_CONSTANT,

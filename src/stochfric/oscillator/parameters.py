@@ -21,6 +21,7 @@ what to change.
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import asdict, dataclass, field
 from functools import partial
@@ -210,3 +211,20 @@ class PhysicalParameters:
             stiffness=self.stiffness,
             contact_area=self.contact_area,
         )
+
+
+def physical_parameters(
+    mass: float, stiffness: float, belt_speed: float, normal_force: float, *,
+    damping_ratio: float | None = None, damping_coefficient: float | None = None,
+    forcing_amplitude: float = 0.0, eta: float = 0.0, contact_area: float | None = None,
+) -> OscillatorParameters:
+    """Dimensionless parameters (4.6/4.7) from SI input (kg, N/m, m/s, N, N s/m, N, m²); Ω = η ω0 and
+    η kept exactly as given."""
+    phys = PhysicalParameters(
+        mass=mass, stiffness=stiffness, belt_speed=belt_speed, normal_force=normal_force,
+        damping_coefficient=damping_coefficient, damping_ratio=damping_ratio,
+        forcing_amplitude=forcing_amplitude, contact_area=contact_area,
+    )
+    phys = dataclasses.replace(phys, forcing_frequency=eta * phys.omega0)  # ω0 of the validated m, c
+    # η exactly as given (Ω = η ω0 and back may differ in the last bit)
+    return phys.to_dimensionless().replace(eta=float(eta))

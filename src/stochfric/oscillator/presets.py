@@ -18,6 +18,7 @@ from typing import Any
 from stochfric.errors import InputError, InputTypeError
 
 from ..friction_process.model import BandLimitedProcessModel, ModelFunction
+from ..friction_process.model_base import ProcessModelBase
 from ..friction_process.presets import (
     BRAKE_PSD_LEVEL_FIT,
     SHEET_PSD_LEVEL_FIT,
@@ -113,7 +114,7 @@ class Preset:
     contact_area: float
     normal_force_range: tuple[float, float]
     default_normal_force: float
-    process: BandLimitedProcessModel
+    process: BandLimitedProcessModel | Any
     study_parameters: StudyParameters
     tau_end: float = 50.0
     dt: float = 0.005
@@ -142,8 +143,9 @@ class Preset:
                 f"default_normal_force {self.default_normal_force!r} N lies outside "
                 f"normal_force_range {self.normal_force_range!r}"
             )
-        if not isinstance(self.process, BandLimitedProcessModel):
-            raise InputTypeError(f"process must be a BandLimitedProcessModel, got {self.process!r}")
+        if not isinstance(self.process, ProcessModelBase):
+            raise InputTypeError(f"process must be a friction-process model (band-limited or tabulated), "
+                                 f"got {self.process!r}")
         if not isinstance(self.study_parameters, StudyParameters):
             raise InputTypeError(f"study_parameters must be StudyParameters, got {self.study_parameters!r}")
 

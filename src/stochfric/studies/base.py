@@ -264,7 +264,7 @@ class Study(Generic[C]):
                 "white_increment": choices.white_increment, "process_level": choices.process_level,
                 "white_model": choices.white_model, "sigma_zeta": choices.sigma_zeta,
                 "sigma_zeta_effective": choices.sigma_zeta_effective, "warnings": warning_counts(warns),
-                "versions": package_versions()}
+                "extrapolation": setup.extrapolation_stamps(forces) or None, "versions": package_versions()}
 
     def dataset(self, data: dict[str, Any], coords: dict[str, Any], executor: Executor | None,
                 checkpoint_hash: str | None, **attrs: Any) -> xr.Dataset:

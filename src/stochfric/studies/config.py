@@ -29,7 +29,9 @@ from typing import Annotated, Any, Literal, TypeVar
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator, model_validator
 
+from ..errors import InputError
 from ..friction_process.presets import ProcessLevel
+from ..oscillator.machine import load_machine
 from ..oscillator.options import Integrator, Model, PathCoordinate, WhiteIntensity
 from ..oscillator.presets import PresetName
 from .errors import StudyConfigError
@@ -102,9 +104,16 @@ class StudyConfig(BaseModel):
             raise StudyConfigError(exc) from None
 
     preset: PresetName = PresetName.BRAKE
+    machine: str | None = Field(
+        default=None, description="machine description (a TOML file, docs/machines.md, or a shipped name: brake, "
+                                  "sheet, example-calliper) instead of the preset; a machine that is not a thesis "
+                                  "preset needs a process_file")
     process_file: str | None = Field(
         default=None, description="friction-process model file (JSON) instead of the preset's"
     )
+    allow_extrapolation: bool = Field(
+        default=False, description="use the process model outside the pressures it was fitted on (every output is "
+                                   "stamped) instead of refusing the study")
     models: tuple[Model, ...] = tuple(Model)
     runs: int = Field(default=10, ge=1, le=100_000)
     seed: int = Field(default=0, ge=0)
@@ -146,6 +155,17 @@ class StudyConfig(BaseModel):
     def _unique_models(cls, v: tuple[Model, ...]) -> tuple[Model, ...]:
         return _distinct(v, "model")
 
+    @field_validator("machine")
+    @classmethod
+    def _machine_exists(cls, v: str | None) -> str | None:
+        """A machine that cannot be read is refused with the config, before any work."""
+        if v is not None:
+            try:
+                load_machine(v)
+            except InputError as exc:
+                raise ValueError(str(exc)) from None
+        return v
+
     def hash_config(self) -> dict[str, Any]:
         """Everything that changes the numbers (for the checkpoint key)."""
         d = self.model_dump(mode="json")
@@ -154,7 +174,20 @@ class StudyConfig(BaseModel):
                 d["process_file_content"] = json.loads(Path(self.process_file).read_text(encoding="utf-8"))
             except (OSError, ValueError):
                 d["process_file_content"] = None
+        if self.machine is not None:  # the machine's content, not its path, changes the numbers
+            try:
+                d["machine_content"] = load_machine(self.machine).to_dict()
+            except InputError:
+                d["machine_content"] = None
         return d
+
+    def case_label(self) -> str:
+        """A short name of the case for labels and file names: the machine's file stem or name, else the preset."""
+        return Path(self.machine).stem if self.machine is not None else str(self.preset)
+
+    def case_source(self) -> str | PresetName:
+        """What the case setup is built from: the machine when given, else the preset."""
+        return self.machine if self.machine is not None else self.preset
 
 
 class DampingConfig(StudyConfig):
@@ -180,6 +213,37 @@ class DampingConfig(StudyConfig):
     )
     phase_runs: int = Field(default=3, ge=0, le=1000, description="runs kept per D (stochastic models); 0: none")
     save_every: int = Field(default=10, ge=1, description="keep every k-th step of the phase trajectories")
+    refine: bool = Field(
+        default=False,
+        description="close the D_max(α) interval adaptively: add runs at the grid D whose Clopper–Pearson band "
+                    "still holds α between the interval's ends, until it is at most target_steps grid steps wide or "
+                    "run_budget is spent (docs/studies.md, 'Closing the D_max(α) interval'); false: the thesis's "
+                    "fixed runs")
+    refine_risk_level: float | None = Field(
+        default=None, gt=0, lt=1, allow_inf_nan=False,
+        description="α whose D_max(α) interval the refinement closes (one of risk_levels; default: the first)")
+    target_steps: int = Field(default=2, ge=0, le=1000,
+                              description="width [grid steps] at which a D_max(α) interval counts as closed")
+    max_runs_per_cell: int = Field(default=1000, ge=2, le=100_000,
+                                   description="most runs of one grid cell under refinement")
+    run_budget: int = Field(default=20_000, ge=1, le=100_000_000,
+                            description="most runs the refinement adds in all (models, forces and D together)")
+
+    @model_validator(mode="after")
+    def _refinement(self) -> DampingConfig:
+        """The refined α must be a risk level, and refinement must be able to add runs."""
+        if self.refine_risk_level is not None and self.refine_risk_level not in self.risk_levels:
+            raise ValueError(f"refine_risk_level (--refine-risk-level) {self.refine_risk_level:g} is not one of the "
+                             f"risk levels ({', '.join(f'{a:g}' for a in self.risk_levels)})")
+        if self.refine and self.max_runs_per_cell <= self.runs:
+            raise ValueError(f"max_runs_per_cell (--max-runs-per-cell) {self.max_runs_per_cell} must exceed runs "
+                             f"(--runs) {self.runs} to refine")
+        return self
+
+    @property
+    def refined_risk_level(self) -> float:
+        """The α the refinement closes: ``refine_risk_level``, else the first risk level."""
+        return float(self.refine_risk_level if self.refine_risk_level is not None else self.risk_levels[0])
 
     @field_validator("damping_ratios")
     @classmethod
@@ -200,9 +264,12 @@ class DampingConfig(StudyConfig):
 
     def hash_config(self) -> dict[str, Any]:
         """As :meth:`StudyConfig.hash_config` without ``risk_levels``: they change the analysis only, so
-        checkpoints of the same simulations resume under other risk levels."""
+        checkpoints of the same simulations resume under other risk levels.  With ``refine`` the refined α (the
+        first risk level unless given) is in: it picks the refinement's runs."""
         d = super().hash_config()
         d.pop("risk_levels", None)
+        if self.refine:
+            d["refine_risk_level"] = self.refined_risk_level
         return d
 
     @field_validator("phase_damping_ratios")

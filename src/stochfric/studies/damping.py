@@ -21,6 +21,11 @@ E[X_gh], σ(X_gh), E[M_s]; M_diff = M_d − E[M_s] (4.41), M_quot = E[M_s]/M_d (
   risk); its bar [D_max^s, D_hi]: D_hi is the first grid D above it at which the one-sided upper bound
   on P pooled over the zero-count grid points in (D_max^s, D] (runs taken as independent across D)
   falls below ``p_detect``; ``None`` if the grid ends first;
+* ``refine``: runs are added where the band of P still holds α between the ends of the D_max(α) interval of
+  ``refine_risk_level``, until it is at most ``target_steps`` grid steps wide or ``run_budget`` runs are added
+  (:mod:`~stochfric.studies.refine`, :meth:`DampingStudy.refine`); P, its bands and D_max(α) then count every
+  run of a cell (``n_runs``), everything else the grid's ``runs``; ``d_max_risk_width`` says per force how far
+  each interval is closed (with or without ``refine``);
 * D_H(N) from the linearisation (:func:`~stochfric.oscillator.reference.hopf_damping`);
   the Hopf bifurcation is subcritical, so D_max^d ≥ D_H (stick-slip from a large start).
 
@@ -57,8 +62,10 @@ from ..oscillator.reference import hopf_damping
 from ..random import BOOTSTRAP_KEY, child_generator
 from .base import Progress, Study, StudyResult, sweep
 from .config import DampingConfig
+from .errors import StudyError
 from .executors import Executor, SweepStats
 from .grids import window_mask
+from .refine import IntervalWidth, RefineRule, interval_width, refine_counts
 from .stats import clopper_pearson, pooled_bootstrap_se, risk_limit, runs_to_resolve
 from .summary import OPTIONAL, StudySummary, Table
 from .tasks import TaskSpec, runs_for, task_for
@@ -177,6 +184,23 @@ class PhaseSummary:
     has_cycle_fraction: dict[str, list[float]]
 
 
+@dataclass(frozen=True)
+class RefinementSummary:
+    """What the adaptive refinement did (:mod:`~stochfric.studies.refine`): the α it closes
+    (``risk_level``), ``target_steps`` [grid steps], ``max_runs_per_cell``, ``run_budget`` and the runs it
+    added (``runs_added``, new minus old runs), ``rounds``, why it stopped (``stop``: ``done`` | ``budget`` |
+    ``max-runs``) and the runs behind P(stick-slip | D) per stochastic model, ``runs_per_cell`` ``[N][D]``."""
+
+    risk_level: float
+    target_steps: int
+    max_runs_per_cell: int
+    run_budget: int
+    runs_added: int
+    rounds: int
+    stop: str
+    runs_per_cell: dict[str, list[list[int]]]
+
+
 @dataclass(frozen=True, kw_only=True)
 class DampingSummary(StudySummary, kind="damping"):
     """The damping study's summary (module docstring).
@@ -188,7 +212,9 @@ class DampingSummary(StudySummary, kind="damping"):
     and the next grid D above it.  Per model: ``stick_probability`` and the tables ``[N][D]`` of E[M]
     (``stick_count_mean``), its SE and the bootstrap SEs of E[X_gh] and σ(X_gh) [-]; ``m_diff``
     (M_d − E[M_s], eq. 4.41) per stochastic model where the deterministic model ran; ``phase`` where
-    phase diagrams were drawn.
+    phase diagrams were drawn.  ``d_max_risk_width``: per stochastic model, force and risk level how far
+    the D_max(α) interval is closed (:class:`~stochfric.studies.refine.IntervalWidth`, closed at
+    ``target_steps`` grid steps); ``refinement`` where the study refined adaptively (``refine``).
     """
 
     normal_force_n: list[float]
@@ -213,6 +239,8 @@ class DampingSummary(StudySummary, kind="damping"):
     x_gh_std_se: dict[str, Table]
     m_diff: dict[str, Table] | None = field(default=None, metadata=OPTIONAL)
     phase: PhaseSummary | None = field(default=None, metadata=OPTIONAL)
+    d_max_risk_width: dict[str, list[list[IntervalWidth]]] = field(default_factory=dict)
+    refinement: RefinementSummary | None = field(default=None, metadata=OPTIONAL)
     checkpoint_hash: str | None = None
 
 
@@ -251,7 +279,7 @@ def sample_extremes(models: Sequence[str], damping: Array, k: Array, n_runs: npt
     return dmax, dlo, dhi
 
 
-def risk_limits(models: Sequence[str], damping: Array, k: Array, n_runs: npt.NDArray[np.int64], d_max: Array,
+def risk_limits(models: Sequence[str], damping: Array, k: Array, n_runs: npt.NDArray[Any], d_max: Array,
                 risk_levels: Sequence[float], confidence: float) -> dict[str, npt.NDArray[Any]]:
     """D_max(α) ``[model, N, risk level]``: ``value``, ``low``, ``high``, ``high_open``, ``resolved``
     (:func:`~stochfric.studies.stats.risk_limit`; deterministic: D_max^d, exact)."""
@@ -272,6 +300,40 @@ def risk_limits(models: Sequence[str], damping: Array, k: Array, n_runs: npt.NDA
                 rk["value"][mi, ni, ai], rk["low"][mi, ni, ai], rk["high"][mi, ni, ai] = r.value, r.low, r.high
                 rk["high_open"][mi, ni, ai], rk["resolved"][mi, ni, ai] = int(r.high_open), int(r.resolved)
     return rk
+
+
+def risk_widths(models: Sequence[str], damping: Array, k: Array, n: npt.NDArray[Any], risk_levels: Sequence[float],
+                confidence: float, target_steps: int) -> dict[str, list[list[IntervalWidth]]]:
+    """How far each D_max(α) interval is closed, per stochastic model ``[N][risk level]``
+    (:func:`~stochfric.studies.refine.interval_width` of the counts ``k``, ``n`` ``[model, N, D]``)."""
+    return {m: [[interval_width(damping, k[mi, ni], n[mi, ni], a, confidence, target_steps) for a in risk_levels]
+                for ni in range(k.shape[1])]
+            for mi, m in enumerate(models) if m != Model.DETERMINISTIC}
+
+
+def _width_variables(models: Sequence[str], widths: dict[str, list[list[IntervalWidth]]], shape: tuple[int, ...]
+                     ) -> dict[str, Any]:
+    """The widths of :func:`risk_widths` as variables ``[model, N, risk level]`` (deterministic: NaN, status
+    ``exact``)."""
+    width, needed = np.full(shape, np.nan), np.full(shape, np.nan)
+    status = np.full(shape, "exact", dtype=object)
+    for m, per_force in widths.items():
+        mi = list(models).index(m)
+        for ni, row in enumerate(per_force):
+            for ai, w in enumerate(row):
+                width[mi, ni, ai], status[mi, ni, ai] = w.width_steps, w.status
+                needed[mi, ni, ai] = w.runs_needed
+    return {
+        "d_max_risk_width": (_DIMS_RISK, width, {
+            "units": "1", "long_name": "width of the D_max(alpha) interval in grid steps, index(high) - index(low) "
+                                       "(low below the grid start: index -1)"}),
+        "d_max_risk_status": (_DIMS_RISK, status.astype(str), {
+            "long_name": "closed | open | beyond-grid | below-grid (docs/studies.md, 'Closing the D_max(alpha) "
+                         "interval'); deterministic: exact"}),
+        "d_max_risk_runs_needed": (_DIMS_RISK, needed, {
+            "units": "1", "long_name": "estimated further runs of the grid D whose band still holds alpha between "
+                                       "the ends, at their observed fractions (those at alpha itself left out)"}),
+    }
 
 
 @contextlib.contextmanager
@@ -304,10 +366,13 @@ _DIMS_LIMIT = ("model", "normal_force_n")
 _DIMS_RISK = ("model", "normal_force_n", "risk_level")
 
 
-def _run_variables(c: _Cycles, prob: Array, lo: Array, hi: Array, confidence: float) -> dict[str, Any]:
-    """The per-run and per-cell cycle variables: X_gh, τ_gh, M, cycles, P(stick-slip | D) with its bands."""
+def _run_variables(c: _Cycles, k: Array, n: npt.NDArray[Any], confidence: float) -> dict[str, Any]:
+    """The per-run and per-cell cycle variables: X_gh, τ_gh, M, cycles, P(stick-slip | D) = k/n with its bands
+    (``k`` of ``n`` runs with a cycle per cell: the grid's runs, or all runs of a refined cell)."""
     dims4, dims3 = _DIMS5[:4], _DIMS5[:3]
     bound = f"of P(stick-slip | D) at confidence {confidence:g}"
+    prob = k / n
+    lo, hi = clopper_pearson(k, n, confidence)
     return {
         "x_gh": (_DIMS5, c.x_gh, {"units": "1", "long_name": "slip->stick position X_gh = y/L"}),
         "t_gh": (_DIMS5, c.t_gh, {"units": "1", "long_name": "tau of slip->stick"}),
@@ -317,7 +382,9 @@ def _run_variables(c: _Cycles, prob: Array, lo: Array, hi: Array, confidence: fl
         "n_belt_speed_without_stick": (dims4, c.passes_without_stick, {"units": "1"}),
         "has_cycle": (dims4, c.has_cycle, {"units": "1",
                                            "long_name": "1 if a slip->stick transition in the stick window"}),
-        "n_runs": (dims3, c.n_runs, {"units": "1"}),
+        "n_runs": (dims3, n, {"units": "1", "long_name": "runs behind P(stick-slip | D) (refined cells: all their "
+                                                         "runs; the per-run variables hold the first runs)"}),
+        "n_stuck": (dims3, k, {"units": "1", "long_name": "runs with a slip->stick transition in the stick window"}),
         "stick_probability": (dims3, prob, {"units": "1", "long_name": "P(stick-slip | D): fraction of runs with "
                                             "a slip->stick transition in the stick window"}),
         "stick_probability_low": (dims3, lo, {"units": "1",
@@ -388,15 +455,65 @@ def _add_m_diff(data: dict[str, Any], coords: dict[str, Any], models: list[str],
     data["m_quot"] = (dims, quot, {"units": "1", "long_name": "M_quot = E[M_s]/M_d (4.42), NaN where M_d = 0"})
 
 
-def _offset_progress(progress: Progress | None, offset: int, total: int) -> Callable[[int, int], None] | None:
-    """``progress`` of a sweep that is one stage of ``total`` tasks, starting after ``offset`` of them."""
-    if progress is None:
-        return None
+@dataclass
+class _Tally:
+    """The study's progress over its stages (grid, refinement rounds, phase diagrams): ``total`` tasks known so
+    far, ``done`` those of the stages begun before."""
 
-    def report(done: int, _n: int) -> None:
-        progress(offset + done, total)
+    progress: Progress | None
+    total: int
+    done: int = 0
 
-    return report
+    def stage(self, n: int, *, new: bool = False) -> Callable[[int, int], None] | None:
+        """The ``progress`` of a sweep of ``n`` tasks (``new``: not yet in ``total``, a refinement round)."""
+        self.total += n if new else 0
+        start, self.done = self.done, self.done + n
+        if self.progress is None:
+            return None
+        progress, tally = self.progress, self
+
+        def report(done: int, _n: int) -> None:
+            progress(start + done, tally.total)
+
+        return report
+
+
+@dataclass
+class _RefineState:
+    """The refinement's running state: per run whether it has a cycle ``[model, N, D, run]`` (NaN: not run), the
+    next task index, the sweeps' statistics and warnings so far."""
+
+    has_cycle: Array
+    index: int
+    stats: SweepStats = field(default_factory=SweepStats)
+    warnings: list[dict[str, str]] = field(default_factory=list)
+
+    def grow(self, runs: int) -> None:
+        """Room for ``runs`` runs per cell (NaN: not run)."""
+        extra = runs - self.has_cycle.shape[-1]
+        if extra > 0:
+            pad = np.full((*self.has_cycle.shape[:-1], extra), np.nan)
+            self.has_cycle = np.concatenate([self.has_cycle, pad], axis=-1)
+
+
+def _add_stats(a: SweepStats, b: SweepStats) -> SweepStats:
+    return SweepStats(computed=a.computed + b.computed, loaded=a.loaded + b.loaded)
+
+
+@dataclass(frozen=True)
+class _Refined:
+    """The adaptive refinement's outcome: per run whether it has a cycle ``[model, N, D, run]`` (NaN: not run;
+    every run of every cell, the grid's first), the counts ``k``, ``n`` ``[model, N, D]``, the log, the sweeps'
+    statistics and the simulation warnings of its tasks."""
+
+    has_cycle: Array
+    k: Array
+    n: Array
+    runs_added: int
+    rounds: int
+    stop: str
+    stats: SweepStats
+    warnings: list[dict[str, str]]
 
 
 class DampingStudy(Study[DampingConfig]):
@@ -436,29 +553,102 @@ class DampingStudy(Study[DampingConfig]):
 
     def run(self, *, executor: Executor | None = None, checkpoint: str | None = None,
             progress: Progress | None = None) -> StudyResult[DampingSummary]:
-        """The grid, then the phase diagrams (progress counts both), analysed (module docstring)."""
+        """The grid, its adaptive refinement (``refine``), then the phase diagrams (progress counts all),
+        analysed (module docstring).  Task indices: the grid's, the phase diagrams', then the refinement's."""
         config = self.config
         tasks = self.tasks()
-        total = len(tasks) + (len(config.models) if config.phase_runs > 0 else 0)
-        results, stats, chash = sweep(self.kind, config, tasks, executor, checkpoint,
-                                      _offset_progress(progress, 0, total))
+        n_phase = len(config.models) if config.phase_runs > 0 else 0
+        tally = _Tally(progress, len(tasks) + n_phase)
+        results, stats, chash = sweep(self.kind, config, tasks, executor, checkpoint, tally.stage(len(tasks)))
         warns = self.warnings(tasks, results)
-        coords, data, d_max = self.grid_variables(tasks, results)
+        base = self.cycles(tasks, results)
+        refined = None
+        if config.refine:
+            refined = self.refine(base, len(tasks) + n_phase, executor, checkpoint, tally)
+            stats = _add_stats(stats, refined.stats)
+            warns += refined.warnings
+        coords, data, d_max = self.grid_variables(base, tasks, results, refined)
         data["d_hopf"] = (("normal_force_n",), self.hopf_dampings(warns),
                           {"units": "1", "long_name": "D_H = -n mu'(v0) v0/(2 gamma0)"})
         _add_m_diff(data, coords, list(config.models), data["stick_count_mean"][1])
         phase_rule = "none"
-        if total > len(tasks):
+        if n_phase:
             phase_d, phase_rule = self.phase_dampings(d_max)
             ptasks = self.phase_tasks(phase_d, first_index=len(tasks))
-            presults, pstats, _ = sweep("damping", config, ptasks, executor, checkpoint,
-                                        _offset_progress(progress, len(tasks), total))
-            stats = SweepStats(computed=stats.computed + pstats.computed, loaded=stats.loaded + pstats.loaded)
+            presults, pstats, _ = sweep("damping", config, ptasks, executor, checkpoint, tally.stage(n_phase))
+            stats = _add_stats(stats, pstats)
             self.add_phase(data, coords, ptasks, presults, phase_d)
             warns += self.warnings(ptasks, presults)
         ds = self.dataset(data, coords, executor, chash, stick_window=config.stick_window)
         ds.attrs["phase_damping_rule"] = phase_rule
+        if refined is not None:
+            ds.attrs.update({"refine_risk_level": config.refined_risk_level, "refine_target_steps": config.target_steps,
+                             "refine_max_runs_per_cell": config.max_runs_per_cell,
+                             "refine_run_budget": config.run_budget, "refine_runs_added": refined.runs_added,
+                             "refine_rounds": refined.rounds, "refine_stop": refined.stop})
         return StudyResult(self.kind, ds, self.summarise(ds, warns), stats)
+
+    def refine(self, base: _Cycles, first_index: int, executor: Executor | None, checkpoint: str | None,
+               tally: _Tally) -> _Refined:
+        """Adaptive refinement of the grid (:func:`~stochfric.studies.refine.refine_counts`): each round runs the
+        granted cells of one (model, N) to their new run count, one task per count (task indices from
+        ``first_index``); a refined cell's first runs are checked to be the grid's (the seed rule)."""
+        config, models = self.config, list(self.config.models)
+        groups = [(mi, ni) for mi, m in enumerate(models) if m != Model.DETERMINISTIC for ni in range(len(self.forces))]
+        st = _RefineState(base.has_cycle.copy(), first_index)
+
+        def counts() -> tuple[Array, Array]:
+            return (np.array([np.nansum(st.has_cycle[mi, ni], axis=-1) for mi, ni in groups]),
+                    np.array([np.isfinite(st.has_cycle[mi, ni]).sum(axis=-1) for mi, ni in groups], dtype=float))
+
+        def add_runs(granted: list[dict[int, int]]) -> tuple[Array, Array]:
+            tasks, where = self.refine_tasks(granted, groups, st.index)
+            st.index += len(tasks)
+            results, stats, _ = sweep(self.kind, config, tasks, executor, checkpoint,
+                                      tally.stage(len(tasks), new=True))
+            st.stats = _add_stats(st.stats, stats)
+            st.warnings += self.warnings(tasks, results)
+            st.grow(max(t.runs for t in tasks))
+            for t, (mi, ni, js) in zip(tasks, where, strict=True):
+                cyc = window_mask(results[t.index]["t_gh"], self.setup.tau_end, config.stick_window).any(axis=-1)
+                old = st.has_cycle[mi, ni, js, : t.runs]
+                if np.any((old != cyc) & np.isfinite(old)):
+                    raise StudyError(f"refinement task {t.label!r}: its first runs differ from the grid's (the seed "
+                                     "rule is broken: run r of a cell must not depend on the run count)")
+                st.has_cycle[mi, ni, js, : t.runs] = cyc
+            return counts()
+
+        hc = st.has_cycle
+        if groups:
+            rule = RefineRule(risk_level=config.refined_risk_level, confidence=config.confidence,
+                              target_steps=config.target_steps, max_runs_per_cell=config.max_runs_per_cell)
+            log = refine_counts(np.asarray(config.damping_ratios, float), *counts(), rule, config.run_budget,
+                                add_runs)
+            added, rounds, stop, hc = log.runs_added, log.rounds, log.stop, st.has_cycle
+        else:
+            added, rounds, stop = 0, 0, "done"
+        return _Refined(has_cycle=hc, k=np.nansum(hc, axis=-1), n=np.isfinite(hc).sum(axis=-1).astype(float),
+                        runs_added=added, rounds=rounds, stop=stop, stats=st.stats, warnings=st.warnings)
+
+    def refine_tasks(self, granted: list[dict[int, int]], groups: list[tuple[int, int]], first_index: int
+                     ) -> tuple[list[TaskSpec], list[tuple[int, int, list[int]]]]:
+        """The tasks of one refinement round: per group (model, N) one task per new run count, over the granted
+        D of that count (runs 0 … count − 1: the cells' own streams, as in the grid), and where each goes
+        ``(model index, force index, D indices)``."""
+        config, dgrid = self.config, self.config.damping_ratios
+        tasks: list[TaskSpec] = []
+        where: list[tuple[int, int, list[int]]] = []
+        for g, cells in enumerate(granted):
+            mi, ni = groups[g]
+            model, nf = config.models[mi], self.forces[ni]
+            for runs in sorted(set(cells.values())):
+                js = sorted(j for j, m in cells.items() if m == runs)
+                tasks.append(task_for(
+                    config, self.setup, index=first_index + len(tasks), label=f"{model} N={nf:g} refine {runs} runs",
+                    model=model, params=[self.setup.parameters(nf, dgrid[j]) for j in js], runs=runs,
+                    common_random_numbers=config.common_random_numbers))
+                where.append((mi, ni, js))
+        return tasks, where
 
     def cycles(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]]) -> _Cycles:
         """The grid's per-run arrays and which runs have a cycle in the stick window."""
@@ -472,17 +662,19 @@ class DampingStudy(Study[DampingConfig]):
                        window_count=np.where(valid, inwin.sum(axis=-1), np.nan), n_runs=valid.sum(axis=-1),
                        k=np.nansum(late, axis=-1))
 
-    def grid_variables(self, tasks: list[TaskSpec], results: dict[int, dict[str, Any]]
-                       ) -> tuple[dict[str, Any], dict[str, Any], Array]:
-        """Coordinates and variables of the grid's analysis, and D_max^s ``[model, N]`` (module docstring)."""
+    def grid_variables(self, c: _Cycles, tasks: list[TaskSpec], results: dict[int, dict[str, Any]],
+                       refined: _Refined | None = None) -> tuple[dict[str, Any], dict[str, Any], Array]:
+        """Coordinates and variables of the grid's analysis, and D_max^s ``[model, N]`` (module docstring).
+
+        P(stick-slip | D), D_max(α) and the interval widths come from all runs of a cell (``refined``: the
+        refinement's); the per-run variables, E[M], X_gh and the sample extreme from the grid's ``runs``."""
         config, models = self.config, list(self.config.models)
         dgrid = np.asarray(config.damping_ratios)
-        c = self.cycles(tasks, results)
-        prob = c.k / c.n_runs
-        lo, hi = clopper_pearson(c.k, c.n_runs, config.confidence)
+        k, n = (c.k, c.n_runs) if refined is None else (refined.k, refined.n)
         extreme = sample_extremes(models, dgrid, c.k, c.n_runs, confidence=config.confidence,
                                   p_detect=config.p_detect)
-        rk = risk_limits(models, dgrid, c.k, c.n_runs, extreme[0], tuple(config.risk_levels), config.confidence)
+        rk = risk_limits(models, dgrid, k, n, extreme[0], tuple(config.risk_levels), config.confidence)
+        widths = risk_widths(models, dgrid, k, n, config.risk_levels, config.confidence, config.target_steps)
         sig = np.array([float(results[t.index]["sigma_zeta"][0]) for t in tasks]).reshape(len(models),
                                                                                              len(self.forces))
         coords: dict[str, Any] = {
@@ -495,9 +687,15 @@ class DampingStudy(Study[DampingConfig]):
             "risk_level": ("risk_level", np.asarray(tuple(config.risk_levels), float),
                            {"units": "1", "long_name": "risk level alpha: tolerated P(stick-slip)"}),
         }
-        data = {**_run_variables(c, prob, lo, hi, config.confidence),
+        data = {**_run_variables(c, k, n, config.confidence),
                 **_statistics_variables(cell_statistics(c, config.seed)),
-                **_limit_variables(sig, extreme, rk)}
+                **_limit_variables(sig, extreme, rk),
+                **_width_variables(models, widths, rk["value"].shape)}
+        if refined is not None:
+            coords["refine_run"] = np.arange(refined.has_cycle.shape[-1])
+            data["refine_has_cycle"] = ((*_DIMS5[:3], "refine_run"), refined.has_cycle, {
+                "units": "1", "long_name": "1 if a slip->stick transition in the stick window, every run of a cell "
+                                           "(refinement; NaN: not run)"})
         return coords, data, extreme[0]
 
     def hopf_dampings(self, warns: list[dict[str, str]]) -> Array:
@@ -586,6 +784,10 @@ class DampingStudy(Study[DampingConfig]):
             m_diff=({m: ds["m_diff"].sel(stochastic_model=m).values.tolist()
                      for m in ds["stochastic_model"].values.tolist()} if "m_diff" in ds else None),
             phase=_phase_summary(ds, models, config.save_every) if "phase_trajectory" in ds else None,
+            d_max_risk_width=risk_widths(models, np.asarray(config.damping_ratios), ds["n_stuck"].values,
+                                         ds["n_runs"].values, config.risk_levels, config.confidence,
+                                         config.target_steps),
+            refinement=_refinement_summary(ds, stoch) if "refine_has_cycle" in ds else None,
             checkpoint_hash=ds.attrs.get("checkpoint_hash") or None,
         )
 
@@ -614,6 +816,16 @@ def _risk_entries(ds: xr.Dataset, model: str, risk_levels: Sequence[float], n_fo
                       high_open=bool(at("d_max_risk_high_open", i, j)), resolved=bool(at("d_max_risk_resolved", i, j)))
              for j, a in enumerate(risk_levels)]
             for i in range(n_forces)]
+
+
+def _refinement_summary(ds: xr.Dataset, stoch: Sequence[str]) -> RefinementSummary:
+    """The :class:`RefinementSummary` of a refined study's dataset (its ``refine_*`` attributes, ``n_runs``)."""
+    a = ds.attrs
+    return RefinementSummary(
+        risk_level=float(a["refine_risk_level"]), target_steps=int(a["refine_target_steps"]),
+        max_runs_per_cell=int(a["refine_max_runs_per_cell"]), run_budget=int(a["refine_run_budget"]),
+        runs_added=int(a["refine_runs_added"]), rounds=int(a["refine_rounds"]), stop=str(a["refine_stop"]),
+        runs_per_cell={m: ds["n_runs"].sel(model=m).values.astype(int).tolist() for m in stoch})
 
 
 def _phase_summary(ds: xr.Dataset, models: Sequence[str], save_every: int) -> PhaseSummary:

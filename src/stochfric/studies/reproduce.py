@@ -2,7 +2,11 @@
 
 ``quick=True`` uses coarse grids and few runs (measured times: README, "How long it takes");
 the full plan uses the thesis's resolution (D 0.05 … 0.25 × 41, 7 forces, 10 runs; 30 runs for the normal-force
-study; η 0 … 3 in steps of 0.05; Lyapunov τ = 200, 30 η, 3 forces, 10 runs).
+study; η 0 … 3 in steps of 0.05; Lyapunov τ = 200, 30 η, 3 forces, 10 runs).  ``runs`` replaces the runs of
+every study (the thesis's fixed-runs mode at another R).  ``refine=True`` closes the damping studies'
+D_max(10 %) intervals adaptively within ``run_budget`` added runs (docs/studies.md, "Closing the D_max(α)
+interval"): only P(stick-slip | D) and D_max(α) take the added runs, every other number stays that of the fixed
+runs.  The default is the thesis's fixed-runs mode.
 """
 
 from __future__ import annotations
@@ -31,8 +35,19 @@ def run_study(config: AnyStudyConfig, **kwargs: Any) -> StudyResult[Any]:
     return study_kind(config.kind).run(config, **kwargs)
 
 
+def configure(configs: list[Any], *, runs: int | None = None, refine: bool = False,
+              run_budget: int | None = None) -> list[Any]:
+    """``configs`` (of :func:`plan`) with ``runs`` runs per cell (``None``: theirs) and, for the damping studies,
+    ``refine`` and ``run_budget`` (``None``: the default); a value the configs refuse raises
+    :class:`~stochfric.studies.errors.StudyConfigError`."""
+    fixed = {} if runs is None else {"runs": runs}
+    closing = {"refine": refine, **({} if run_budget is None else {"run_budget": run_budget})} if refine else {}
+    return [type(c)(**{**c.model_dump(exclude_unset=True), **fixed, **(closing if c.kind == "damping" else {})})
+            if fixed or closing else c for c in configs]
+
+
 def plan(quick: bool, seed: int = 2013) -> list[Any]:
-    """The study configs of ``reproduce`` (both presets)."""
+    """The study configs of ``reproduce`` (both presets, the thesis's fixed runs)."""
     out: list[Any] = []
     g = parse_grid
     for pre in PresetName:
@@ -61,13 +76,17 @@ def reproduce(
     *,
     quick: bool = False,
     seed: int = 2013,
+    runs: int | None = None,
+    refine: bool = False,
+    run_budget: int | None = None,
     executor: Executor | None = None,
     checkpoint: str | Path | None = None,
     progress: StagedProgress | None = None,
     report: Callable[..., Any] | None = None,
     study_done: Callable[[StudyResult[Any]], None] | None = None,
 ) -> tuple[list[StudyResult[Any]], dict[str, float]]:
-    """Run :func:`plan`, save every result under ``out/<preset>/`` and, with ``report``, write the report.
+    """Run :func:`plan`, set by :func:`configure` to ``runs``, ``refine``, ``run_budget``, save every result under
+    ``out/<preset>/`` and, with ``report``, write the report.
 
     ``report(results, out, title=…, chapter3=…)`` renders the results and the chapter-3 analysis of
     the shipped surface (:func:`~stochfric.studies.chapter3.chapter3_analysis` with ``seed``, handed over
@@ -84,7 +103,7 @@ def reproduce(
     results: list[StudyResult[Any]] = []
     timings: dict[str, float] = {}
     t0 = time.perf_counter()
-    for cfg in plan(quick, seed):
+    for cfg in configure(plan(quick, seed), runs=runs, refine=refine, run_budget=run_budget):
         label = f"{cfg.preset}/{cfg.kind}"
         t = time.perf_counter()
         cb = (lambda d, n, label=label: progress(label, d, n)) if progress is not None else None

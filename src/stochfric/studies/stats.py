@@ -339,6 +339,10 @@ class RiskLimit(_JsonRecord):
     confidence).  ``high_open``: ``high`` is the grid end, so D_max(α) may lie at or beyond it.
     ``resolved``: n runs can resolve α at all — the upper bound after 0 of n, 1 − ((1 − c)/2)^{1/n},
     is below α; if not, ``high`` is the grid end at every D with k = 0 (the runs cannot exclude P ≥ α).
+    n is the fewest runs of a grid D above ``low`` (the D that decide ``high``; all D when ``low`` is NaN),
+    which matters where the runs differ between grid D (adaptive refinement, :mod:`~stochfric.studies.refine`);
+    ``low`` at the grid end leaves no D above it and is resolved (P ≥ α there with confidence: the grid, not
+    the runs, keeps the upper end open).  ``n_runs``: the fewest runs of any grid D.
     """
 
     risk_level: float
@@ -383,11 +387,17 @@ def risk_limit(damping: npt.ArrayLike, k: npt.ArrayLike, n: npt.ArrayLike, risk_
         return float(d[mask].max()) if mask.any() else math.nan
 
     n_min = int(nn[ok].min()) if ok.any() else 0
-    zero_bound = 1.0 - ((1.0 - confidence) / 2) ** (1.0 / n_min) if n_min > 0 else 1.0
+    low = largest(lo >= risk_level)
+    above = ok & (d > low + 1e-12) if math.isfinite(low) else ok
+    if math.isfinite(low) and not above.any():  # low is the grid end: P ≥ α there with confidence, nothing above
+        resolved = True
+    else:  # the cells that decide the upper end
+        n_ref = int(nn[above].min()) if above.any() else n_min
+        resolved = n_ref > 0 and 1.0 - ((1.0 - confidence) / 2) ** (1.0 / n_ref) < risk_level
     high = largest(hi >= risk_level)
-    return RiskLimit(risk_level=float(risk_level), value=largest(p >= risk_level), low=largest(lo >= risk_level),
+    return RiskLimit(risk_level=float(risk_level), value=largest(p >= risk_level), low=low,
                      high=high, high_open=bool(math.isfinite(high) and d.size > 0 and high >= d.max() - 1e-12),
-                     resolved=bool(zero_bound < risk_level), n_runs=n_min, confidence=float(confidence))
+                     resolved=bool(resolved), n_runs=n_min, confidence=float(confidence))
 
 
 def runs_to_resolve(risk_level: float, confidence: float = 0.95) -> int:

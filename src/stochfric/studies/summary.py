@@ -144,7 +144,8 @@ class StudySummary:
     τ = ω0 t), ``models``; the modelling choices (method §5): ``path_coordinate`` (where the contact
     process is read), ``white_intensity`` (the σ_ζ rule), ``white_increment`` and ``process_level``,
     ``white_model`` (the white model's standing, where it ran); ``warnings`` (simulation warnings,
-    counted by class) and ``versions`` (packages that shaped the numbers).
+    counted by class), ``extrapolation`` (the process model used outside its fitted pressures, allowed
+    explicitly: one stamp per such force) and ``versions`` (packages that shaped the numbers).
     """
 
     schema: str
@@ -162,6 +163,8 @@ class StudySummary:
     process_level: str
     white_model: str | None = field(default=None, metadata=OPTIONAL)
     warnings: list[WarningCount] = field(default_factory=list)
+    #: Stamps of forces at which the process model was used outside its fitted pressures (allowed explicitly).
+    extrapolation: list[str] | None = field(default=None, metadata=OPTIONAL)
     versions: dict[str, str] = field(default_factory=dict)
 
     def __init_subclass__(cls, *, kind: str | None = None, **kwargs: Any) -> None:

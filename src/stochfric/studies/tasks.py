@@ -166,8 +166,8 @@ def setup_for(config: StudyConfig, tau_end: float | None = None) -> CaseSetup:
     """The :class:`~stochfric.oscillator.case.CaseSetup` of a study config (``tau_end`` stands in for a
     missing ``config.tau_end``)."""
     te = config.tau_end if config.tau_end is not None else tau_end
-    return case_setup(config.preset, config.process_file, te, config.dt, config.white_intensity,
-                      config.process_level)
+    return case_setup(config.case_source(), config.process_file, te, config.dt, config.white_intensity,
+                      config.process_level, allow_extrapolation=config.allow_extrapolation)
 
 
 @dataclass(frozen=True)

@@ -28,7 +28,7 @@ def test_presets_match_the_thesis_tables() -> None:
     assert dc04.e_star_pa == pytest.approx(115e9, rel=0.005)  # not the misprinted 1.15 GPa
     assert dc04.hardness == 4850e6
     assert dc04.shear_strength_pa == 500e6
-    assert material_names() == ["brake-pad", "dc04"]
+    assert {"brake-pad", "dc04"} <= set(material_names())
 
 
 def test_hardness_defaults_to_5p6_rp() -> None:
