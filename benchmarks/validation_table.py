@@ -20,16 +20,15 @@ from pathlib import Path
 
 import numpy as np
 
-from stochfric.contact.asperity import default_approach_m
 from stochfric.contact.materials import load_material
 from stochfric.errors import StochfricError
 from stochfric.process.ensemble import SurrogateOptions
 from stochfric.process.holdout import holdout_validation, measured_windows
+from stochfric.process.pipeline import choose_approach
 from stochfric.process.verbatim import BlockMatcher, default_block, pool_verbatim, verbatim_fraction
 from stochfric.random import spawn_generators
 from stochfric.surface.io import read_surface
 from stochfric.surface.preprocess import Preparation, prepare
-from stochfric.surface.summits import summits_of
 from stochfric.surface.surrogates import SURROGATES, SurrogateSettings
 
 SHARED = Path(__file__).resolve().parents[2] / "shared" / "data" / "topographies"
@@ -43,7 +42,8 @@ def _row(name: str, seed: int, methods: list[str]) -> list[str]:
     except StochfricError as exc:
         return [f"| {name} | refused by the preparation: {str(exc)[:120]} | | | | |"]
     mat = load_material("brake-pad" if name.startswith("al3d") else "dc04")
-    u = default_approach_m(summits_of(coarse), num=6)
+    u_full = choose_approach([coarse], summit_rule="thesis")  # the default range, capped on the windows
+    u = np.linspace(u_full[0], u_full[-1], 6)
     mw = measured_windows([coarse], mat, u, rule="thesis")
     if mw is None:
         measured = "too few summits for 2 × 2 windows"

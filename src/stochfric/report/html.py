@@ -485,7 +485,14 @@ def verdict_section(results: Sequence[StudyResult[Any]]) -> str:
                    + (f"<p class='note'>{html.escape(note)}</p>" if note else ""))
     if not out:
         return ""
-    return ("<h2>Verdict</h2><p>Will it stick-slip? D_max(α) is the largest damping ratio D at which stick-slip "
+    sources = sorted({r.summary.process_source for r in results if isinstance(r.summary, DampingSummary)})
+    about = "; ".join(
+        f"{src.split(':', 1)[1]}: the thesis's friction-process model of that preset (Tables 3.3/3.6), not the "
+        "shipped surface's own analysis" if src.startswith("preset:") else
+        f"the friction-process model {src.split(':', 1)[-1]}" for src in sources)
+    return ("<h2>Verdict</h2>"
+            f"<p class='about'><b>Whose friction model:</b> {html.escape(about)}.</p>"
+            "<p>Will it stick-slip? D_max(α) is the largest damping ratio D at which stick-slip "
             "(a slip→stick transition after the transient) has probability ≥ α, with its 95 % interval "
             "(docs/studies.md, damping); the deterministic limit is <i>not safe</i> where a stochastic model's "
             "whole interval lies above it. Above D_max(α) the risk is below α.</p>" + "".join(out))

@@ -17,7 +17,7 @@ def _entry(value: float | None, lo: float | None, hi: float | None, *, high_open
 
 def test_verdict_table_says_holds_not_safe_and_not_resolved() -> None:
     summary = DampingSummary(
-        schema=STUDY_SCHEMA, study="damping", preset="brake", process_source="preset", runs=100, seed=1,
+        schema=STUDY_SCHEMA, study="damping", preset="brake", process_source="preset:brake", runs=100, seed=1,
         tau_end=50.0, dt=0.005, models=["deterministic", "white", "contact"], path_coordinate="mass",
         white_intensity="sigma_mu", white_increment="ito", process_level="sigma_mu",
         normal_force_n=[1800.0, 5600.0, 8000.0], damping_ratio=[0.05, 0.1, 0.15, 0.2, 0.25],
@@ -33,6 +33,8 @@ def test_verdict_table_says_holds_not_safe_and_not_resolved() -> None:
     )
     html = verdict_section([SimpleNamespace(kind="damping", summary=summary)])
     assert html.startswith("<h2>Verdict</h2>") and "<h3>brake</h3>" in html
+    # the page says whose friction model the verdict is about (issue 30, item 7)
+    assert "Whose friction model" in html and "thesis&#x27;s friction-process model of that preset" in html
     rows = html.split("<tr>")[2:]
     assert len(rows) == 3
     assert rows[0].endswith("<td>holds</td></tr>")                        # every interval at or below D_max^d
