@@ -1,0 +1,47 @@
+"""A Ctrl-C is never lost (studies.executors._interrupt_latch): where its KeyboardInterrupt is swallowed — as
+Python does inside a ctypes callback, which numba's compiler cache uses — the sweep still stops after the
+running task with SweepInterrupted (exit 130 on the command line), instead of running on to exit 0."""
+
+from __future__ import annotations
+
+import os
+import signal
+from collections.abc import Iterator, Sequence
+from types import SimpleNamespace
+from typing import Any
+
+import pytest
+
+from stochfric.studies.executors import SerialExecutor, SweepInterrupted, run_tasks
+
+
+class _SwallowingExecutor(SerialExecutor):
+    """Runs tasks; during the first one a SIGINT arrives and its KeyboardInterrupt is swallowed."""
+
+    def run(self, fn: Any, tasks: Sequence[Any]) -> Iterator[tuple[Any, Any]]:
+        for k, t in enumerate(tasks):
+            if k == 0:
+                try:
+                    os.kill(os.getpid(), signal.SIGINT)
+                    for _ in range(1000):  # the handler runs at the next bytecode boundary
+                        pass
+                except KeyboardInterrupt:
+                    pass  # what a ctypes callback does with it
+            yield t, {"k": k}
+
+
+def test_a_swallowed_ctrl_c_still_stops_the_sweep() -> None:
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)  # as in a command-line process
+    try:
+        tasks = [SimpleNamespace(index=i) for i in range(5)]
+        with pytest.raises(SweepInterrupted):
+            run_tasks(tasks, executor=_SwallowingExecutor(), fn=lambda t, threads: {})  # type: ignore[arg-type]
+        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # the handler is restored
+    finally:
+        signal.signal(signal.SIGINT, previous)
+
+
+def test_without_ctrl_c_every_task_runs() -> None:
+    tasks = [SimpleNamespace(index=i) for i in range(3)]
+    results, stats = run_tasks(tasks, executor=SerialExecutor(), fn=lambda t, threads: {"i": t.index})  # type: ignore[arg-type]
+    assert sorted(results) == [0, 1, 2] and stats.computed == 3
