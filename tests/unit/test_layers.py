@@ -27,7 +27,7 @@ PACKAGE = Path(__file__).resolve().parents[2] / "src" / "stochfric"
 #: Layer of each top-level module or sub-package of stochfric, lowest first.
 LAYERS: dict[str, int] = {
     "units": 0, "random": 0, "validation": 0, "io_utils": 0, "plotting": 0, "progress": 0, "__init__": 0, "data": 0,
-    "vector_width": 0, "arrays": 0, "errors": 0,
+    "vector_width": 0, "arrays": 0, "errors": 0, "interrupts": 0,
     "friction_process": 1,
     "surface": 2,
     "contact": 3,

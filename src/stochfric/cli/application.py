@@ -9,6 +9,7 @@ stderr and exit status 2 (:func:`~stochfric.cli.options.fail`), never a tracebac
 
 from __future__ import annotations
 
+import sys
 from typing import Annotated, Any
 
 import typer
@@ -16,6 +17,7 @@ from typer.core import TyperGroup
 
 from .. import __version__
 from ..errors import StochfricError
+from ..interrupts import install_ctrl_c_latch
 from .assess import register as register_assess_command
 from .options import fail, write_failed
 from .process import register as register_process_commands
@@ -32,6 +34,7 @@ class StochfricGroup(TyperGroup):
     need not list the package's errors it may meet."""
 
     def invoke(self, ctx: Any) -> Any:  # a click Context (typer vendors click: no one import path for its type)
+        install_ctrl_c_latch()  # a Ctrl-C swallowed anywhere in the command still stops its sweeps
         try:
             return super().invoke(ctx)
         except StochfricError as exc:
@@ -78,6 +81,9 @@ def main() -> None:
     with the one-line message of :func:`~stochfric.cli.options.write_failed` wherever it happens."""
     try:
         app()
+    except KeyboardInterrupt:  # a Ctrl-C outside a command's own handler (startup, validation, shutdown)
+        sys.stderr.write("interrupted; nothing more was run\n")
+        raise SystemExit(130) from None
     except OSError as exc:
         try:
             raise write_failed(exc) from None

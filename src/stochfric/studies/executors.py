@@ -31,6 +31,7 @@ from typing import Any
 
 import numpy.typing as npt
 
+from ..interrupts import ctrl_c_latch
 from .errors import StudyError
 from .store import CheckpointStore
 from .tasks import TaskSpec, execute_task
@@ -247,32 +248,6 @@ class SweepInterrupted(KeyboardInterrupt):
         return self.stats.loaded + self.stats.computed if self.checkpoint is not None else 0
 
 
-@contextlib.contextmanager
-def _interrupt_latch() -> Iterator[threading.Event]:
-    """Remember a Ctrl-C even where its KeyboardInterrupt is swallowed: raised inside a ctypes callback (numba's
-    compiler cache notifies through one) Python only prints "Exception ignored" and the sweep would run on to
-    exit 0.  The SIGINT handler sets the event and raises as before; the sweep checks the event after every
-    task.  Main thread only (elsewhere a plain event that is never set)."""
-    event = threading.Event()
-    if threading.current_thread() is not threading.main_thread():
-        yield event
-        return
-    previous = signal.getsignal(signal.SIGINT)
-    if previous is signal.SIG_IGN:  # a worker or a caller that ignores Ctrl-C: leave it so
-        yield event
-        return
-
-    def _on_sigint(signum: int, frame: Any) -> None:
-        event.set()
-        raise KeyboardInterrupt
-
-    signal.signal(signal.SIGINT, _on_sigint)
-    try:
-        yield event
-    finally:
-        signal.signal(signal.SIGINT, previous)
-
-
 def run_tasks(
     tasks: Sequence[TaskSpec],
     *,
@@ -303,7 +278,9 @@ def run_tasks(
     if progress is not None:
         progress(len(results), total)
     try:
-        with _interrupt_latch() as interrupted:
+        with ctrl_c_latch() as interrupted:
+            if interrupted.is_set():  # a Ctrl-C swallowed before the sweep (stochfric.interrupts)
+                raise KeyboardInterrupt
             for t, arrays in ex.run(fn, todo):
                 if store is not None:
                     store.save(t.index, arrays)
@@ -311,7 +288,7 @@ def run_tasks(
                 stats.computed += 1
                 if progress is not None:
                     progress(len(results), total)
-                if interrupted.is_set():  # a Ctrl-C whose KeyboardInterrupt was swallowed (see _interrupt_latch)
+                if interrupted.is_set():  # a Ctrl-C whose KeyboardInterrupt was swallowed (stochfric.interrupts)
                     raise KeyboardInterrupt
     except SweepInterrupted:
         raise

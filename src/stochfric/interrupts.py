@@ -1,0 +1,64 @@
+"""A Ctrl-C is never lost (foundation layer: no stochfric imports).
+
+Python delivers SIGINT as a KeyboardInterrupt at the next bytecode boundary of the main thread.  Raised inside
+a ctypes callback — numba's compiler cache notifies through one — it is only printed ("Exception ignored on
+calling ctypes callback function") and the program runs on: a study interrupted while compiling finished and
+exited 0.  The latch's SIGINT handler also sets :data:`CTRL_C`; the sweep (:func:`stochfric.studies.executors.
+run_tasks`) checks it before and after every task and stops as for any Ctrl-C.
+
+The command line installs the latch for the whole command (:func:`install_ctrl_c_latch`), so a Ctrl-C swallowed
+before the sweep starts is not lost either; a library caller gets it for the duration of each sweep
+(:func:`ctrl_c_latch`).  Only the main thread, and only where SIGINT has Python's default handler (a worker
+that ignores Ctrl-C keeps ignoring it).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import signal
+import threading
+from collections.abc import Iterator
+from typing import Any
+
+__all__ = ["CTRL_C", "ctrl_c_latch", "install_ctrl_c_latch"]
+
+#: Set by the latch's SIGINT handler; cleared when a latch starts.
+CTRL_C = threading.Event()
+_process_latch = False
+
+
+def _on_sigint(signum: int, frame: Any) -> None:
+    CTRL_C.set()
+    raise KeyboardInterrupt
+
+
+def _can_install() -> bool:
+    return (threading.current_thread() is threading.main_thread()
+            and signal.getsignal(signal.SIGINT) is signal.default_int_handler)
+
+
+def install_ctrl_c_latch() -> None:
+    """The latch for the rest of the process (the command line, once per command)."""
+    global _process_latch
+    if _process_latch or _can_install():
+        CTRL_C.clear()
+        signal.signal(signal.SIGINT, _on_sigint)
+        _process_latch = True
+
+
+@contextlib.contextmanager
+def ctrl_c_latch() -> Iterator[threading.Event]:
+    """The latch for a block (a sweep): under a process latch, the process's event as it is (a Ctrl-C swallowed
+    before the block counts); otherwise a fresh one, the previous handler restored afterwards."""
+    if _process_latch and signal.getsignal(signal.SIGINT) is _on_sigint:
+        yield CTRL_C
+        return
+    if not _can_install():
+        yield threading.Event()  # never set: Ctrl-C is not ours to handle here
+        return
+    CTRL_C.clear()
+    previous = signal.signal(signal.SIGINT, _on_sigint)
+    try:
+        yield CTRL_C
+    finally:
+        signal.signal(signal.SIGINT, previous)
