@@ -6,7 +6,7 @@ calling ctypes callback function") and the program runs on: a study interrupted 
 exited 0.  The latch's SIGINT handler also sets :data:`CTRL_C`; the sweep (:func:`stochfric.studies.executors.
 run_tasks`) checks it before and after every task and stops as for any Ctrl-C.
 
-The command line installs the latch for the whole command (:func:`install_ctrl_c_latch`), so a Ctrl-C swallowed
+The command line installs the latch for the whole command (:func:`command_ctrl_c_latch`), so a Ctrl-C swallowed
 before the sweep starts is not lost either; a library caller gets it for the duration of each sweep
 (:func:`ctrl_c_latch`).  Only the main thread, and only where SIGINT has Python's default handler (a worker
 that ignores Ctrl-C keeps ignoring it).
@@ -20,7 +20,7 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["CTRL_C", "ctrl_c_latch", "install_ctrl_c_latch"]
+__all__ = ["CTRL_C", "command_ctrl_c_latch", "ctrl_c_latch"]
 
 #: Set by the latch's SIGINT handler; cleared when a latch starts.
 CTRL_C = threading.Event()
@@ -37,13 +37,23 @@ def _can_install() -> bool:
             and signal.getsignal(signal.SIGINT) is signal.default_int_handler)
 
 
-def install_ctrl_c_latch() -> None:
-    """The latch for the rest of the process (the command line, once per command)."""
+@contextlib.contextmanager
+def command_ctrl_c_latch() -> Iterator[None]:
+    """The latch for one command of the command line (installed at its start, removed at its end, so that an
+    in-process caller such as a test runner gets its handler back and no stale Ctrl-C)."""
     global _process_latch
-    if _process_latch or _can_install():
+    if _process_latch or not _can_install():
+        yield
+        return
+    CTRL_C.clear()
+    previous = signal.signal(signal.SIGINT, _on_sigint)
+    _process_latch = True
+    try:
+        yield
+    finally:
+        _process_latch = False
         CTRL_C.clear()
-        signal.signal(signal.SIGINT, _on_sigint)
-        _process_latch = True
+        signal.signal(signal.SIGINT, previous)
 
 
 @contextlib.contextmanager
@@ -61,4 +71,5 @@ def ctrl_c_latch() -> Iterator[threading.Event]:
     try:
         yield CTRL_C
     finally:
+        CTRL_C.clear()
         signal.signal(signal.SIGINT, previous)

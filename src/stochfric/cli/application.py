@@ -17,7 +17,7 @@ from typer.core import TyperGroup
 
 from .. import __version__
 from ..errors import StochfricError
-from ..interrupts import install_ctrl_c_latch
+from ..interrupts import command_ctrl_c_latch
 from .assess import register as register_assess_command
 from .options import fail, write_failed
 from .process import register as register_process_commands
@@ -34,11 +34,12 @@ class StochfricGroup(TyperGroup):
     need not list the package's errors it may meet."""
 
     def invoke(self, ctx: Any) -> Any:  # a click Context (typer vendors click: no one import path for its type)
-        install_ctrl_c_latch()  # a Ctrl-C swallowed anywhere in the command still stops its sweeps
-        try:
-            return super().invoke(ctx)
-        except StochfricError as exc:
-            raise fail(str(exc)) from None
+        # a Ctrl-C swallowed anywhere in the command still stops its sweeps
+        with command_ctrl_c_latch():
+            try:
+                return super().invoke(ctx)
+            except StochfricError as exc:
+                raise fail(str(exc)) from None
 
 
 app = typer.Typer(

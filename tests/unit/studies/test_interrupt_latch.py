@@ -12,6 +12,7 @@ from typing import Any
 
 import pytest
 
+from stochfric.interrupts import CTRL_C
 from stochfric.studies.executors import SerialExecutor, SweepInterrupted, run_tasks
 
 
@@ -39,6 +40,7 @@ def test_a_swallowed_ctrl_c_still_stops_the_sweep() -> None:
         assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # the handler is restored
     finally:
         signal.signal(signal.SIGINT, previous)
+    assert not CTRL_C.is_set()  # no stale Ctrl-C after the sweep
 
 
 def test_without_ctrl_c_every_task_runs() -> None:
