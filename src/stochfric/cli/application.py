@@ -19,6 +19,7 @@ from .. import __version__
 from ..errors import StochfricError
 from ..interrupts import command_ctrl_c_latch
 from .assess import register as register_assess_command
+from .contact_models import register as register_contact_models_command
 from .options import fail, write_failed
 from .process import register as register_process_commands
 from .simulate import register as register_simulate_command
@@ -75,6 +76,7 @@ register_surface_commands(app)
 register_process_commands(app)
 register_study_commands(app)
 register_assess_command(app)
+register_contact_models_command(app)
 
 
 def main() -> None:

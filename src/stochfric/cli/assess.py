@@ -55,6 +55,10 @@ def assess_command(
         "--allow-extrapolation", help="Use the model outside its fitted pressures (stamped).")] = False,
     no_normal_force_study: Annotated[bool, typer.Option("--no-normal-force-study",
                                                         help="Skip the normal-force study.")] = False,
+    contact_model: Annotated[str, typer.Option(
+        "--contact-model", help="The contact model whose E[μ](p), σ_μ(p) the studies read: gw (the thesis), bem, "
+                                "bem-plastic, persson; or all (GW, with every model's spread reported; "
+                                "docs/contact_models.md).")] = "gw",
     surf: SurfaceOptions = GROUP,
     as_json: Annotated[bool, typer.Option("--json", help="Print assess.json instead of the first screen.")] = False,
 ) -> None:
@@ -69,6 +73,7 @@ def assess_command(
             forces=forces, damping_points=damping_points, tau_end=tau_end, workers=workers,
             analysis=AnalysisConfig(realizations=realizations, seed=seed, summit_rule=surf.summit_rule),
             accept_not_credible=accept_not_credible, allow_extrapolation=allow_extrapolation,
+            contact_model=contact_model,
             normal_force_study=not no_normal_force_study)
         result = assess(files, material, machine, out=out, settings=settings,
                         progress=None if as_json else (lambda s: err.print(f"[dim]{escape(s)}[/]")),

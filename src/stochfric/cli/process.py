@@ -41,6 +41,7 @@ from stochfric.io_utils import check_output_path, json_ready
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
 from stochfric.process.checks import WINDOW_TILES
+from stochfric.process.contact_models import LoadControl
 from stochfric.process.credibility import NOT_CREDIBLE_EXIT
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.holdout import HOLDOUT_MAX_REALIZATIONS, HOLDOUT_REALIZATIONS
@@ -149,6 +150,17 @@ def friction_process_command(
         SigmaZetaRule, typer.Option("--sigma-zeta-rule", help="sigma_mu (thesis) or spectral_level (S0/2).")
     ] = SigmaZetaRule.SIGMA_MU,
     seed: Annotated[int | None, typer.Option("--seed", min=0, help="Root seed (recorded).")] = None,
+    contact_model: Annotated[
+        str, typer.Option("--contact-model", help="gw (the thesis), bem, bem-plastic, persson, a comma-separated "
+                          "list or all: anything but gw also solves the surrogates and measured windows by GW and "
+                          "these models at the fitted pressures (load control) and reports the spread "
+                          "(contact_models.json); one model other than gw gives the written model its E[μ](p), "
+                          "σ_μ(p) (docs/contact_models.md).")
+    ] = "gw",
+    bem_solver: Annotated[
+        str, typer.Option("--bem-solver", help="Boundary-element solver of bem / bem-plastic: auto (Tamaas "
+                          "elastic, ContactMechanics with the cap), tamaas or contactmechanics.")
+    ] = "auto",
     out: Annotated[
         Path | None,
         typer.Option("--out", help=f"Directory for {MODEL_FILE} (the model) and {STATISTICS_FILE}."),
@@ -182,6 +194,7 @@ def friction_process_command(
                 height_unit=surf.height_unit, fill_undefined=surf.fill_undefined, resample=resample,
                 approach_m=approach, approach_rule=approach_rule.value, window_shift_m=_window_shift_m(window_shift_um),
                 workers=workers, progress=progress, notify=None if as_json else _note,
+                contact_model=contact_model, load_control=LoadControl(bem_solver=bem_solver),
             )  # fmt: skip
         payload = run.to_json_dict()
         if out is not None:
@@ -309,7 +322,8 @@ def _print(run: ScanAnalysis, written: dict[str, Any]) -> None:
             f"{_num(f.b_se, '.2g')}, c = {f.c:.5g} ± {_num(f.c_se, '.2g')} ({f.n_points} points)"
         )
     _print_checks(analysis)
-    for key in ("model_file", "statistics_file"):
+    _print_contact_models(run)
+    for key in ("model_file", "statistics_file", "contact_models_file"):
         if key in written:
             typer.echo(f"wrote     {written[key]}")
     for f in written.get("figures", []):
@@ -318,6 +332,27 @@ def _print(run: ScanAnalysis, written: dict[str, Any]) -> None:
         typer.echo(f"note      {n}")
     cr = analysis.credibility
     typer.echo("verdict   " + ("credible" if cr.credible else f"{cr.status.upper()}: " + ", ".join(cr.codes())))
+
+
+def _print_contact_models(run: ScanAnalysis) -> None:
+    """E[μ] of every contact model at the fitted pressures, the GW/BEM ratio, the uncertainty split and the
+    model the written file takes (nothing with GW alone)."""
+    spread = run.contact_models
+    if spread is None:
+        return
+    stats = {m: spread.surrogate_statistics(m)["mu_mean"] for m in spread.models}
+    split = spread.uncertainty_split()
+    ratio = spread.ratio("gw", "bem")
+    typer.echo(f"contact models ({spread.realizations} surrogates, load control): "
+               + "   ".join(f"{m}" for m in spread.models)
+               + ("   gw/bem" if ratio is not None else "") + "   ±sampling ±model")
+    for k, p in enumerate(spread.pressure_pa):
+        typer.echo(f"  p = {p / 1e6:8.4g} MPa  " + "  ".join(f"{stats[m][k]:.4f}" for m in spread.models)
+                   + (f"  {ratio[k]:.3f}" if ratio is not None else "")
+                   + f"  {split['sampling_half_width'][k]:.3f} {split['model_half_width'][k]:.3f}")
+    typer.echo(f"contact   plasticity index {_num(spread.plasticity_index, '.3g')}: {spread.recommendation}")
+    typer.echo(f"contact   the model file's E[μ](p), σ_μ(p): {run.model.contact_model}"
+               + (" (spectrum shape from GW, level scaled)" if run.model.contact_model != "gw" else ""))
 
 
 def _print_checks(analysis: StatisticalContactAnalysis) -> None:

@@ -112,6 +112,9 @@ class TabulatedProcessModel(ProcessModelBase):
     #: pressures' range, for files written before it was recorded); use outside it is refused
     #: (:func:`~stochfric.friction_process.model_base.check_pressure_range`).
     fitted_range_pa: tuple[float, float] | None = None
+    #: The contact model E[μ](p) and σ_μ(p) come from (``gw``, ``bem``, ``bem-plastic``, ``persson``;
+    #: :mod:`stochfric.process.contact_models`); files written before it was recorded are GW.
+    contact_model: str = "gw"
 
     def __post_init__(self) -> None:
         if self.window_length_m is not None:
@@ -238,6 +241,7 @@ class TabulatedProcessModel(ProcessModelBase):
             "window_length_m": self.window_length_m,
             "not_credible": list(self.not_credible),
             "fitted_range_pa": None if self.fitted_range_pa is None else list(self.fitted_range_pa),
+            "contact_model": self.contact_model,
             **self._dict_tail(),
         }
 
@@ -262,4 +266,5 @@ class TabulatedProcessModel(ProcessModelBase):
             psd_level=None if level is None else ModelFunction.from_dict(level),
             window_length_m=data.get("window_length_m"),
             fitted_range_pa=None if data.get("fitted_range_pa") is None else tuple(data["fitted_range_pa"]),
+            contact_model=str(data.get("contact_model", "gw")),
         )

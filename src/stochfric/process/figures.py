@@ -17,10 +17,12 @@ from stochfric.units import MEGAPASCAL, MICROMETRE
 if TYPE_CHECKING:
 
     from stochfric.process.checks import ProcessCheck
+    from stochfric.process.contact_models import ContactModelSpread
     from stochfric.process.statistics import StatisticalContactAnalysis
 
 __all__ = [
     "plot_contact_fraction",
+    "plot_contact_model_spread",
     "plot_ergodicity",
     "plot_fits",
     "plot_mu_path",
@@ -249,3 +251,50 @@ def write_process_figures(a: StatisticalContactAnalysis, directory: str | Path) 
         plot_fits(a, d / "model_functions.png"),
         plot_process_check(a.process_check, d / "process_check.png"),
     ]
+
+
+def plot_contact_model_spread(spread: ContactModelSpread, path: str | Path) -> Path:
+    """The contact models side by side (issue 31): E[μ](p) over the surrogates (±1.96 SE) and over the
+    measured windows (95 % interval) per model, the envelope shaded; σ_μ(p) per model; the path spectra per
+    model where the spread holds them (normalised by their variance, so the shapes compare)."""
+    with_path = bool(spread.paths)
+    fig = new_figure(11.5 if with_path else 8.0, 3.8)
+    axes = fig.subplots(1, 3 if with_path else 2)
+    p = spread.pressure_pa / MEGAPASCAL
+    env = spread.envelope()
+    axes[0].fill_between(p, env["mu_min"], env["mu_max"], color="0.88", label="model envelope")
+    for k, m in enumerate(spread.models):
+        colour = f"C{k}"
+        sur = spread.surrogate_statistics(m)
+        axes[0].errorbar(p, sur["mu_mean"], yerr=1.96 * sur["mu_mean_se"], fmt="o-", color=colour, ms=3,
+                         label=f"{m} (surrogates)")
+        win = spread.window_statistics(m)
+        if win is not None:
+            ci = win["mu_mean_ci95"]
+            axes[0].fill_between(p, ci[:, 0], ci[:, 1], color=colour, alpha=0.12)
+        axes[1].errorbar(p, sur["mu_std"], yerr=1.96 * sur["mu_std_se"], fmt="o-", color=colour, ms=3, label=m)
+    from matplotlib.ticker import NullFormatter
+
+    for ax, label in ((axes[0], "E[μ]"), (axes[1], "σ_μ")):
+        ax.set_xscale("log")
+        ax.xaxis.set_minor_formatter(NullFormatter())  # labelled minor ticks of a short log range overlap
+        ax.set_xlabel("nominal pressure p [MPa]")
+        ax.set_ylabel(label)
+    axes[0].legend(fontsize=7, title="shaded: measured windows, 95 %", title_fontsize=7)
+    axes[1].legend(fontsize=7)
+    if with_path:
+        ax = axes[2]
+        for k, m in enumerate(spread.models):
+            if m not in spread.paths:
+                continue
+            path_m = spread.paths[m]
+            f, s, _se = path_m.spectrum()
+            var = float(np.sum(s) * (f[1] - f[0])) if f.size > 1 else 1.0
+            cl = path_m.correlation_length()[0]
+            ax.loglog(f * 1e-3, s / var * 1e3, color=f"C{k}",
+                      label=f"{m}: ℓ_int = {cl / MICROMETRE:.3g} µm" if np.isfinite(cl) else m)
+        ax.set_xlabel("path frequency f [1/mm]")
+        ax.set_ylabel("S(f)/σ² [mm]")
+        ax.set_title(f"path at p = {next(iter(spread.paths.values())).pressure_pa / MEGAPASCAL:.3g} MPa", fontsize=8)
+        ax.legend(fontsize=7)
+    return save_figure(fig, path)

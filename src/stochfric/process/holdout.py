@@ -72,6 +72,7 @@ __all__ = [
     "holdout_validation",
     "measured_windows",
     "split_halves",
+    "window_summary",
 ]
 
 #: Family-wise false-alarm probability of the out-of-sample test (all quantities, both folds).
@@ -394,16 +395,29 @@ def measured_windows(scans: Sequence[Surface], material: Material, approach_m: F
     t = tiles if tiles is not None else choose_tiles(count)
     if t is None:
         return None
-    blocks, rho = [], []
+    blocks = []
     for s in scans:
         area, force, _n = tile_contact(s.heights_m, s.grid_spacing_m, material, u, tiles=t, rule=rule)
         with np.errstate(invalid="ignore", divide="ignore"):
-            mu = np.asarray(bowden_tabor_mu(area, force, material.shear_strength_pa), dtype=np.float64)
-        blocks.append(mu)
-        grid = mu.reshape(t, t, u.size)
-        rho.append(np.array([_lag1(grid[:, :, k]) for k in range(u.size)]))
+            blocks.append(np.asarray(bowden_tabor_mu(area, force, material.shear_strength_pa), dtype=np.float64))
+    mu_all, mean, mean_ci, std, std_ci, rho1, n_eff = window_summary(blocks, t)
+    i0, i1, j0, j1 = tile_grid(scans[0].nb_grid_pts, t)[0]
+    dx, dy = scans[0].grid_spacing_m
+    return MeasuredWindows(
+        tiles=t, window_size_m=((i1 - i0) * dx, (j1 - j0) * dy), windows=mu_all.shape[0], mu=mu_all, mu_mean=mean,
+        mu_mean_ci95=mean_ci, mu_std=std, mu_std_ci95=std_ci, neighbour_correlation=rho1, effective_windows=n_eff,
+    )  # fmt: skip
+
+
+def window_summary(
+    blocks: Sequence[FloatArray], tiles: int
+) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray]:
+    """Mean and sd of μ over the disjoint windows of every scan (``blocks``: one (tiles², P) array per scan,
+    row-major tiles) with their 95 % intervals (module docstring: jackknife SE × √(J/n_eff), t at n_eff − 1):
+    ``(mu_all, mean, mean_ci95, sd, sd_ci95, rho1, n_eff)``; the intervals have shape (P, 2)."""
     mu_all = np.concatenate(blocks)
-    j = mu_all.shape[0]
+    j, n_p = mu_all.shape
+    rho = [np.array([_lag1(b.reshape(tiles, tiles, n_p)[:, :, k]) for k in range(n_p)]) for b in blocks]
     mean, std = np.nanmean(mu_all, axis=0), np.nanstd(mu_all, axis=0, ddof=1)
     # jackknife over windows: SE of the mean and of the sd
     loo_mean = np.stack([np.nanmean(np.delete(mu_all, i, axis=0), axis=0) for i in range(j)])
@@ -417,14 +431,9 @@ def measured_windows(scans: Sequence[Surface], material: Material, approach_m: F
     inflate = np.sqrt(j / n_eff)
     se_mean, se_std = se_mean * inflate, se_std * inflate
     tq = sps.t.ppf(0.975, np.maximum(n_eff - 1.0, 1.0))
-    i0, i1, j0, j1 = tile_grid(scans[0].nb_grid_pts, t)[0]
-    dx, dy = scans[0].grid_spacing_m
-    return MeasuredWindows(
-        tiles=t, window_size_m=((i1 - i0) * dx, (j1 - j0) * dy), windows=j, mu=mu_all, mu_mean=mean,
-        mu_mean_ci95=np.stack([mean - tq * se_mean, mean + tq * se_mean], axis=1), mu_std=std,
-        mu_std_ci95=np.stack([np.maximum(std - tq * se_std, 0.0), std + tq * se_std], axis=1),
-        neighbour_correlation=rho1, effective_windows=n_eff,
-    )  # fmt: skip
+    mean_ci = np.stack([mean - tq * se_mean, mean + tq * se_mean], axis=1)
+    std_ci = np.stack([np.maximum(std - tq * se_std, 0.0), std + tq * se_std], axis=1)
+    return mu_all, mean, mean_ci, std, std_ci, rho1, n_eff
 
 
 def _lag1(grid: FloatArray) -> float:

@@ -31,10 +31,18 @@ from stochfric.arrays import FloatArray
 from stochfric.contact.asperity import ApproachRule, default_approach_m
 from stochfric.contact.materials import Material, get_material, load_material
 from stochfric.errors import AnalysisError
+from stochfric.friction_process.tabulated import TabulatedProcessModel
 from stochfric.io_utils import check_output_path
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
 from stochfric.process.checks import WINDOW_TILES, window_tiles
+from stochfric.process.contact_models import (
+    ContactModelSpread,
+    LoadControl,
+    contact_model_spread,
+    parse_contact_models,
+    process_model_for,
+)
 from stochfric.process.ensemble import default_window_shift_points, tile_contact
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.pooling import require_summits_for_pooling
@@ -48,6 +56,7 @@ from stochfric.surface.surrogates import SURROGATES, SurrogateSettings
 
 __all__ = [
     "MODEL_FILE",
+    "SPREAD_FILE",
     "STATISTICS_FILE",
     "ApproachRule",
     "ScanAnalysis",
@@ -55,6 +64,7 @@ __all__ = [
     "cap_on_windows",
     "choose_approach",
     "window_shift_points",
+    "write_spread",
 ]
 
 #: File names of :meth:`ScanAnalysis.write`.
@@ -170,6 +180,18 @@ class ScanAnalysis:
     approach_rule: str
     #: The reading's and the preparation's coded warnings (``{"code", "message"}``).
     scan_warnings: list[dict[str, Any]]
+    #: The contact models solved on the same windows and surrogates at the analysis's pressures
+    #: (``contact_model`` other than ``gw``; :mod:`~stochfric.process.contact_models`), else None.
+    contact_models: ContactModelSpread | None = None
+    #: The model written: the analysis's (GW), or with E[μ], σ_μ from the chosen contact model.
+    process_model: TabulatedProcessModel | None = None
+    #: How :attr:`process_model` was made from the spread (:func:`~stochfric.process.contact_models.process_model_for`).
+    contact_model_record: dict[str, Any] | None = None
+
+    @property
+    def model(self) -> TabulatedProcessModel:
+        """The friction-process model this run writes (the chosen contact model's; GW by default)."""
+        return self.process_model if self.process_model is not None else self.analysis.model
 
     @property
     def credible(self) -> bool:
@@ -189,6 +211,11 @@ class ScanAnalysis:
         payload["warnings"] = self.warnings()
         payload["preparation"] = self.pooled.record()
         payload["approach_rule"] = self.approach_rule
+        payload["contact_model"] = self.model.contact_model
+        if self.contact_models is not None:
+            payload["contact_models"] = self.contact_models.to_dict()
+            payload["contact_model_record"] = self.contact_model_record
+            payload["model"] = self.model.to_dict()
         return payload
 
     def write(self, out: str | os.PathLike[str], *, model: bool | None = None, figures: bool = False) -> dict[str, Any]:
@@ -200,8 +227,10 @@ class ScanAnalysis:
         directory.mkdir(parents=True, exist_ok=True)
         written: dict[str, Any] = {}
         if self.credible if model is None else model:
-            written["model_file"] = str(self.analysis.model.save(directory / MODEL_FILE))
+            written["model_file"] = str(self.model.save(directory / MODEL_FILE))
         written["statistics_file"] = str(self.analysis.to_netcdf(directory / STATISTICS_FILE))
+        if self.contact_models is not None:
+            written.update(write_spread(self.contact_models, directory, figures=figures))
         if figures:
             written["figures"] = [str(p) for p in self.write_figures(directory / "figures")]
         return written
@@ -238,6 +267,9 @@ def analyse_scans(
     progress: Callable[[str, int, int], None] | None = None,
     notify: Callable[[str], None] | None = None,
     out: str | os.PathLike[str] | None = None,
+    contact_model: str = "gw",
+    load_control: LoadControl | None = None,
+    path_surfaces: int = 3,
 ) -> ScanAnalysis:
     """Scans → friction-process model: what ``stochfric friction-process FILE...`` does (module docstring).
 
@@ -253,8 +285,16 @@ def analyse_scans(
     directory checked *before* any work (nothing is written; call :meth:`ScanAnalysis.write`).
     Raises a :class:`~stochfric.errors.StochfricError` subclass for bad input; the gate's verdict is
     in the result, not an exception.
+
+    ``contact_model`` (issue 31): ``gw`` (the thesis, default) or ``bem``, ``bem-plastic``, ``persson``, a
+    comma-separated list or ``all``.  Anything but ``gw`` alone also solves the analysis's surrogates and
+    measured windows with GW and those models at the pressures the GW fits used (load control,
+    :func:`~stochfric.process.contact_models.contact_model_spread`, ``load_control`` its solver limits,
+    ``path_surfaces`` long surfaces for the path spectrum per model); with one model other than GW the
+    written model takes its E[μ](p) and σ_μ(p) from it (:func:`~stochfric.process.contact_models.process_model_for`).
     """
     cfg = config if config is not None else AnalysisConfig()
+    models = parse_contact_models(contact_model)
     if out is not None:
         check_output_path(Path(out), option="--out")
     if workers is not None and (isinstance(workers, bool) or not isinstance(workers, int) or workers < 1):
@@ -275,4 +315,42 @@ def analyse_scans(
         notify_cost(surfaces[0], cfg, notify)
     analysis = analyse(surfaces, mat, u, cfg, name=pooled.name, progress=progress, workers=workers)
     rule = EXPLICIT_APPROACH if approach_m is not None else ApproachRule(approach_rule).value
-    return ScanAnalysis(pooled=pooled, analysis=analysis, approach_rule=rule, scan_warnings=pooled.warnings)
+    if models == ("gw",):
+        return ScanAnalysis(pooled=pooled, analysis=analysis, approach_rule=rule, scan_warnings=pooled.warnings)
+    fit = analysis.fits["mu_mean"]
+    used_p = np.asarray(fit.pressure_pa, dtype=np.float64)[np.asarray(fit.used, dtype=bool)]
+    spread = contact_model_spread(surfaces, mat, used_p, ("gw", *models), cfg, control=load_control,
+                                  path_surfaces=min(path_surfaces, cfg.long_surfaces), workers=workers,
+                                  progress=progress)
+    single = [m for m in models if m != "gw"]
+    chosen = single[0] if len(models) == 1 else "gw"
+    model, record = process_model_for(analysis.model, spread, chosen)
+    return ScanAnalysis(pooled=pooled, analysis=analysis, approach_rule=rule, scan_warnings=pooled.warnings,
+                        contact_models=spread, process_model=model, contact_model_record=record)
+
+
+#: File names of the contact-model spread (:func:`write_spread`).
+SPREAD_FILE = "contact_models.json"
+SPREAD_SAMPLES_FILE = "contact_models_samples.nc"
+
+
+def write_spread(spread: ContactModelSpread, out: str | os.PathLike[str], *, figures: bool = True) -> dict[str, Any]:
+    """Write the spread into ``out`` atomically: :data:`SPREAD_FILE` (summary), :data:`SPREAD_SAMPLES_FILE`
+    (per-sample arrays) and with ``figures`` the envelope figure ``contact_models.png``; their paths."""
+    import json
+
+    from stochfric.io_utils import json_ready, write_atomic, write_netcdf_atomic
+
+    directory = Path(out)
+    directory.mkdir(parents=True, exist_ok=True)
+    written: dict[str, Any] = {}
+    text = json.dumps(json_ready(spread.to_dict()), indent=2)
+    written["contact_models_file"] = str(write_atomic(directory / SPREAD_FILE,
+                                                      lambda p: p.write_text(text, encoding="utf-8")))
+    written["contact_models_samples_file"] = str(write_netcdf_atomic(directory / SPREAD_SAMPLES_FILE,
+                                                                     spread.to_dataset()))
+    if figures:
+        from stochfric.process.figures import plot_contact_model_spread
+
+        written["contact_models_figure"] = str(plot_contact_model_spread(spread, directory / "contact_models.png"))
+    return written

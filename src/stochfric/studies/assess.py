@@ -10,7 +10,8 @@ damping, D_max(α) with its interval, the deterministic limit, and whether the d
 
 How sure it is, by source: Monte Carlo (the Clopper–Pearson intervals of P and D_max(α)), surface sampling
 (the model's E[μ](p), σ_μ(p) intervals from the measured windows, docs/statistical_contact.md §0e) and
-model choice (the contact model: GW only here; the boundary-element comparison is issue 31).
+model choice (the contact model: GW by default; ``contact_model`` takes another's E[μ](p), σ_μ(p), or ``all``
+reports the spread of every model on the same surfaces, :mod:`stochfric.process.contact_models`).
 
 Exit codes of the command: 0 a verdict; 3 the surface analysis is not credible or does not cover the
 machine's pressures (no study runs unless ``accept_not_credible``; then every output says so); 2 bad input.
@@ -75,6 +76,9 @@ class AssessSettings:
     allow_extrapolation: bool = False
     workers: int | None = None
     normal_force_study: bool = True
+    #: ``gw`` (the thesis), ``bem``, ``bem-plastic``, ``persson`` or ``all``: the model whose E[μ](p), σ_μ(p)
+    #: the studies read (``all``: GW, with the spread of every model reported; issue 31).
+    contact_model: str = "gw"
 
     def __post_init__(self) -> None:
         for name, low in (("runs", 1), ("run_budget", 1), ("forces", 1), ("damping_points", 2)):
@@ -153,12 +157,30 @@ class Assessment:
             f"machine:    {m.name}: m = {m.mass:g} kg, c = {m.stiffness:g} N/m, v0 = {m.belt_speed:g} m/s, "
             f"A_nom = {m.contact_area:g} m², N = {lo:g}–{hi:g} N (p = {lo / m.contact_area / 1e6:.3g}–"
             f"{hi / m.contact_area / 1e6:.3g} MPa), D = {m.damping_ratio:g}",
-            "contact:    Greenwood–Williamson (the thesis's model; the boundary-element spread is not included)",
+            self._contact_line(),
             f"status:     {self.status}" + (f" — {'; '.join(self.reasons)}" if self.reasons else ""),
         ]
         head += [f.line(self.risk_level) for f in self.forces]
         head += self.how_sure()
         return head
+
+    def _contact_line(self) -> str:
+        """Which contact model the studies read, and the spread where the other models were solved."""
+        run = self.analysis
+        names = {"gw": "Greenwood–Williamson (the thesis's model)", "bem": "elastic boundary elements",
+                 "bem-plastic": "elastic–plastic boundary elements (pressure capped at H)",
+                 "persson": "Persson's theory"}
+        if run is None:
+            return "contact:    Greenwood–Williamson (the thesis's model)"
+        used = run.model.contact_model
+        line = f"contact:    {names.get(used, used)}"
+        spread = run.contact_models
+        if spread is None:
+            return line + "; other models not run (--contact-model all gives their spread)"
+        env = spread.envelope()
+        worst = 100 * float(np.max(env["relative_spread"]))
+        return (line + f"; models {', '.join(spread.models)} differ by up to {worst:.0f} % "
+                f"in E[μ]; γ = {_fmt(spread.plasticity_index, '.3g')} recommends {', '.join(spread.recommended)}")
 
     def how_sure(self) -> list[str]:
         """Where the uncertainty comes from (Monte Carlo, surface sampling, model choice)."""
@@ -175,8 +197,17 @@ class Assessment:
             out.append(f"surface sampling: E[μ] known to ±{100 * rel:.2g} % (95 %), of which "
                        f"{_fmt(100 * share, '.2g')} % of the variance is the measurement's (more measured area "
                        "narrows it, more runs do not)")
-        out.append("model choice: GW only; GW and boundary-element contact area differ 1.4–1.7× on the shared "
-                   "files (docs/surface_contact.md), not yet propagated")
+        spread = None if self.analysis is None else self.analysis.contact_models
+        if spread is None:
+            out.append("model choice: GW only (--contact-model all solves the same surfaces by every model); GW and "
+                       "boundary-element contact area differ 1.4–1.7× on the shared files (docs/contact_models.md)")
+        else:
+            split = spread.uncertainty_split()
+            share = float(np.nanmean(split["model_share_of_variance"]))
+            out.append(f"model choice: E[μ] over {', '.join(spread.models)} spans ±"
+                       f"{_fmt(float(np.nanmax(split['model_half_width'])), '.3g')} (half range), "
+                       f"{_fmt(100 * share, '.2g')} % of the variance of E[μ] against the surface sampling "
+                       f"(±{_fmt(float(np.nanmax(split['sampling_half_width'])), '.3g')})")
         return out
 
     def to_json_dict(self) -> dict[str, Any]:
@@ -399,16 +430,17 @@ def assess(
     if progress:
         progress(f"surface analysis at {m.pressure_range_pa[0] / 1e6:.3g}–{m.pressure_range_pa[1] / 1e6:.3g} MPa "
                  f"(approach {u[0] * 1e6:.3g}–{u[-1] * 1e6:.3g} µm)")
-    run = analyse_scans(scans, mat, config=an_cfg, approach_m=u, workers=cfg.workers, **scan_options)
+    run = analyse_scans(scans, mat, config=an_cfg, approach_m=u, workers=cfg.workers,
+                        contact_model=cfg.contact_model, **scan_options)
     written = run.write(directory / "friction_process", model=True)
     files.update(written)
     cred = run.analysis.credibility
-    stamp = check_pressure_range(run.analysis.model, list(m.pressure_range_pa), allow=True)
+    stamp = check_pressure_range(run.model, list(m.pressure_range_pa), allow=True)
     if stamp is not None and not cfg.allow_extrapolation:
         result = Assessment(status="not covered", reasons=[stamp + " (the approach range did not reach them)"],
                             approach_m=u, analysis=run, forces=[], studies={}, **base)
         return _finish(result, directory)
-    mu_top = max(run.analysis.model.mean(p) for p in m.pressure_range_pa)
+    mu_top = max(run.model.mean(p) for p in m.pressure_range_pa)
     if m.friction_law.law == "pressure" and mu_top > m.friction_law.mu0:
         raise InputError(
             f"the surface's E[mu] reaches {mu_top:.3g} over the machine's pressures, above the static coefficient "
