@@ -177,7 +177,7 @@ def _print(d: dict[str, Any]) -> None:
     for m in models:
         solver = d["per_model"][m]["solver"]
         if m.startswith("bem"):
-            typer.echo(f"{m}: {d['load_control']['bem_solver']}, at most {solver['max_iterations_used']} iterations "
+            typer.echo(f"{m}: {' / '.join(solver['used'])}, at most {solver['max_iterations_used']} iterations "
                        f"(limit {d['load_control']['max_iterations']}), {solver['seconds_total']:.1f} s in all, "
                        f"slowest sample {solver['seconds_per_sample_max']:.2f} s (limit "
                        f"{d['load_control']['time_limit_s']:g} s)")

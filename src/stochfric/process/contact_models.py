@@ -148,6 +148,7 @@ class _One:
     iterations: FloatArray
     seconds: float
     warnings: tuple[str, ...] = ()
+    solver: str = "closed form"
 
 
 def gw_at_pressures(heights_m: FloatArray, spacing_m: tuple[float, float], material: Material,
@@ -207,7 +208,7 @@ def sample_contact(heights_m: FloatArray, physical_size_m: tuple[float, float], 
         return _One(area_fraction=np.asarray(sol.area_fraction, dtype=np.float64),
                     n_contacts=np.asarray(sol.n_patches, dtype=np.float64),
                     iterations=np.asarray(sol.iterations, dtype=np.float64), seconds=time.perf_counter() - start,
-                    warnings=tuple(sol.warnings))
+                    warnings=tuple(sol.warnings), solver=str(sol.settings.get("method", sol.solver)))
     if model == "persson":
         from stochfric.contact.persson import persson_contact
 
@@ -233,6 +234,8 @@ class ModelSamples:
     iterations: FloatArray
     seconds: FloatArray
     warnings: tuple[str, ...]
+    #: The solver(s) that solved the samples (a sample may fall back to the other boundary-element solver).
+    solvers: tuple[str, ...] = ()
 
     @classmethod
     def of(cls, model: str, pressure_pa: FloatArray, solved: Sequence[_One], tau_pa: float) -> ModelSamples:
@@ -241,7 +244,8 @@ class ModelSamples:
         return cls(model=model, pressure_pa=pressure_pa, area_fraction=frac,
                    n_contacts=np.stack([o.n_contacts for o in solved]), mu=tau_pa * frac / pressure_pa,
                    iterations=np.stack([o.iterations for o in solved]),
-                   seconds=np.array([o.seconds for o in solved]), warnings=warnings)
+                   seconds=np.array([o.seconds for o in solved]), warnings=warnings,
+                   solvers=tuple(dict.fromkeys(o.solver for o in solved)))
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -383,11 +387,14 @@ class ContactModelSpread:
                     "effective_windows": lst(win["effective_windows"])},
                 "mean_contacts": lst(np.nanmean(samples.n_contacts, axis=0)) if np.any(np.isfinite(samples.n_contacts))
                 else None,
-                "solver": {"max_iterations_used": int(np.max(samples.iterations)) if samples.iterations.size else 0,
+                "solver": {"used": list(dict.fromkeys(
+                               samples.solvers + (self.windows[m].solvers if m in self.windows else ()))),
+                           "max_iterations_used": int(np.max(samples.iterations)) if samples.iterations.size else 0,
                            "seconds_total": float(samples.seconds.sum() + (self.windows[m].seconds.sum()
                                                                            if m in self.windows else 0.0)),
                            "seconds_per_sample_max": float(samples.seconds.max()),
-                           "warnings": list(samples.warnings)},
+                           "warnings": list(dict.fromkeys(
+                               samples.warnings + (self.windows[m].warnings if m in self.windows else ())))},
             }
         split = self.uncertainty_split()
         env = self.envelope()

@@ -278,6 +278,8 @@ def plot_contact_model_spread(spread: ContactModelSpread, path: str | Path) -> P
     for ax, label in ((axes[0], "E[μ]"), (axes[1], "σ_μ")):
         ax.set_xscale("log")
         ax.xaxis.set_minor_formatter(NullFormatter())  # labelled minor ticks of a short log range overlap
+        if p.size <= 8:  # a short log range has one decade label at most: label the pressures themselves
+            ax.set_xticks(p, [f"{v:.3g}" for v in p])
         ax.set_xlabel("nominal pressure p [MPa]")
         ax.set_ylabel(label)
     axes[0].legend(fontsize=7, title="shaded: measured windows, 95 %", title_fontsize=7)

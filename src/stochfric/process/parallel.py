@@ -74,7 +74,12 @@ def map_indexed(
             finished += 1
             if done is not None:
                 done(finished)
-    except BaseException:  # Ctrl-C or a failed job: stop the workers now, do not wait for their jobs
+    except Exception:  # a failed job: drop the queued jobs, let the running ones finish, report the failure
+        # (terminating workers here leaves the pool's manager thread setting results on cancelled futures,
+        # which prints InvalidStateError tracebacks after the one-line error)
+        pool.shutdown(wait=True, cancel_futures=True)
+        raise
+    except BaseException:  # Ctrl-C: stop the workers now, do not wait for their jobs
         for proc in list(getattr(pool, "_processes", {}).values()):
             proc.terminate()
         pool.shutdown(wait=False, cancel_futures=True)

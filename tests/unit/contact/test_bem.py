@@ -437,3 +437,18 @@ def test_kappa_falls_towards_two_with_bandwidth() -> None:
     coarse, fine = mean_kappa(128), mean_kappa(512)
     assert np.all(fine < coarse)
     assert np.all(np.abs(fine[1:] / 2.0 - 1.0) < 0.15)
+
+
+def test_a_single_node_contact_falls_back_to_contactmechanics() -> None:
+    """Tamaas cannot compute its error on a one-pixel contact (NaN): the same discretisation is solved by
+    ContactMechanics, and the output says so (issue 31: bad cases get a clear line, never a traceback)."""
+    pytest.importorskip("tamaas")
+    pytest.importorskip("ContactMechanics")
+    rng = np.random.default_rng(0)
+    h = rng.standard_normal((32, 32)) * 1e-9
+    h[10, 10] = 1e-6
+    sol = bem_contact(h, (32e-6, 32e-6), 1e9, [1e2, 1e3], settings=BemSettings(solver="tamaas"))
+    assert sol.solver == "contactmechanics"
+    np.testing.assert_array_equal(sol.area_fraction * 32 * 32, [1.0, 1.0])
+    np.testing.assert_allclose(sol.normal_force_n, np.array([1e2, 1e3]) * 32e-6 * 32e-6, rtol=1e-6)
+    assert any("single node" in w and "contactmechanics" in w for w in sol.warnings), sol.warnings
