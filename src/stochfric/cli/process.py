@@ -41,7 +41,6 @@ from stochfric.io_utils import check_output_path, json_ready
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
 from stochfric.process.checks import WINDOW_TILES
-from stochfric.process.contact_models import LoadControl
 from stochfric.process.credibility import NOT_CREDIBLE_EXIT
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.holdout import HOLDOUT_MAX_REALIZATIONS, HOLDOUT_REALIZATIONS
@@ -76,15 +75,12 @@ FilesArg = Annotated[
 
 @option_group("surf", surface_options)
 def friction_process_command(
-    material: Annotated[
-        str,
-        typer.Option("--material", help=f"Pairing: {', '.join(material_names())} or a JSON file (SI units)."),
-    ],
+    material: Annotated[str, typer.Option("--material", help=f"Pairing: {', '.join(material_names())} or a JSON "
+                                                             "file (SI units).")],
     files: FilesArg = None,
     realizations: Annotated[int, typer.Option("--realizations", help="Similar surfaces of original size (§4a).")] = 100,
-    long_surfaces: Annotated[
-        int, typer.Option("--long-surfaces", help="Long surfaces for μ along the path (§4c).")
-    ] = 10,
+    long_surfaces: Annotated[int, typer.Option("--long-surfaces", help="Long surfaces for μ along the path (§4c).")
+                             ] = 10,
     length_factor: Annotated[
         int, typer.Option("--length-factor", help="Length of a long surface in original lengths (thesis 10).")
     ] = 10,
@@ -150,17 +146,10 @@ def friction_process_command(
         SigmaZetaRule, typer.Option("--sigma-zeta-rule", help="sigma_mu (thesis) or spectral_level (S0/2).")
     ] = SigmaZetaRule.SIGMA_MU,
     seed: Annotated[int | None, typer.Option("--seed", min=0, help="Root seed (recorded).")] = None,
-    contact_model: Annotated[
-        str, typer.Option("--contact-model", help="gw (the thesis), bem, bem-plastic, persson, a comma-separated "
-                          "list or all: anything but gw also solves the surrogates and measured windows by GW and "
-                          "these models at the fitted pressures (load control) and reports the spread "
-                          "(contact_models.json); one model other than gw gives the written model its E[μ](p), "
-                          "σ_μ(p) (docs/contact_models.md).")
-    ] = "gw",
-    bem_solver: Annotated[
-        str, typer.Option("--bem-solver", help="Boundary-element solver of bem / bem-plastic: auto (Tamaas "
-                          "elastic, ContactMechanics with the cap), tamaas or contactmechanics.")
-    ] = "auto",
+    contact_model: Annotated[str, typer.Option("--contact-model", help="gw (thesis), bem, bem-plastic, persson, a list "
+                             "or all: also solve the surrogates and windows by them at the fitted pressures and report "
+                             "the spread; one non-GW model sets the model's E[μ](p), σ_μ(p) (docs/contact_models.md).")
+                             ] = "gw",
     out: Annotated[
         Path | None,
         typer.Option("--out", help=f"Directory for {MODEL_FILE} (the model) and {STATISTICS_FILE}."),
@@ -194,7 +183,7 @@ def friction_process_command(
                 height_unit=surf.height_unit, fill_undefined=surf.fill_undefined, resample=resample,
                 approach_m=approach, approach_rule=approach_rule.value, window_shift_m=_window_shift_m(window_shift_um),
                 workers=workers, progress=progress, notify=None if as_json else _note,
-                contact_model=contact_model, load_control=LoadControl(bem_solver=bem_solver),
+                contact_model=contact_model,
             )  # fmt: skip
         payload = run.to_json_dict()
         if out is not None:

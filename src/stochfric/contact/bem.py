@@ -94,7 +94,10 @@ def bem_available(solver: str) -> bool:
     if solver not in _MODULES:
         raise BemError(f"unknown BEM solver {solver!r}; choose one of {', '.join(BEM_SOLVERS)}")
     try:
-        __import__(_MODULES[solver])
+        if solver == "tamaas":
+            import tamaas  # noqa: F401
+        else:
+            import ContactMechanics  # noqa: F401
     except ImportError:
         return False
     return True
@@ -313,8 +316,9 @@ class _SingleNode(BemError):
     """Tamaas could not compute its error: a contact of a single node (NaN in the complementarity error)."""
 
 
-class _TimeUp(Exception):
-    """Raised from the ContactMechanics callback when the time limit is reached."""
+class _TimeUp(BemError):
+    """Raised from the ContactMechanics callback when the time limit is reached (turned into the clock's
+    :class:`BemError` naming the pressure reached)."""
 
 
 def bem_contact(

@@ -38,7 +38,7 @@ def test_parse_contact_models() -> None:
     assert parse_contact_models("all") == STATISTICAL_CONTACT_MODELS
     assert parse_contact_models("persson, GW") == ("gw", "persson")  # the report's order, any case
     assert parse_contact_models(["bem-plastic"]) == ("bem-plastic",)
-    with pytest.raises(AnalysisError, match="unknown contact model.*'hertz'"):
+    with pytest.raises(AnalysisError, match=r"unknown contact model.*'hertz'"):
         parse_contact_models("gw,hertz")
     with pytest.raises(AnalysisError, match="no contact model"):
         parse_contact_models(" , ")
