@@ -91,3 +91,18 @@ def test_bad_options_exit_2_in_one_line(tmp_path: Path, args: list[str], word: s
     flat = [x for kv in base.items() for x in kv]
     r = CliRunner().invoke(app, ["assess", str(default_surface_path()), *flat])
     assert r.exit_code == 2 and word in r.output and "Traceback" not in r.output
+
+
+def test_the_contact_model_is_named_and_its_spread_reported(tmp_path: Path) -> None:
+    """Issue 31: --contact-model makes the first screen name the model the studies would read and put the
+    model-choice part of "how sure" in numbers (here a not-credible run: the lines come before any study)."""
+    out = tmp_path / "out"
+    r = CliRunner().invoke(app, ["assess", str(default_surface_path()), "--material", "brake-pad", "--machine",
+                                 str(_rig(tmp_path)), "--out", str(out), "--realizations", "4", "--fill-undefined",
+                                 "--seed", "1", "--contact-model", "persson"])
+    assert r.exit_code == 3, r.output
+    screen = json.loads((out / "assess.json").read_text(encoding="utf-8"))["first_screen"]
+    contact = next(line for line in screen if line.startswith("contact:"))
+    assert "Persson's theory" in contact and "models gw, persson differ by up to" in contact
+    assert any(line.startswith("model choice: E[μ] over gw, persson spans") for line in screen)
+    assert (out / "friction_process" / "contact_models.json").is_file()
