@@ -40,7 +40,7 @@ from stochfric.friction_process.tabulated import PressureRule, VarianceRule
 from stochfric.io_utils import check_output_path, json_ready
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
-from stochfric.process.checks import WINDOW_TILES
+from stochfric.process.checks import WINDOW_MIN_SUMMITS, WINDOW_TILES
 from stochfric.process.credibility import NOT_CREDIBLE_EXIT
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.holdout import HOLDOUT_MAX_REALIZATIONS, HOLDOUT_REALIZATIONS
@@ -112,7 +112,7 @@ def friction_process_command(
     ] = None,
     window_tiles: Annotated[
         int, typer.Option("--window-tiles", help="Measured-window check: at most N × N disjoint windows per scan "
-                          "(fewer when a window would hold < 40 summits).")
+                          f"(fewer when a window would hold < {WINDOW_MIN_SUMMITS} summits).")
     ] = WINDOW_TILES,
     resample: Annotated[
         bool, typer.Option("--resample", help="Pooled scans with different pixel sizes: resample them (linear "
