@@ -57,6 +57,7 @@ import numpy.typing as npt
 from scipy import ndimage
 
 from stochfric.contact.asperity import ContactError
+from stochfric.contact.halfspace import framed_and_refined
 
 __all__ = [
     "BEM_SOLVERS",
@@ -67,6 +68,7 @@ __all__ = [
     "BemSolution",
     "bem_available",
     "bem_contact",
+    "check_nominal_pressures",
 ]
 
 #: The wrapped solvers (see the module docstring).
@@ -433,7 +435,7 @@ def _solve(
         raise BemError(f"settings must be a BemSettings, got {type(settings).__name__}")
     grid = _grid(heights_m, physical_size_m, settings.frame_points)
     e_star = _positive(e_star_pa, "e_star_pa", "Pa")
-    p = _pressures(pressures_pa, settings.hardness_pa)
+    p = check_nominal_pressures(pressures_pa, settings.hardness_pa)
     if not bem_available(settings.solver):
         raise BemError(f"the BEM solver {settings.solver!r} is not installed: {_INSTALL[settings.solver]}")
     clock = _Clock(settings.time_limit_s)
@@ -489,19 +491,16 @@ def _grid(heights_m: npt.ArrayLike, physical_size_m: tuple[float, float], frame:
         raise BemError(f"physical_size_m must be two finite lengths > 0 m, got {physical_size_m!r}")
     if 2 * frame >= min(nx, ny) - 1:
         raise BemError(f"frame_points = {frame} leaves no interior on a {nx}×{ny} map")
-    if frame > 0:
-        low = float(h.min())
-        h[:frame, :] = low
-        h[-frame:, :] = low
-        h[:, :frame] = low
-        h[:, -frame:] = low
+    h = framed_and_refined(h, frame, 1)
     h -= float(h.mean())
     if not float(np.abs(h).max()) > 0.0:
         raise BemError("the map is flat (all heights equal): the BEM contact of a flat is not defined")
     return _Grid(heights=np.ascontiguousarray(h), size=(lx, ly), pixel_area=lx * ly / (nx * ny))
 
 
-def _pressures(pressures_pa: npt.ArrayLike, hardness: float | None) -> _FloatArray:
+def check_nominal_pressures(pressures_pa: npt.ArrayLike, hardness: float | None) -> _FloatArray:
+    """The nominal pressures [Pa] as a 1-D array, checked: finite, > 0 and, with a hardness H, below H (a
+    contact at p >= H would be fully plastic); :class:`BemError` with one line otherwise."""
     try:
         p = np.atleast_1d(np.asarray(pressures_pa, dtype=np.float64))
     except (TypeError, ValueError):

@@ -28,6 +28,7 @@ __all__ = [
     "EqualLoadComparison",
     "compare_equal_load",
     "default_frame_points",
+    "framed_and_refined",
     "halfspace_available",
     "halfspace_contact",
 ]
@@ -102,7 +103,7 @@ def halfspace_contact(
         raise ContactError(f"frame_points must be >= 0 and leave an interior, got {frame}")
     h0 = np.array(surface.heights_m, dtype=np.float64)
     tol = pentol_m if pentol_m is not None else max(float(h0.std()), 1e-300) * 1e-6
-    h = _framed_and_refined(h0, frame, int(refine))
+    h = framed_and_refined(h0, frame, int(refine))
     solver = _Solver(pentol_m=tol, maxiter=maxiter, reference_m=z_ref, load_control=load_control)
     approach, area, force, patches = _solve(h, surface, material, target, solver)
     prep = dict(preparation or {})
@@ -213,7 +214,7 @@ def _as_load(normal_force_n: npt.ArrayLike) -> npt.NDArray[np.float64]:
     return n
 
 
-def _framed_and_refined(h: npt.NDArray[np.float64], frame: int, refine: int) -> npt.NDArray[np.float64]:
+def framed_and_refined(h: npt.NDArray[np.float64], frame: int, refine: int) -> npt.NDArray[np.float64]:
     """Lower a border frame of ``frame`` points to the minimum; spline-refine by ``refine``."""
     out = h.copy()
     if frame > 0:

@@ -39,6 +39,7 @@ import numpy.typing as npt
 
 from stochfric.arrays import FloatArray
 from stochfric.contact.asperity import ContactError, asperity_sums
+from stochfric.contact.bem import check_nominal_pressures
 from stochfric.contact.materials import Material
 from stochfric.errors import AnalysisError
 from stochfric.friction_process.spectra import (
@@ -52,9 +53,9 @@ from stochfric.process.ensemble import SurrogateOptions, tile_grid, window_start
 from stochfric.process.estimators import mean_and_std_errors
 from stochfric.process.holdout import choose_tiles, window_summary
 from stochfric.process.parallel import map_indexed
-from stochfric.random import as_seed_sequence, seed_entropy, spawn_seed_sequences
+from stochfric.process.statistics import ENSEMBLE_STREAM, PATH_STREAM, plasticity_index_of
+from stochfric.random import as_seed_sequence, child_seed, seed_entropy, spawn_seed_sequences
 from stochfric.surface.io import Surface
-from stochfric.surface.statistics import plasticity_index
 from stochfric.surface.summits import SUMMIT_RULES, find_summits
 
 __all__ = [
@@ -442,24 +443,13 @@ class ContactModelSpread:
         return ds
 
 
-def _plasticity(scans: Sequence[Surface], material: Material, rule: str) -> float | None:
-    found = [find_summits(s.heights_m, s.grid_spacing_m, rule=rule) for s in scans]
-    heights = np.concatenate([f.heights_m for f in found])
-    radii = np.concatenate([f.radius_m for f in found])
-    if heights.size <= 1:
-        return None
-    return float(plasticity_index(e_star_pa=material.e_star_pa, hardness_pa=material.hardness,
-                                  sigma_s_m=float(heights.std()), beta_mean_m=float(radii.mean())))
-
-
 def _check_pressures(pressures_pa: npt.ArrayLike, material: Material, models: Sequence[str]) -> FloatArray:
-    p = np.atleast_1d(np.asarray(pressures_pa, dtype=np.float64))
-    if p.ndim != 1 or p.size == 0 or not np.all(np.isfinite(p)) or np.any(p <= 0.0):
-        raise AnalysisError("pressures must be a non-empty 1-D sequence of finite values > 0 Pa")
-    if "bem-plastic" in models and float(p.max()) >= material.hardness:
-        raise AnalysisError(f"p = {p.max() / 1e6:.4g} MPa is at or above the hardness H = "
-                            f"{material.hardness / 1e6:.4g} MPa of the material: the contact would be fully "
-                            "plastic; lower the pressures or check the material's hardness")
+    """The pressures sorted, checked once before any sample is solved (the boundary-element layer's rule,
+    :func:`~stochfric.contact.bem.check_nominal_pressures`, with the hardness when ``bem-plastic`` is run)."""
+    try:
+        p = check_nominal_pressures(pressures_pa, material.hardness if "bem-plastic" in models else None)
+    except ContactError as exc:
+        raise AnalysisError(str(exc)) from None
     return np.sort(p)
 
 
@@ -506,10 +496,11 @@ def contact_model_spread(
     rule = cfg.summit_rule
     options, choice = cfg.surrogate_for([s.heights_m for s in scans])
     root = as_seed_sequence(cfg.seed)
-    s_ens = spawn_seed_sequences(root, 4)[0]  # the ensemble stream of analyse()
+    s_ens = child_seed(root, ENSEMBLE_STREAM)  # the ensemble stream of analyse()
     r_count = cfg.realizations
     seeds = spawn_seed_sequences(s_ens, r_count)
-    counts = [find_summits(s.heights_m, s.grid_spacing_m, rule=rule).count for s in scans]
+    found = [find_summits(s.heights_m, s.grid_spacing_m, rule=rule) for s in scans]
+    counts = [f.count for f in found]
     tiles = choose_tiles(min(counts))
     boxes = tile_grid(scans[0].nb_grid_pts, tiles) if tiles is not None else []
     size = scans[0].physical_size_m
@@ -540,7 +531,7 @@ def contact_model_spread(
     tau = material.shear_strength_pa
     surrogates = {m: ModelSamples.of(m, p, [o[m] for o in sur], tau) for m in chosen}
     windows = {m: ModelSamples.of(m, p, [o[m] for o in win], tau) for m in chosen} if win else {}
-    psi = _plasticity(scans, material, rule)
+    psi = plasticity_index_of(found, material)
     from stochfric.contact.persson import recommend_contact_models
 
     recommended, why = recommend_contact_models(psi)
@@ -573,7 +564,7 @@ def _paths(scans: list[Surface], material: Material, chosen: tuple[str, ...], cf
         raise AnalysisError("path_surfaces must be 0 (no path) or >= 2 (the correlation length needs a scatter)")
     p_path = float(np.exp(np.mean(np.log(p)))) if pressure_pa is None else float(pressure_pa)
     _check_pressures([p_path], material, chosen)
-    seeds = spawn_seed_sequences(spawn_seed_sequences(root, 4)[2], surfaces)  # the path stream of analyse()
+    seeds = spawn_seed_sequences(child_seed(root, PATH_STREAM), surfaces)  # the long surfaces of analyse()
     nx, ny = scans[0].nb_grid_pts
     dx, dy = scans[0].grid_spacing_m
     shift = cfg.window_shift_points

@@ -339,14 +339,13 @@ def write_spread(spread: ContactModelSpread, out: str | os.PathLike[str], *, fig
     (per-sample arrays) and with ``figures`` the envelope figure ``contact_models.png``; their paths."""
     import json
 
-    from stochfric.io_utils import json_ready, write_atomic, write_netcdf_atomic
+    from stochfric.io_utils import json_ready, write_netcdf_atomic, write_text_atomic
 
     directory = Path(out)
     directory.mkdir(parents=True, exist_ok=True)
     written: dict[str, Any] = {}
     text = json.dumps(json_ready(spread.to_dict()), indent=2)
-    written["contact_models_file"] = str(write_atomic(directory / SPREAD_FILE,
-                                                      lambda p: p.write_text(text, encoding="utf-8")))
+    written["contact_models_file"] = str(write_text_atomic(directory / SPREAD_FILE, text))
     written["contact_models_samples_file"] = str(write_netcdf_atomic(directory / SPREAD_SAMPLES_FILE,
                                                                      spread.to_dataset()))
     if figures:

@@ -77,6 +77,7 @@ __all__ = [
     "AnalysisConfig",
     "StatisticalContactAnalysis",
     "analyse",
+    "plasticity_index_of",
 ]
 
 
@@ -143,7 +144,8 @@ def analyse(
     u = np.asarray(approach_m, dtype=np.float64)
     long_workers = _long_surface_workers(scans[0], cfg, u.size, workers)
     root = as_seed_sequence(cfg.seed)
-    s_ens, _s_unused, s_path, s_check = spawn_seed_sequences(root, 4)  # stream 1: retired one-surface check
+    # child k of the root is spawn_seed_sequences(root, n)[k]; stream 1 (a retired one-surface check) is unused
+    s_ens, s_path, s_check = (child_seed(root, k) for k in (ENSEMBLE_STREAM, PATH_STREAM, CHECK_STREAM))
     options, surrogate_choice = cfg.surrogate_for([s.heights_m for s in scans])
     found = [find_summits(s.heights_m, s.grid_spacing_m, rule=cfg.summit_rule) for s in scans]
     tiles = window_tiles(min(f.count for f in found), cfg.window_tiles)
@@ -180,7 +182,7 @@ def analyse(
     validity = contact_validity(
         mu=moments.mu_mean, area_fraction=moments.area_fraction,
         n_contacts=path.samples.n_contacts.mean(axis=(0, 1)), approach_m=u,
-        plasticity_index=_plasticity_index(found, material), max_area_fraction=cfg.max_area_fraction, name=name or "",
+        plasticity_index=plasticity_index_of(found, material), max_area_fraction=cfg.max_area_fraction, name=name or "",
     )  # fmt: skip
     credibility = _credibility(name or "measured surface", u, checks, moments, ens_stats, fits, cfg.realizations)
     if not credibility.credible:
@@ -194,7 +196,11 @@ def analyse(
     )  # fmt: skip
 
 
-#: The child of the root seed that drives the out-of-sample validation (0–3: ensemble, retired, path, check).
+#: The children of the root seed that drive the ensemble, the long surfaces and the out-of-sample validation
+#: (1: retired, 3: the process check); :mod:`~stochfric.process.contact_models` solves the same surrogates.
+ENSEMBLE_STREAM = 0
+PATH_STREAM = 2
+CHECK_STREAM = 3
 HOLDOUT_STREAM = 4
 
 
@@ -426,7 +432,7 @@ def _fitted_range(fits: dict[str, ModelFit]) -> tuple[float, float]:
     return float(p.min()), float(p.max())
 
 
-def _plasticity_index(found: list[Summits], material: Material) -> float | None:
+def plasticity_index_of(found: Sequence[Summits], material: Material) -> float | None:
     """γ (3.7) of the summits of all scans together (None with fewer than two summits)."""
     heights = np.concatenate([f.heights_m for f in found])
     radii = np.concatenate([f.radius_m for f in found])
