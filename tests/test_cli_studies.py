@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
 
 import pytest
@@ -59,6 +60,15 @@ def test_damping_json_contract(app: typer.Typer) -> None:
     assert ph["damping_ratio"][-1] > max(d["d_max_deterministic"][0],
                                            d["d_max_sample_extreme"]["contact"][0]["value"])
     assert ph["runs"] == {"deterministic": 1, "white": 3, "contact": 3}
+    # docs/studies.md quotes this run (issue 32: quoted numbers are the numbers the example prints)
+    docs = " ".join((Path(__file__).resolve().parents[1] / "docs" / "studies.md").read_text(encoding="utf-8").split())
+    quoted = re.search(r"seed 0 \(D_max\^d / D_max\^s white / contact = ([\d.]+) / ([\d.]+) / ([\d.]+)\): D = "
+                       r"([\d., ]+?) \(`tests/test_cli_studies.py`", docs)
+    assert quoted is not None, "docs/studies.md no longer quotes the seed-0 damping example"
+    printed = (d["d_max_deterministic"][0], d["d_max_sample_extreme"]["white"][0]["value"],
+               d["d_max_sample_extreme"]["contact"][0]["value"])
+    assert tuple(float(quoted.group(k)) for k in (1, 2, 3)) == printed
+    assert [float(v) for v in quoted.group(4).split(",")] == ph["damping_ratio"]
 
 
 def test_other_studies_json(app: typer.Typer, tmp_path: Path) -> None:

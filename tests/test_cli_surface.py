@@ -92,6 +92,26 @@ def test_contact_json_on_default_surface(app: typer.Typer, tmp_path: Path) -> No
     np.testing.assert_allclose(back.mu, d["mu"])
 
 
+def test_surface_and_contact_write_into_out_dir(app: typer.Typer, tmp_path: Path) -> None:
+    """--out DIR everywhere (issue 32): the result files and the figures go there; --output is deprecated."""
+    code, out, _ = _run(app, "surface", "--out", str(tmp_path / "s"))
+    assert code == 0 and f"output    {tmp_path / 's' / 'surface.json'}" in out
+    assert json.loads((tmp_path / "s" / "surface.json").read_text())["grid"] == [200, 296]
+    assert (tmp_path / "s" / "surface.png").is_file()
+    code, out, _ = _run(app, "contact", "--material", "brake-pad", "--approach-um", "0.3:0.6:2", "--out",
+                        str(tmp_path / "c"))
+    assert code == 0
+    saved = json.loads((tmp_path / "c" / "contact.json").read_text())
+    np.testing.assert_allclose(read_contact_result(tmp_path / "c" / "contact.nc").mu, saved["mu"])
+    assert (tmp_path / "c" / "contact.png").is_file()
+    code, _, err = _run(app, "contact", "--material", "brake-pad", "--approach-um", "0.3:0.6:2", "--output",
+                        str(tmp_path / "x.nc"))
+    assert code == 0 and "warning [deprecated-option]: --output FILE is deprecated; use --out DIR" in err
+    code, _, err = _run(app, "contact", "--material", "brake-pad", "--output", str(tmp_path / "y.nc"), "--out",
+                        str(tmp_path / "d"))
+    assert code == 2 and err.startswith("error: give --out DIR")
+
+
 def test_contact_explicit_range_and_text(app: typer.Typer) -> None:
     code, out, _ = _run(app, "contact", "--material", "dc04", "--approach-um", "0.1:0.8:8")
     assert code == 0

@@ -20,6 +20,7 @@ from ..errors import StochfricError
 from ..interrupts import command_ctrl_c_latch
 from .assess import register as register_assess_command
 from .contact_models import register as register_contact_models_command
+from .help_panels import use_panels
 from .options import fail, write_failed
 from .process import register as register_process_commands
 from .simulate import register as register_simulate_command
@@ -77,6 +78,7 @@ register_process_commands(app)
 register_study_commands(app)
 register_assess_command(app)
 register_contact_models_command(app)
+use_panels(app)  # --help in panels: Input, Physics, Numerics and execution, Output (issue 32)
 
 
 def main() -> None:

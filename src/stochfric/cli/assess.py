@@ -15,7 +15,7 @@ import typer
 from rich.console import Console
 from rich.markup import escape
 
-from stochfric.cli.options import GROUP, fail, option_group, write_failed
+from stochfric.cli.options import GROUP, SEED_RULE, fail, option_group, write_failed
 from stochfric.cli.surface import SurfaceOptions, surface_options
 from stochfric.contact.materials import material_names
 from stochfric.errors import StochfricError
@@ -46,7 +46,7 @@ def assess_command(
     realizations: Annotated[int, typer.Option("--realizations", min=4, help="Surrogates of the analysis.")] = 100,
     tau_end: Annotated[float | None, typer.Option("--tau-end", help="Simulated time τ_end (default: the "
                                                                     "machine's).")] = None,
-    seed: Annotated[int, typer.Option("--seed", min=0, help="Root seed of the analysis and the studies.")] = 0,
+    seed: Annotated[int, typer.Option("--seed", min=0, help=SEED_RULE)] = 0,
     workers: Annotated[int | None, typer.Option("--workers", min=1, help="Processes (default: all cores).")] = None,
     accept_not_credible: Annotated[bool, typer.Option(
         "--accept-not-credible", help="Run the studies on a surface model that is not credible (every output "

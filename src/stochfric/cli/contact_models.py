@@ -15,7 +15,7 @@ from typing import Annotated, Any
 import numpy as np
 import typer
 
-from stochfric.cli.options import GROUP, fail, option_group, write_failed
+from stochfric.cli.options import GROUP, SEED_RULE, fail, option_group, write_failed
 from stochfric.cli.surface import SurfaceOptions, surface_options
 from stochfric.contact.materials import load_material, material_names
 from stochfric.errors import AnalysisError, StochfricError
@@ -92,7 +92,7 @@ def contact_models_command(
     persson_corrected: Annotated[bool, typer.Option(
         "--persson-corrected", help="Persson with the small-load slope κ = 2 of exact solutions instead of "
                                     "√(8/π) (docs/persson.md).")] = False,
-    seed: Annotated[int, typer.Option("--seed", min=0, help="Root seed (as friction-process --seed).")] = 0,
+    seed: Annotated[int, typer.Option("--seed", min=0, help=SEED_RULE)] = 0,
     workers: Annotated[int | None, typer.Option("--workers", min=1, help="Processes (default: all cores); the "
                                                                          "numbers do not depend on it.")] = None,
     out: Annotated[Path | None, typer.Option("--out", help="Directory for contact_models.json, the per-sample "

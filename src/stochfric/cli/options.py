@@ -29,11 +29,15 @@ from ..oscillator.friction_laws import FRICTION_LAWS
 
 F = TypeVar("F", bound=Callable[..., Any])
 
+#: The one seed rule of the command line (issue 32 §4): what every ``--seed`` help says.
+SEED_RULE = ("Root seed, recorded in every output (default 0 in every command; the reproduction commands use the seed "
+             "of the tables they reproduce: reproduce 2013, study white-limit 19).")
+
 #: Default of a command parameter that :func:`option_group` fills (never seen by typer).
 GROUP: Any = None
 
 __all__ = [
-    "FLAGS", "GROUP", "LawChoice", "RegistryChoice",
+    "FLAGS", "GROUP", "SEED_RULE", "LawChoice", "RegistryChoice",
     "fail", "flag_of", "in_flags", "option_group",
 ]  # fmt: skip
 

@@ -22,6 +22,7 @@ from rich.progress import BarColumn, Progress, TextColumn, TimeRemainingColumn
 
 from stochfric.cli.options import (
     GROUP,
+    SEED_RULE,
     RegistryChoice,
     fail,
     option_group,
@@ -45,6 +46,7 @@ from stochfric.process.credibility import NOT_CREDIBLE_EXIT
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.holdout import HOLDOUT_MAX_REALIZATIONS, HOLDOUT_REALIZATIONS
 from stochfric.process.pipeline import MODEL_FILE, STATISTICS_FILE, ApproachRule, ScanAnalysis, analyse_scans
+from stochfric.surface.quilting import MAX_PATCH_FRACTION, MIN_PATCH_SUMMIT_SPACINGS
 from stochfric.surface.surrogates import AUTO_SURROGATE, SURROGATES, surrogate_names
 from stochfric.surface.synthesis import AmplitudeEstimate
 from stochfric.units import MICROMETRE
@@ -55,7 +57,8 @@ __all__ = ["register"]
 SURROGATE_CHOICE = RegistryChoice(names=lambda: (AUTO_SURROGATE, *surrogate_names()))
 _SURROGATE_HELP = (
     "auto: random phases where the map's curvature is Gaussian (Laplacian kurtosis within 3·√(24/n_s) of 3), "
-    "else quilt where patches of 16 summit spacings fit 3 times along the shorter side, else phase; or a method: "
+    f"else quilt where patches of {MIN_PATCH_SUMMIT_SPACINGS:g} summit spacings fit {1 / MAX_PATCH_FRACTION:.0f} "
+    "times along the shorter side, else phase; or a method: "
     + "; ".join(f"{name} ({m.summary})" for name, m in SURROGATES.items()) + "."
 )
 
@@ -145,7 +148,7 @@ def friction_process_command(
     sigma_zeta_rule: Annotated[
         SigmaZetaRule, typer.Option("--sigma-zeta-rule", help="sigma_mu (thesis) or spectral_level (S0/2).")
     ] = SigmaZetaRule.SIGMA_MU,
-    seed: Annotated[int | None, typer.Option("--seed", min=0, help="Root seed (recorded).")] = None,
+    seed: Annotated[int, typer.Option("--seed", min=0, help=SEED_RULE)] = 0,
     contact_model: Annotated[str, typer.Option("--contact-model", help="gw (thesis), bem, bem-plastic, persson, a list "
                              "or all: also solve the surrogates and windows by them at the fitted pressures and report "
                              "the spread; one non-GW model sets the model's E[μ](p), σ_μ(p) (docs/contact_models.md).")

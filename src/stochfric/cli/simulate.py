@@ -44,7 +44,7 @@ from ..oscillator import (
 )
 from ..oscillator.options import default_integrator
 from ..report.figures import plot_phase_portrait
-from .options import GROUP, LawChoice, fail, in_flags, option_group, write_failed
+from .options import GROUP, SEED_RULE, LawChoice, fail, in_flags, option_group, write_failed
 
 err_console = Console(stderr=True)
 
@@ -183,7 +183,7 @@ def simulate(
              "thesis's Δτ locks into spurious cycles; euler otherwise, and for the white-noise SDE). euler is the "
              "thesis's reproduction mode.", show_default="auto")] = None,
     runs: Annotated[int, typer.Option(min=1, help="Monte Carlo runs.")] = 1,
-    seed: Annotated[int | None, typer.Option(min=0, help="Root seed (recorded).")] = None,
+    seed: Annotated[int, typer.Option(min=0, help=SEED_RULE)] = 0,
     sigma_zeta: Annotated[
         float | None, typer.Option(help="White-noise intensity σ_ζ (default: from the rule below).")
     ] = None,

@@ -32,7 +32,7 @@ from ..studies.errors import StudyConfigError, StudyError, format_validation_err
 from ..studies.executors import ExecutorKind, SweepInterrupted
 from ..studies.kinds import study_kind
 from ..studies.refine import width_text
-from .options import GROUP, fail, flag_of, option_group
+from .options import GROUP, SEED_RULE, fail, flag_of, option_group
 from .white_limit import white_limit_command
 
 #: the module (``stochfric.studies`` re-exports its function ``reproduce`` under the same name);
@@ -49,8 +49,9 @@ ExtrapOpt = Annotated[bool, typer.Option(
     "--allow-extrapolation", help="Use the process model outside the pressures it was fitted on (every output is "
                                   "stamped) instead of refusing.")]
 ProcessOpt = Annotated[Path | None, typer.Option("--process", help="Friction-process model file (JSON).")]
-RunsOpt = Annotated[int | None, typer.Option("--runs", help="Monte Carlo runs per cell.")]
-SeedOpt = Annotated[int, typer.Option("--seed", min=0, help="Root seed.")]
+RunsOpt = Annotated[int | None, typer.Option(
+    "--runs", help="Monte Carlo runs per cell (default: the thesis's, 10; normal-force 30).")]
+SeedOpt = Annotated[int, typer.Option("--seed", min=0, help=SEED_RULE)]
 TauOpt = Annotated[float | None, typer.Option("--tau-end", help="Simulated time τ_end (default: preset).")]
 DtOpt = Annotated[float | None, typer.Option("--dt", help="Time step Δτ (default: preset).")]
 IntOpt = Annotated[str | None, typer.Option(

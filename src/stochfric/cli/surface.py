@@ -24,7 +24,7 @@ from stochfric.contact.materials import Material, load_material, material_names
 from stochfric.contact.models import ALIASES, CONTACT_MODELS, ContactProblem, contact_model, contact_model_names
 from stochfric.contact.validity import plasticity_validity, result_validity
 from stochfric.errors import StochfricError
-from stochfric.io_utils import OutputPathError, check_output_path
+from stochfric.io_utils import OutputPathError, check_output_path, json_ready, write_json_atomic
 from stochfric.surface.figures import write_surface_figures
 from stochfric.surface.io import Surface, SurfaceError
 from stochfric.surface.prepare_checks import MAX_UNDEFINED_DEFAULT, OUTLIER_K, OUTLIER_SQ
@@ -255,7 +255,9 @@ SizeOpt = Annotated[
 ]
 UnitOpt = Annotated[
     str | None,
-    typer.Option("--height-unit", help="Height unit (m, mm, um, nm) for files without one."),
+    typer.Option("--height-unit", help="Height unit (m, mm, um, nm) for files without one, optionally with a "
+                                       "conversion factor FACTOR*UNIT (2.5e-3*um: each stored value × 2.5e-3 is "
+                                       "a height in µm)."),
 ]
 
 
@@ -283,6 +285,10 @@ def surface_options(
 
 
 PlotOpt = Annotated[Path | None, typer.Option("--plot", help="Write PNG figures into this directory.")]
+#: Files of ``surface --out DIR`` and ``contact --out DIR``.
+SURFACE_JSON, CONTACT_JSON, CONTACT_NC = "surface.json", "contact.json", "contact.nc"
+OutDirOpt = Annotated[Path | None, typer.Option(
+    "--out", help="Output directory: the result (JSON; contact: also NetCDF) and, without --plot, the figures.")]
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print the result as JSON.")]
 
 
@@ -306,16 +312,20 @@ def surface_command(
             help=f"Pairing for the plasticity index (3.7): {', '.join(material_names())} or a JSON file.",
         ),
     ] = None,
+    out: OutDirOpt = None,
     plot: PlotOpt = None,
     as_json: JsonOpt = False,
 ) -> None:
     """Surface analysis: statistics of the fine and the coarse surface, summits, radii,
     plasticity index (method §1)."""
     try:  # output paths first: an unwritable place ends the command before any work
+        if out is not None:
+            check_output_path(out, option="--out")
         if plot is not None:
             check_output_path(plot, option="--plot")
     except OutputPathError as exc:
         raise fail(str(exc)) from None
+    plot = plot if plot is not None else out
     try:
         prep = surf.preparation()
         mat = load_material(material) if material is not None else None
@@ -358,6 +368,9 @@ def surface_command(
                 )
             ]
             payload["figures"] = figures
+        if out is not None:
+            payload["output"] = str(out / SURFACE_JSON)
+            write_json_atomic(out / SURFACE_JSON, json_ready(payload))
     except StochfricError as exc:
         raise fail(str(exc)) from None
     except OSError as exc:  # disk full while writing a figure or the NetCDF: the previous files stay
@@ -391,6 +404,8 @@ def surface_command(
             f"(coarse, {payload['plasticity_verdict']}), "
             f"{_fmt(payload['plasticity_index_fine'], 1.0)} (fine)"
         )
+    if "output" in payload:
+        typer.echo(f"output    {payload['output']}")
     for f in figures:
         typer.echo(f"figure    {f}")
 
@@ -437,14 +452,23 @@ def contact_command(
         ),
     ] = None,
     surf: SurfaceOptions = GROUP,
-    output: Annotated[Path | None, typer.Option("--output", help="Write the result to this netCDF file.")] = None,
+    out: OutDirOpt = None,
+    output: Annotated[Path | None, typer.Option(
+        "--output", hidden=True, help="Deprecated: the NetCDF file (use --out DIR).")] = None,
     plot: PlotOpt = None,
     as_json: JsonOpt = False,
 ) -> None:
     """Contact analysis over the approach u: A_c, p, contacts, μ (method §2)."""
     try:  # output paths first: an unwritable place ends the command before any work
+        if out is not None and output is not None:
+            raise fail("give --out DIR (contact.nc and contact.json) or the deprecated --output FILE, not both")
         if output is not None:
+            typer.echo("warning [deprecated-option]: --output FILE is deprecated; use --out DIR "
+                       f"(writes DIR/{CONTACT_NC} and DIR/{CONTACT_JSON})", err=True)
             check_output_path(output, option="--output", kind="file", suffixes=(".nc",))
+        if out is not None:
+            check_output_path(out, option="--out")
+            output = out / CONTACT_NC
         if plot is not None:
             check_output_path(plot, option="--plot")
     except OutputPathError as exc:
@@ -472,8 +496,11 @@ def contact_command(
         ]
         if output is not None:
             payload["output"] = str(main.to_netcdf(output))
+        plot = plot if plot is not None else out
         if plot is not None:
             payload["figures"] = [str(p) for p in write_contact_figures(plot, results)]
+        if out is not None:
+            write_json_atomic(out / CONTACT_JSON, json_ready(payload))
     except StochfricError as exc:
         raise fail(str(exc)) from None
     except OSError as exc:  # disk full while writing a figure or the NetCDF: the previous files stay

@@ -23,7 +23,7 @@ from ..studies.white_limit import (
     white_limit_figure,
     white_limit_study,
 )
-from .options import fail
+from .options import SEED_RULE, fail
 
 __all__ = ["white_limit_command"]
 
@@ -61,7 +61,7 @@ def white_limit_command(
         "--lengths", help="Correlation lengths ℓ [m], comma-separated (integral scale S0/(4σ²)).")
     ] = "1e-3,1e-4,1e-5,1e-6",
     runs: Annotated[int, typer.Option("--runs", help="Monte Carlo runs per ℓ and time step.")] = 300,
-    seed: Annotated[int, typer.Option("--seed", min=0, help="Root seed.")] = 19,
+    seed: Annotated[int, typer.Option("--seed", min=0, help=SEED_RULE)] = 19,
     damping_ratio: Annotated[float, typer.Option("--damping-ratio", help="D (default 5e-6).")] = 5e-6,
     path_coordinate: Annotated[WhitePathChoice, typer.Option(
         "--path-coordinate", help="Where the process is read: relative (sliding distance, as the white model) "

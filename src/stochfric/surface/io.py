@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+import re
 import warnings
 from dataclasses import dataclass, field
 from importlib import resources
@@ -105,7 +106,8 @@ class Surface:
         lx, ly = (v * 1e6 for v in self.physical_size_m)
         sq = float(np.std(h)) * 1e6
         return (f"Surface({Path(str(self.source)).name}: {nx} × {ny} points, {lx:.4g} × {ly:.4g} µm, "
-                f"Sq = {sq:.4g} µm, {self.n_undefined_filled} undefined points filled)")
+                f"Sq = {sq:.4g} µm as stored (form and tilt not removed: prepare() levels it), "
+                f"{self.n_undefined_filled} undefined points filled)")
 
     def __post_init__(self) -> None:
         h = np.asarray(self.heights_m)
@@ -219,7 +221,9 @@ def read_surface(
         ``(ℓx, ℓy)`` [m]. Required for plain matrices and for instrument files that do not
         store it; refused for files that store it.
     height_unit:
-        Unit of the stored heights (``m``, ``mm``, ``um``, ``nm``). Required for plain
+        Unit of the stored heights (``m``, ``mm``, ``um``, ``nm``), optionally with a conversion
+        factor, ``FACTOR*UNIT`` (``"0.5*nm"``: each stored value × 0.5 is a height in nm;
+        :func:`parse_height_unit`). Required for plain
         matrices and for instrument files without a unit; refused for files that store one
         (SurfaceTopography does not let metadata fixed by the file be overridden).
     fill_undefined:
@@ -370,6 +374,31 @@ def plausibility_warnings(
 # internals
 
 
+def parse_height_unit(text: str) -> tuple[float, str]:
+    """``"nm"`` → ``(1.0, "nm")``; ``"0.5*nm"`` or ``"0.5 nm"`` → ``(0.5, "nm")``: a height unit with an
+    optional conversion factor (each stored value × factor is a height in the unit; e.g. an instrument
+    that stores volts or radians).  SurfaceError for a factor that is not a positive finite number or an
+    unknown unit."""
+    raw = str(text).strip()
+    m = re.fullmatch(r"(?P<f>[-+0-9.eE]+)\s*(?:\*\s*|\s+)(?P<u>\S+)", raw)
+    if m is None:
+        if "*" in raw:
+            raise SurfaceError(f"height unit {raw!r}: write FACTOR*UNIT with a positive number and a length unit, "
+                               "e.g. 0.5*nm")
+        _unit_factor(raw, "height unit")
+        return 1.0, raw
+    try:
+        factor = float(m.group("f"))
+    except ValueError:
+        raise SurfaceError(f"height unit {raw!r}: {m.group('f')!r} is not a number; write FACTOR*UNIT, e.g. "
+                           "0.5*nm") from None
+    if not (math.isfinite(factor) and factor > 0.0):
+        raise SurfaceError(f"height unit {raw!r}: the conversion factor must be a positive finite number "
+                           f"(got {factor:g})")
+    _unit_factor(m.group("u"), "height unit")
+    return factor, m.group("u")
+
+
 def _unit_factor(unit: str, what: str) -> float:
     try:
         return length_to_m(1.0, unit)
@@ -432,7 +461,8 @@ def _read_matrix(
             "give them explicitly (command line: --size-um LX:LY --height-unit UNIT)"
         )
     assert physical_size_m is not None and height_unit is not None
-    factor = _unit_factor(height_unit, "height unit")
+    scale, base_unit = parse_height_unit(height_unit)
+    factor = scale * _unit_factor(base_unit, "height unit")
     try:
         if p.suffix.lower() == ".npy":
             raw = np.load(p, allow_pickle=False)
@@ -454,7 +484,7 @@ def _read_matrix(
     if np.iscomplexobj(raw):
         raise SurfaceError(f"{p.name} holds complex numbers; heights are real (save the real part, or the "
                            "modulus if that is what was measured)")
-    info.update({"reader": "numpy", "height_unit": height_unit})
+    info.update({"reader": "numpy", "height_unit": base_unit, "height_conversion_factor": scale})
     return surface_from_array(
         raw.astype(np.float64) * factor,
         physical_size_m=physical_size_m,
@@ -523,7 +553,8 @@ def _read_instrument(
                 f"{p.name} stores its physical size in one direction only ({file_sizes[0]:g}); a height map "
                 "needs both (in a text file: a Width and a Height line)"
             )
-        unit = file_unit if file_unit is not None else height_unit
+        scale, given_unit = parse_height_unit(height_unit) if height_unit is not None else (1.0, None)
+        unit = file_unit if file_unit is not None else given_unit
         if unit is None:
             raise SurfaceError(f"{p.name} does not store a length unit, or is not a valid {p.suffix} file (its "
                                "reader found no unit in it); if the file is valid, give the unit (command line: "
@@ -556,7 +587,7 @@ def _read_instrument(
             size_factors = (_unit_factor(lateral[0], f"{p.name} (its lateral unit)"),
                             _unit_factor(lateral[1], f"{p.name} (its lateral unit)"))  # fmt: skip
             size_units = list(lateral)
-        scale = getattr(ch, "height_scale_factor", None)
+        file_scale = getattr(ch, "height_scale_factor", None)
     info.update(
         {
             "reader": type(reader).__name__,
@@ -564,11 +595,12 @@ def _read_instrument(
             "height_unit": str(unit),
             "file_physical_size": file_sizes,
             "file_size_units": size_units,
-            "file_height_scale_factor": None if scale is None else float(scale),
+            "file_height_scale_factor": None if file_scale is None else float(file_scale),
+            "height_conversion_factor": scale,
         }
     )
     return _finish(
-        np.ma.masked_invalid(heights * factor),
+        np.ma.masked_invalid(heights * (factor * scale)),
         physical_size_m=(float(sizes[0]) * size_factors[0], float(sizes[1]) * size_factors[1]),
         fill_undefined=fill_undefined,
         source=str(p),

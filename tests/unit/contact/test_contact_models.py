@@ -147,5 +147,5 @@ def test_an_unknown_method_lists_the_models() -> None:
     code, _, err = _contact("--method", "persson")
     assert code == 2
     assert "'persson' is not one of gw, bem" in err and "halfspace = bem" in err
-    help_text = " ".join(CliRunner().invoke(app, ["contact", "--help"]).stdout.split())
+    help_text = " ".join(CliRunner().invoke(app, ["contact", "--help"]).stdout.replace("│", " ").split())
     assert "gw (" in help_text and "asperity (= gw)" in help_text and "halfspace (= bem)" in help_text
