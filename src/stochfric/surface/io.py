@@ -237,9 +237,7 @@ def read_surface(
         Unknown, missing or corrupt file; non-uniform or 1-D data; missing size or unit;
         undefined points without ``fill_undefined``.
     """
-    p = Path(path)
-    if not p.is_file():
-        raise SurfaceError(f"no such file: {p}")
+    p = _readable_map_file(Path(path))
     info: dict[str, Any] = {"file": p.name, "sha256": file_sha256(p)}
     suffix = p.suffix.lower()
     text_reader = _text_reader_with_header(p) if suffix in HEADER_TEXT_SUFFIXES else None
@@ -264,6 +262,29 @@ def read_surface(
         )
     surface.info["warnings"] = plausibility_warnings(surface.heights_m, name=p.name)
     return surface
+
+
+#: The largest height-map file read [bytes]: 4 GiB (a 20000² map of float64 is 3.2 GB); larger is refused
+#: before any read, with what to do.
+MAX_MAP_FILE_BYTES = 4 * 1024**3
+
+
+def _readable_map_file(p: Path) -> Path:
+    """``p`` if it is a regular, non-empty file of at most :data:`MAX_MAP_FILE_BYTES`; else a SurfaceError that
+    says which (checked before any reader opens it: a device or a pipe would block or never end)."""
+    if p.is_dir():
+        raise SurfaceError(f"{p} is a directory; give a height-map file")
+    if not p.exists():
+        raise SurfaceError(f"no such file: {p}")
+    if not p.is_file():
+        raise SurfaceError(f"{p} is not a regular file (a device, pipe or socket); give a height-map file")
+    size = p.stat().st_size
+    if size == 0:
+        raise SurfaceError(f"{p} is empty (0 bytes); give a height-map file")
+    if size > MAX_MAP_FILE_BYTES:
+        raise SurfaceError(f"{p} is {size / 1024**3:.1f} GiB, more than the {MAX_MAP_FILE_BYTES / 1024**3:.0f} GiB a "
+                           "height map read here may have; crop or subsample it with the instrument's software")
+    return p
 
 
 def verify_checksums(path: str | Path) -> str:

@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import numpy as np
@@ -55,3 +56,16 @@ def test_command_line_factor_and_error(tmp_path: Path) -> None:
     res = CliRunner().invoke(app, ["surface", str(p), "--size-um", "96:96", "--height-unit", "0*um"])
     assert res.exit_code == 2 and "conversion factor must be a positive finite number" in res.stderr
     assert "Traceback" not in res.output
+
+
+@pytest.mark.parametrize(("make", "words"), [
+    (lambda d: d, "is a directory; give a height-map file"),
+    (lambda d: Path("/dev/zero"), "is not a regular file"),
+    (lambda d: (d / "e.x3p").touch() or d / "e.x3p", "is empty (0 bytes)"),
+    (lambda d: d / "missing.x3p", "no such file"),
+])
+def test_a_map_file_is_checked_before_any_reader_opens_it(tmp_path: Path, make: object, words: str) -> None:
+    """Issue 32: every file read checks first that it is a regular file of a plausible size (a device would
+    block a reader, a directory or an empty file gave a reader's error)."""
+    with pytest.raises(SurfaceError, match=re.escape(words)):
+        read_surface(make(tmp_path), physical_size_m=(1e-4, 1e-4), height_unit="um")  # type: ignore[operator]
