@@ -21,7 +21,7 @@ from typing import Any
 import matplotlib.image as mpimg
 import pytest
 
-import stochfric.report.study_figures as study_figures
+import stochfric.studies.figures as study_figures
 from stochfric.oscillator.options import IntegrationOptions
 from stochfric.report.html import WARNING_HELP, damping_reading, process_statistics_section, write_report
 from stochfric.studies.chapter3 import chapter3_analysis

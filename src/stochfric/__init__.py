@@ -13,6 +13,7 @@ from its home module on first use (``import stochfric`` itself stays light)::
                          integration=sf.IntegrationOptions(integrator=sf.Integrator.ACCURATE))
     study = sf.run_study(sf.DampingConfig(preset="brake", normal_forces=(5600.0,)))
     sf.write_report([study], "out")
+    again = sf.load(result.to_netcdf("run/simulation.nc"))    # any saved result, typed again
 
 Importing the package does no work — no compilation, no registration, no logging set-up, no
 change to numba's settings.  The SIMD width numba compiles for on Intel Xeons with AVX-512 is an
@@ -82,6 +83,8 @@ API: dict[str, str] = {
     "StudyResult": "stochfric.studies.base",
     "make_executor": "stochfric.studies.executors",
     "write_report": "stochfric.report.html",
+    # saved results back as typed objects (any file the CLI or the library writes)
+    "load": "stochfric.studies.loading",
 }
 
 __all__ = ["API", "__version__", *API]

@@ -261,3 +261,58 @@ def json_ready(obj: Any) -> Any:
     if type(obj).__module__ == "numpy" and hasattr(obj, "item"):  # numpy integers and booleans
         return obj.item()
     return obj
+
+
+# --- reading saved results back -----------------------------------------------------------------------
+
+#: The first bytes of an HDF5 file (NetCDF-4, what :func:`write_netcdf_atomic` writes).
+HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+
+
+class ResultFileError(InputError):
+    """A file that is not the saved result it was given as; the message names it and what to give instead."""
+
+
+def result_file(path: str | os.PathLike[str], what: str) -> Path:
+    """``path`` as an existing regular file, for reading the saved ``what`` (e.g. ``"simulation result
+    (simulation.nc)"``).  A missing path is a :class:`FileNotFoundError`, a directory a
+    :class:`ResultFileError` listing the result files in it; both name ``path`` and what to give."""
+    p = Path(path).expanduser()
+    if p.is_dir():
+        inside = sorted(q.name for q in p.iterdir() if q.suffix in (".nc", ".json") and not q.name.startswith("."))
+        hint = f"; it holds {', '.join(inside)}" if inside else "; it holds no .nc or .json file"
+        raise ResultFileError(f"{path} is a directory, not a file: give the file of the {what}{hint}")
+    if not p.is_file():
+        where = "" if p.parent.is_dir() else f" (the folder {p.parent} does not exist either)"
+        raise FileNotFoundError(f"no file {path}{where}: give the path of a saved {what}")
+    return p
+
+
+def read_netcdf(path: str | os.PathLike[str], what: str) -> Any:
+    """The NetCDF-4 file of the saved ``what`` as an :class:`xarray.Dataset`, read fully into memory.
+    Not a NetCDF-4 file: :class:`ResultFileError` naming ``path`` (no traceback from inside HDF5)."""
+    import xarray as xr
+
+    p = result_file(path, what)
+    with p.open("rb") as fh:
+        head = fh.read(len(HDF5_SIGNATURE))
+    if head != HDF5_SIGNATURE:
+        raise ResultFileError(f"{path} is not a NetCDF-4 file, so not a {what}")
+    try:
+        with xr.open_dataset(p, engine="h5netcdf") as ds:
+            return ds.load()
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise ResultFileError(f"{path}: cannot read it as the NetCDF-4 file of a {what} ({exc})") from None
+
+
+def read_json_file(path: str | os.PathLike[str], what: str) -> Any:
+    """The JSON value in the file of the saved ``what`` (NaN allowed, as the writers keep it).  Not UTF-8
+    JSON: :class:`ResultFileError` naming ``path`` and the place of the fault."""
+    p = result_file(path, what)
+    try:
+        return json.loads(p.read_text(encoding="utf-8"))
+    except UnicodeDecodeError as exc:
+        raise ResultFileError(f"{path} is not a {what} (not UTF-8 text: byte {exc.start}, {exc.reason})") from None
+    except json.JSONDecodeError as exc:
+        raise ResultFileError(f"{path} is not a {what} (not JSON: {exc.msg} at line {exc.lineno}, "
+                              f"column {exc.colno})") from None

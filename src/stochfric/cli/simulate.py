@@ -42,8 +42,8 @@ from ..oscillator import (
     build_case,
     integrate,
 )
+from ..oscillator.figures import plot_phase_portrait
 from ..oscillator.options import default_integrator
-from ..report.figures import plot_phase_portrait
 from .options import GROUP, SEED_RULE, LawChoice, fail, in_flags, option_group, write_failed
 
 err_console = Console(stderr=True)

@@ -13,7 +13,7 @@ import math
 from dataclasses import dataclass, field
 from enum import StrEnum
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, Self
 
 import numpy as np
 import numpy.typing as npt
@@ -22,9 +22,12 @@ from stochfric.arrays import FloatArray
 from stochfric.contact.materials import Material
 from stochfric.contact.validity import MIN_CONTACTS, NON_INTERACTION_AREA_FRACTION
 from stochfric.errors import InputError
-from stochfric.io_utils import write_netcdf_atomic
+from stochfric.io_utils import ResultFileError, read_netcdf, write_netcdf_atomic
 from stochfric.surface.io import Surface
 from stochfric.surface.summits import Summits
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
 
 __all__ = [
     "APPROACH_RULES",
@@ -295,6 +298,14 @@ class ContactResult(BowdenTabor):
                    shear_strength_pa=material.shear_strength_pa, e_star_pa=material.e_star_pa,
                    material=material.to_dict(), preparation=preparation)
 
+    def plot(self, *others: ContactResult) -> Figure:
+        """A_c, p, the number of contacts and μ over the approach u as a matplotlib figure (thesis Fig. 3.11;
+        :func:`~stochfric.contact.figures.figure_contact`), with ``others`` (e.g. the half-space result of the
+        same surface, Fig. 3.14) drawn alongside.  Save it with ``fig.savefig(path)``."""
+        from stochfric.contact.figures import figure_contact
+
+        return figure_contact([self, *others])
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary: arrays as lists (NaN as ``None``), SI units in the keys."""
 
@@ -355,7 +366,7 @@ class ContactResult(BowdenTabor):
                 )
             },
             attrs={
-                "title": "stochfric contact analysis",
+                "title": CONTACT_TITLE,
                 "method": self.method,
                 "nominal_area_m2": self.nominal_area_m2,
                 "e_star_pa": self.e_star_pa,
@@ -367,7 +378,7 @@ class ContactResult(BowdenTabor):
         )
 
     @classmethod
-    def from_dataset(cls, ds: Any) -> ContactResult:
+    def from_dataset(cls, ds: Any) -> Self:
         """Rebuild from :meth:`to_dataset` output (also after a netCDF round trip)."""
         attrs = ds.attrs
         return cls(
@@ -389,13 +400,24 @@ class ContactResult(BowdenTabor):
         ds = self.to_dataset()
         return write_netcdf_atomic(path, ds)
 
+    @classmethod
+    def load(cls, path: str | Path) -> Self:
+        """The result saved in ``path`` (:meth:`to_netcdf`, ``stochfric contact --output FILE.nc``).  A missing
+        file is a :class:`FileNotFoundError`; a file of another kind an :class:`~stochfric.errors.InputError`."""
+        what = "contact result (stochfric contact --output FILE.nc)"
+        ds = read_netcdf(path, what)
+        if ds.attrs.get("title") != CONTACT_TITLE or "method" not in ds.attrs:
+            raise ResultFileError(f"{path} is not a {what}; stochfric.load reads any saved result")
+        return cls.from_dataset(ds)
+
+
+#: The ``title`` attribute of a saved contact result (:meth:`ContactResult.to_dataset`).
+CONTACT_TITLE = "stochfric contact analysis"
+
 
 def read_contact_result(path: str | Path) -> ContactResult:
-    """Load a :class:`ContactResult` written by :meth:`ContactResult.to_netcdf`."""
-    import xarray as xr
-
-    with xr.open_dataset(path, engine="h5netcdf") as ds:
-        return ContactResult.from_dataset(ds.load())
+    """Load a :class:`ContactResult` written by :meth:`ContactResult.to_netcdf` (:meth:`ContactResult.load`)."""
+    return ContactResult.load(path)
 
 
 def asperity_contact(

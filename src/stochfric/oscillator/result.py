@@ -6,7 +6,8 @@ count ``M`` (number of slip→stick transitions in ``0 < τ ≤ τ_end``), optio
 decimated trajectory, and diagnostics; plus the parameters, seed, integrator, friction
 law, process model, warnings and package versions.  It converts to an
 :class:`xarray.Dataset` (dimensions ``param_set``, ``run``, ``event``, ``time``) and
-saves to NetCDF atomically; :func:`load_result` reads such a file back as a Dataset.
+saves to NetCDF atomically; :meth:`SimulationResult.load` reads such a file back as the typed result
+(:func:`load_result`: as the plain Dataset).
 """
 
 from __future__ import annotations
@@ -14,16 +15,17 @@ from __future__ import annotations
 import json
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any, Self
 
 import numpy as np
 import numpy.typing as npt
 import xarray as xr
 
-from stochfric.errors import InputError
-
-from ..io_utils import package_versions, write_netcdf_atomic
+from ..io_utils import ResultFileError, package_versions, read_netcdf, write_netcdf_atomic
 from .parameters import OscillatorParameters
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
 
 SCHEMA = "stochfric.simulation/1"
 
@@ -68,6 +70,9 @@ class SimulationResult:
     warnings: list[SimulationWarning] = field(default_factory=list)
     settings: dict[str, Any] = field(default_factory=dict)
     versions: dict[str, str] = field(default_factory=package_versions)
+    #: Further dataset attributes of the saved file (the command line adds the case's modes:
+    #: ``white_intensity``, ``process_level``, …): kept by :meth:`load`, written again by :meth:`to_dataset`.
+    attrs: dict[str, Any] = field(default_factory=dict)
 
     @property
     def n_param_sets(self) -> int:
@@ -80,6 +85,14 @@ class SimulationResult:
             row = self.x_gh[param_set, r]
             out.append([float(v) for v in row[np.isfinite(row)]])
         return out
+
+    def plot(self, param_set: int = 0) -> Figure:
+        """The phase portrait of parameter set ``param_set`` (x2 over x1, 3-D with x3 = ητ for forced
+        motion; :func:`~stochfric.oscillator.figures.figure_phase_portrait`) as a matplotlib figure; needs
+        the trajectory (``save_trajectory=True``).  Save it with ``fig.savefig(path)``."""
+        from .figures import figure_phase_portrait
+
+        return figure_phase_portrait(self, param_set)
 
     def __repr__(self) -> str:
         x = self.x_gh[np.isfinite(self.x_gh)]
@@ -160,12 +173,52 @@ class SimulationResult:
         ds.attrs["path_coordinate"] = self.path_coordinate
         for key in ("white_increment", "white_stream"):  # every mode as a plain attribute
             ds.attrs[key] = str(self.settings.get(key, ""))
+        for key, value in self.attrs.items():
+            ds.attrs.setdefault(key, value)
         return ds
 
     def to_netcdf(self, path: str | Path) -> Path:
         """Write :meth:`to_dataset` to ``path`` (NetCDF-4 via h5netcdf), atomically."""
         ds = self.to_dataset()
         return write_netcdf_atomic(path, ds)
+
+    @classmethod
+    def load(cls, path: str | Path) -> Self:
+        """The result saved in ``path`` (:meth:`to_netcdf`, or ``simulation.nc`` of ``stochfric simulate
+        --out``): arrays, parameter sets, seed, laws, process, settings, warnings and versions as written;
+        the attributes the command line adds go to :attr:`attrs`.  A missing file is a
+        :class:`FileNotFoundError`; a file of another kind an :class:`~stochfric.errors.InputError`."""
+        return cls.from_dataset(read_netcdf(path, f"simulation result ({SCHEMA}, simulation.nc)"), source=path)
+
+    @classmethod
+    def from_dataset(cls, ds: xr.Dataset, *, source: str | Path = "the dataset") -> Self:
+        """The result :meth:`to_dataset` made ``ds`` from (inverse of it, also after a NetCDF round trip)."""
+        meta = _metadata(ds, source)
+        fields = set(OscillatorParameters.__dataclass_fields__)
+        params = [OscillatorParameters(**{k: v for k, v in p.items() if k in fields}) for p in meta["parameters"]]
+        trajectory = None
+        if "x1" in ds:
+            x1 = np.asarray(ds["x1"].values, dtype=np.float64)
+            trajectory = np.empty((*x1.shape, 3))
+            trajectory[..., 0] = np.asarray(ds["time"].values, dtype=np.float64)
+            trajectory[..., 1] = x1
+            trajectory[..., 2] = np.asarray(ds["x2"].values, dtype=np.float64)
+        own = {"title", "metadata_json", "model", "integrator", "seed_entropy", "path_coordinate",
+               "white_increment", "white_stream"}
+        return cls(
+            params=params,
+            x_gh=np.asarray(ds["x_gh"].values, dtype=np.float64),
+            t_gh=np.asarray(ds["t_gh"].values, dtype=np.float64),
+            stick_count=np.asarray(ds["stick_count"].values, dtype=np.int64),
+            diagnostics={str(name): np.asarray(v.values) for name, v in ds.data_vars.items()
+                         if v.dims == ("param_set", "run") and name != "stick_count"},
+            trajectory=trajectory, model=meta["model"], integrator=meta["integrator"], dt=meta["dt"],
+            tau_end=meta["tau_end"], runs=meta["runs"], seed_entropy=int(meta["seed_entropy"]),
+            path_coordinate=meta["path_coordinate"], x0=[(float(a), float(b)) for a, b in meta["x0"]],
+            laws=meta["friction_law"], sigma_zeta=meta["sigma_zeta"], process=meta["process"],
+            warnings=[SimulationWarning(**w) for w in meta["warnings"]], settings=meta["settings"],
+            versions=meta["versions"], attrs={k: v for k, v in ds.attrs.items() if k not in own},
+        )  # fmt: skip
 
     def to_json_dict(self, param_set: int = 0) -> dict[str, Any]:
         """The CLI's ``--json`` object for one parameter set."""
@@ -201,12 +254,24 @@ def _json_default(obj: object) -> object:
     raise TypeError(f"not JSON serialisable: {type(obj).__name__}")
 
 
+def _metadata(ds: xr.Dataset, source: str | Path) -> dict[str, Any]:
+    """The ``metadata_json`` record of a simulation dataset; :class:`ResultFileError` for another file."""
+    try:
+        meta = json.loads(ds.attrs["metadata_json"])
+    except (KeyError, TypeError, ValueError):
+        meta = None
+    if not isinstance(meta, dict) or meta.get("schema") != SCHEMA:
+        found = meta.get("schema") if isinstance(meta, dict) else None
+        raise ResultFileError(f"{source} is not a stochfric simulation result ({SCHEMA})"
+                              + (f" but {found}" if found else "") + ": give simulation.nc of "
+                              "stochfric simulate --out, or a file of SimulationResult.to_netcdf; "
+                              "stochfric.load reads any saved result")
+    return meta
+
+
 def load_result(path: str | Path) -> xr.Dataset:
-    """Load a result written by :meth:`SimulationResult.to_netcdf` (fully into memory)."""
-    with xr.open_dataset(path, engine="h5netcdf") as ds:
-        out = ds.load()
-    if "metadata_json" not in out.attrs or json.loads(out.attrs["metadata_json"]).get(
-        "schema"
-    ) != SCHEMA:
-        raise InputError(f"{path} is not a stochfric simulation result ({SCHEMA})")
+    """The plain :class:`xarray.Dataset` of a result written by :meth:`SimulationResult.to_netcdf`
+    (fully into memory).  For the typed :class:`SimulationResult` use :meth:`SimulationResult.load`."""
+    out: xr.Dataset = read_netcdf(path, f"simulation result ({SCHEMA}, simulation.nc)")
+    _metadata(out, path)
     return out

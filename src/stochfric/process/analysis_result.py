@@ -14,7 +14,7 @@ import json
 import math
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import numpy.typing as npt
@@ -40,6 +40,9 @@ from stochfric.process.fit import ModelFit
 from stochfric.process.holdout import HoldoutValidation, MeasuredWindows
 from stochfric.process.model_intervals import ModelIntervals
 from stochfric.process.pooling import BetweenScanTest
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
 
 __all__ = ["EnsembleStatistics", "PathMoments", "PathSpectra", "StatisticalContactAnalysis", "SurrogateChecks"]
 
@@ -154,6 +157,15 @@ class StatisticalContactAnalysis(EnsembleStatistics, SurrogateChecks, PathMoment
         ci = np.asarray(self.correlation_length_ci95_m, dtype=np.float64)
         n_u = np.asarray(self.correlation_length_m).size
         return ci if ci.shape == (n_u, 2) else np.full((n_u, 2), np.nan)
+
+    def plot(self, which: str | None = None) -> Figure:
+        """A figure of the analysis as a matplotlib figure (save it with ``fig.savefig(path)``): ``which`` is the
+        name of one of the figures ``friction-process --plot`` writes, without ``.png``
+        (:data:`~stochfric.process.figures.ANALYSIS_FIGURES`); default ``model_functions``: E[μ], σ_μ and E[S]
+        over p with the fitted model functions a p^b + c."""
+        from stochfric.process.figures import analysis_figure
+
+        return analysis_figure(self, which)
 
     def sigma_zeta_table(self) -> dict[str, list[float]]:
         """σ_ζ at the analysed pressures by both rules (``sigma_mu`` and ``spectral_level``)."""

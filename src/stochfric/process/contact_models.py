@@ -28,11 +28,13 @@ index and the models it recommends.
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
-from typing import Any
+from pathlib import Path
+from typing import Any, Self
 
 import numpy as np
 import numpy.typing as npt
@@ -48,6 +50,7 @@ from stochfric.friction_process.spectra import (
     mean_psd,
 )
 from stochfric.friction_process.tabulated import TabulatedProcessModel
+from stochfric.io_utils import ResultFileError, read_json_file, read_netcdf
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.ensemble import SurrogateOptions, tile_grid, window_starts
 from stochfric.process.estimators import mean_and_std_errors
@@ -76,6 +79,10 @@ __all__ = [
 STATISTICAL_CONTACT_MODELS: tuple[str, ...] = ("gw", "bem", "bem-plastic", "persson")
 #: ``--contact-model all``: every model of :data:`STATISTICAL_CONTACT_MODELS`.
 ALL_MODELS = "all"
+#: The ``kind`` stamp of the spread's summary and per-sample file; the per-sample file's name is the summary's
+#: stem with this suffix (``contact_models.json``, ``contact_models_samples.nc``).
+SPREAD_KIND = "contact_model_spread"
+SAMPLES_SUFFIX = "_samples"
 
 #: Relative tolerance of the GW bisection on the approach (N(u) = p A_nom).
 GW_TOLERANCE = 1e-10
@@ -401,7 +408,7 @@ class ContactModelSpread:
         env = self.envelope()
         gw_bem = self.ratio("gw", "bem")
         return {
-            "kind": "contact_model_spread",
+            "kind": SPREAD_KIND,
             "pressure_pa": lst(self.pressure_pa),
             "models": list(self.models),
             "per_model": per_model,
@@ -436,11 +443,80 @@ class ContactModelSpread:
             for q in ("mu", "area_fraction", "n_contacts", "iterations"):
                 data[f"{kind}_{q}"] = (("model", kind, "pressure"),
                                        np.stack([getattr(group[m], q) for m in self.models]))
-        ds = xr.Dataset(data, coords={"model": list(self.models), "pressure": self.pressure_pa})
+        coords: dict[str, Any] = {"model": list(self.models), "pressure": self.pressure_pa}
+        groups = {"surrogate": self.surrogates, "window": self.windows}
+        for kind, group in groups.items():
+            if group:
+                data[f"{kind}_seconds"] = (("model", kind), np.stack([group[m].seconds for m in self.models]),
+                                           {"units": "s", "long_name": "wall time of each sample"})
+        if self.paths:
+            coords["path_model"] = list(self.paths)
+            data["path_mu"] = (("path_model", "long_surface", "path_window"),
+                               np.stack([v.mu for v in self.paths.values()]),
+                               {"units": "1", "long_name": "mu along the windows of the long surfaces (ModelPath)"})
+        ds = xr.Dataset(data, coords=coords)
         ds["pressure"].attrs["units"] = "Pa"
-        ds.attrs["kind"] = "contact_model_spread"
+        ds.attrs["kind"] = SPREAD_KIND
         ds.attrs["seed_entropy"] = str(self.seed_entropy)
+        ds.attrs["solvers_json"] = json.dumps({k: {m: list(g[m].solvers) for m in g} for k, g in groups.items()})
+        ds.attrs["warnings_json"] = json.dumps({k: {m: list(g[m].warnings) for m in g} for k, g in groups.items()})
+        ds.attrs["paths_json"] = json.dumps({m: {"pressure_pa": v.pressure_pa, "window_shift_m": v.window_shift_m,
+                                                 "window_length_m": v.window_length_m} for m, v in self.paths.items()})
         return ds
+
+    @classmethod
+    def load(cls, path: str | Path) -> Self:
+        """The spread :func:`~stochfric.process.pipeline.write_spread` wrote (``stochfric contact-models --out``,
+        ``friction-process --contact-model … --out``), from either of its files: the summary
+        ``contact_models.json`` and the per-sample ``contact_models_samples.nc`` beside it (both are read).
+        A missing file is a :class:`FileNotFoundError`, a file of another kind an
+        :class:`~stochfric.errors.InputError`.  A file of a stochfric before the per-sample wall times and the
+        path arrays were saved reads with NaN wall times and without :attr:`paths`."""
+        p = Path(path).expanduser()
+        stem = p.stem.removesuffix(SAMPLES_SUFFIX) if p.suffix == ".nc" else p.stem
+        summary_path, samples_path = p.with_name(f"{stem}.json"), p.with_name(f"{stem}{SAMPLES_SUFFIX}.nc")
+        what = "contact-model spread (contact_models.json with contact_models_samples.nc)"
+        d = read_json_file(summary_path, what)
+        if not isinstance(d, dict) or d.get("kind") != SPREAD_KIND:
+            raise ResultFileError(f"{summary_path} is not the summary of a {what}; stochfric.load reads any "
+                                  "saved result")
+        ds = read_netcdf(samples_path, what)
+        if ds.attrs.get("kind") != SPREAD_KIND:
+            raise ResultFileError(f"{samples_path} is not the per-sample file of a {what}")
+        models = tuple(str(m) for m in ds["model"].values)
+        p_pa = np.asarray(ds["pressure"].values, dtype=np.float64)
+        solvers = json.loads(ds.attrs.get("solvers_json", "{}"))
+        warnings = json.loads(ds.attrs.get("warnings_json", "{}"))
+
+        def samples(kind: str) -> dict[str, ModelSamples]:
+            if f"{kind}_mu" not in ds:
+                return {}
+            n = ds.sizes[kind]
+            return {m: ModelSamples(
+                model=m, pressure_pa=p_pa, **{q: np.asarray(ds[f"{kind}_{q}"].values[i], dtype=np.float64)
+                                             for q in ("area_fraction", "n_contacts", "mu", "iterations")},
+                seconds=(np.asarray(ds[f"{kind}_seconds"].values[i], dtype=np.float64) if f"{kind}_seconds" in ds
+                         else np.full(n, np.nan)),
+                warnings=tuple(warnings.get(kind, {}).get(m, ())), solvers=tuple(solvers.get(kind, {}).get(m, ())),
+            ) for i, m in enumerate(models)}  # fmt: skip
+
+        paths: dict[str, ModelPath] = {}
+        if "path_mu" in ds:
+            record = json.loads(ds.attrs["paths_json"])
+            for i, m in enumerate(str(v) for v in ds["path_model"].values):
+                paths[m] = ModelPath(model=m, mu=np.asarray(ds["path_mu"].values[i], dtype=np.float64), **record[m])
+        windows = d.get("measured_windows")
+        return cls(
+            pressure_pa=p_pa, models=models, surrogates=samples("surrogate"), windows=samples("window"),
+            window_tiles=None if windows is None else int(windows["tiles"]),
+            window_size_m=tuple(windows["window_size_m"]) if windows and windows.get("window_size_m") else None,
+            plasticity_index=d.get("plasticity_index"), recommended=tuple(d.get("recommended_models", ())),
+            recommendation=d.get("recommendation", ""), surrogate_method=d.get("surrogate_method", ""),
+            surrogate_choice=d.get("surrogate_choice", ""), realizations=int(d["realizations"]),
+            control=LoadControl(**d["load_control"]), material=d.get("material", {}),
+            seed_entropy=d.get("seed_entropy"), surface_info=d.get("surface", {}), paths=paths,
+            notes=list(d.get("notes", [])),
+        )  # fmt: skip
 
 
 def _check_pressures(pressures_pa: npt.ArrayLike, material: Material, models: Sequence[str]) -> FloatArray:

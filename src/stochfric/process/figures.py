@@ -1,26 +1,46 @@
 """Figures of the statistical contact analysis, after thesis Fig. 3.16–3.23.
 
-Matplotlib's object API with the Agg canvas (no pyplot, no global state).  Every function
-writes one PNG and returns its path; pressures in MPa, lengths in µm (conversion only here).
+Matplotlib's object API with the Agg canvas (no pyplot, no global state).  Every ``figure_*``
+function builds one :class:`~matplotlib.figure.Figure` and returns it; the ``plot_*`` function of the
+same name writes it as a PNG and returns its path; :func:`analysis_figure` picks a figure of an analysis
+by name (``StatisticalContactAnalysis.plot``).  Pressures in MPa, lengths in µm, path frequencies in
+1/mm and spectra in mm (conversion only here).
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from stochfric.plotting import new_figure, save_figure
+from stochfric.plotting import MU_LABEL, log_ticks, new_figure, save_figure
 from stochfric.units import MEGAPASCAL, MICROMETRE
 
 if TYPE_CHECKING:
+    from matplotlib.figure import Figure
 
     from stochfric.process.checks import ProcessCheck
-    from stochfric.process.contact_models import ContactModelSpread
-    from stochfric.process.statistics import StatisticalContactAnalysis
+
+#: The figures read these results by their attributes only; they are not imported here, so that the result
+#: classes can offer ``plot()`` without an import cycle (``tests/unit/test_layers.py``).
+StatisticalContactAnalysis = Any  # stochfric.process.analysis_result.StatisticalContactAnalysis
+ContactModelSpread = Any  # stochfric.process.contact_models.ContactModelSpread
 
 __all__ = [
+    "ANALYSIS_FIGURES",
+    "analysis_figure",
+    "figure_contact_fraction",
+    "figure_contact_model_spread",
+    "figure_ergodicity",
+    "figure_fits",
+    "figure_mu_path",
+    "figure_mu_pdfs",
+    "figure_process_check",
+    "figure_spectra",
+    "figure_surrogate_check",
+    "figure_surrogates",
     "plot_contact_fraction",
     "plot_contact_model_spread",
     "plot_ergodicity",
@@ -29,6 +49,7 @@ __all__ = [
     "plot_mu_pdfs",
     "plot_process_check",
     "plot_spectra",
+    "plot_surrogate_check",
     "plot_surrogates",
     "write_process_figures",
 ]
@@ -39,24 +60,42 @@ def _selected(n: int) -> list[int]:
     return sorted({min(1, n - 1), max(0, n // 2 - 1), n - 1})
 
 
-def plot_mu_pdfs(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+#: Path frequency [1/m] → 1/mm, and a one-sided spectrum [m] → mm (the plotted units).
+_PER_MM = 1e-3
+_MM = 1e3
+
+
+def figure_mu_pdfs(a: StatisticalContactAnalysis) -> Figure:
     """PDFs of μ over the ensemble at three approaches (Fig. 3.16)."""
-    fig = new_figure(9.0, 3.2)
+    fig = new_figure(9.0, 3.3)
     idx = _selected(a.ensemble.approach_m.size)
-    axes = fig.subplots(1, len(idx))
-    for ax, k in zip(np.atleast_1d(axes), idx, strict=True):
+    axes = np.atleast_1d(fig.subplots(1, len(idx)))
+    for ax, k in zip(axes, idx, strict=True):
         e = a.pdf_edges[k]
         ax.stairs(a.pdf_density[k], e, fill=True, alpha=0.6)
         ax.set_title(
-            f"u = {a.ensemble.approach_m[k] / MICROMETRE:.3g} µm, p = {a.ensemble_pressure_pa[k] / MEGAPASCAL:.3g} MPa"
+            f"u = {a.ensemble.approach_m[k] / MICROMETRE:.3g} µm, p = {a.ensemble_pressure_pa[k] / MEGAPASCAL:.3g} MPa",
+            fontsize=9,
         )
-        ax.set_xlabel("μ")
-    np.atleast_1d(axes)[0].set_ylabel("PDF")
+        ax.set_xlabel(MU_LABEL)
+        ax.set_ylabel("PDF of μ (dimensionless)")
+        ax.xaxis.set_major_locator(_nbins(4))
     fig.suptitle(f"μ over {a.config.realizations} realisations ({a.config.surrogate} surrogates)")
-    return save_figure(fig, path)
+    return fig
 
 
-def plot_contact_fraction(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+def plot_mu_pdfs(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """:func:`figure_mu_pdfs` written to ``path``."""
+    return save_figure(figure_mu_pdfs(a), path)
+
+
+def _nbins(n: int) -> Any:
+    from matplotlib.ticker import MaxNLocator
+
+    return MaxNLocator(nbins=n)
+
+
+def figure_contact_fraction(a: StatisticalContactAnalysis) -> Figure:
     """Mean A_c/A_nom over the mean pressure E[N]/A_nom with the linear fit (Fig. 3.17)."""
     fig = new_figure(5.0, 4.0)
     ax = fig.subplots()
@@ -65,12 +104,17 @@ def plot_contact_fraction(a: StatisticalContactAnalysis, path: str | Path) -> Pa
     fit = a.contact_fraction_fit
     ax.plot(p / MEGAPASCAL, fit["slope"] * p + fit["intercept"], "-", label=f"linear fit, R² = {fit['r_squared']:.4f}")
     ax.set_xlabel("E[N]/A_nom [MPa]")
-    ax.set_ylabel("E[A_c]/A_nom")
+    ax.set_ylabel("E[A_c]/A_nom (dimensionless)")
     ax.legend()
-    return save_figure(fig, path)
+    return fig
 
 
-def plot_ergodicity(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+def plot_contact_fraction(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """:func:`figure_contact_fraction` written to ``path``."""
+    return save_figure(figure_contact_fraction(a), path)
+
+
+def figure_ergodicity(a: StatisticalContactAnalysis) -> Figure:
     """Ergodicity (Fig. 3.18b): σ of μ along one long surface vs across independent surfaces.
 
     Left: μ of the non-overlapping windows of every long surface (one colour per surface) with
@@ -85,23 +129,28 @@ def plot_ergodicity(a: StatisticalContactAnalysis, path: str | Path) -> Path:
         axes[0].plot(u, blocks[k].T, color=f"C{k % 10}", lw=0.5, alpha=0.6)
     axes[0].plot(u, blocks.mean(axis=(0, 1)), "k-", lw=2, label="mean of all windows")
     axes[0].set_xlabel("u [µm]")
-    axes[0].set_ylabel("μ")
-    axes[0].set_title(f"{blocks.shape[0]} long surfaces × {blocks.shape[1]} windows")
+    axes[0].set_ylabel(MU_LABEL)
+    axes[0].set_title(f"{blocks.shape[0]} long surfaces × {blocks.shape[1]} windows", fontsize=9)
     axes[0].legend()
     erg = a.ergodicity
     axes[1].plot(u, erg.path_std, "o-", label="σ along one surface")
     axes[1].plot(u, erg.ensemble_std, "s--", label="σ across surfaces")
     axes[1].set_xlabel("u [µm]")
-    axes[1].set_ylabel("σ_μ")
+    axes[1].set_ylabel("σ_μ (dimensionless)")
     axes[1].legend()
     fig.suptitle(
         f"ergodicity: max |z| = {erg.max_abs_z:.2f} vs threshold {erg.threshold:.2f} → "
         + ("consistent" if erg.consistent else "NOT consistent")
     )
-    return save_figure(fig, path)
+    return fig
 
 
-def plot_mu_path(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+def plot_ergodicity(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """:func:`figure_ergodicity` written to ``path``."""
+    return save_figure(figure_ergodicity(a), path)
+
+
+def figure_mu_path(a: StatisticalContactAnalysis) -> Figure:
     """μ(y) along the first long surface for three approaches."""
     fig = new_figure(7.0, 3.6)
     ax = fig.subplots()
@@ -109,56 +158,74 @@ def plot_mu_path(a: StatisticalContactAnalysis, path: str | Path) -> Path:
     for k in _selected(a.ensemble.approach_m.size):
         ax.plot(y, a.path.samples.mu[0, :, k], label=f"p = {a.pressure_pa[k] / MEGAPASCAL:.3g} MPa")
     ax.set_xlabel(f"y [µm] (windows shifted by a_y = {a.path.window_shift_m / MICROMETRE:.3g} µm)")
-    ax.set_ylabel("μ(y)")
+    ax.set_ylabel("μ(y) (dimensionless)")
     ax.legend()
-    return save_figure(fig, path)
+    return fig
 
 
-def plot_spectra(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+def plot_mu_path(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """:func:`figure_mu_path` written to ``path``."""
+    return save_figure(figure_mu_path(a), path)
+
+
+def figure_spectra(a: StatisticalContactAnalysis) -> Figure:
     """Averaged autocorrelation and one-sided PSD (method §0) for three approaches (Fig. 3.19–3.21)."""
     fig = new_figure(10.0, 3.8)
     ax1, ax2 = fig.subplots(1, 2)
     for k in _selected(a.ensemble.approach_m.size):
         lab = f"p = {a.pressure_pa[k] / MEGAPASCAL:.3g} MPa"
         ax1.plot(a.lags_m / MICROMETRE, a.acf[k], label=lab)
-        ax2.plot(a.frequencies, a.psd[k], label=lab)
+        ax2.plot(np.asarray(a.frequencies) * _PER_MM, np.asarray(a.psd[k]) * _MM, label=lab)
     ax1.axhline(0.0, color="k", lw=0.5)
     ax1.set_xlabel("lag [µm]")
-    ax1.set_ylabel("R(lag) (3.18)")
-    ax1.set_title(f"mean ℓ_corr = {np.nanmean(a.correlation_length_m) / MICROMETRE:.3g} µm")
+    ax1.set_ylabel("R(lag) (3.18) (dimensionless)")
+    ax1.set_title(f"mean ℓ_corr = {np.nanmean(a.correlation_length_m) / MICROMETRE:.3g} µm", fontsize=10)
     ax2.set_yscale("log")
-    ax2.set_xlabel("f [1/m]")
-    ax2.set_ylabel("S [m] (one-sided)")
-    ax2.set_title(f"PSD averaged over {a.config.long_surfaces} surfaces")
+    ax2.set_xlabel("path frequency f [1/mm]")
+    ax2.set_ylabel("S [mm] (one-sided)")
+    ax2.set_title(f"PSD averaged over {a.config.long_surfaces} surfaces", fontsize=10)
+    log_ticks(ax2, "y")
     ax1.legend()
-    return save_figure(fig, path)
+    return fig
 
 
-def plot_fits(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+def plot_spectra(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """:func:`figure_spectra` written to ``path``."""
+    return save_figure(figure_spectra(a), path)
+
+
+def figure_fits(a: StatisticalContactAnalysis) -> Figure:
     """E[μ], σ_μ and E[S] over the mean pressure with the model functions a p^b + c (Fig. 3.22)."""
     fig = new_figure(11.0, 3.6)
     axes = fig.subplots(1, 3)
     p = a.pressure_pa
     data = (
-        ("mu_mean", a.mu_mean, a.mu_mean_se, "E[μ]"),
-        ("mu_std", a.mu_std, a.mu_std_se, "σ_μ"),
-        ("psd_level", a.psd_level, a.psd_level_se, "E[S] [m]"),
+        ("mu_mean", a.mu_mean, a.mu_mean_se, "E[μ] (dimensionless)", 1.0, ""),
+        ("mu_std", a.mu_std, a.mu_std_se, "σ_μ (dimensionless)", 1.0, ""),
+        ("psd_level", a.psd_level, a.psd_level_se, "E[S] [µm]", 1.0 / MICROMETRE, " [m]"),
     )
     pp = np.geomspace(p.min(), p.max(), 200)
-    for ax, (key, y, se, label) in zip(axes, data, strict=True):
+    for ax, (key, y, se, label, scale, fit_unit) in zip(axes, data, strict=True):
         fit = a.fits[key]
         used = np.asarray(fit.used)
-        ax.errorbar(p[used] / MEGAPASCAL, y[used], yerr=se[used], fmt="o", label="used")
-        ax.errorbar(p[~used] / MEGAPASCAL, y[~used], yerr=se[~used], fmt="x", color="0.5", label="excluded")
-        ax.plot(pp / MEGAPASCAL, fit(pp), "-", label=f"{fit.a:.3g} p^{fit.b:.3g} + {fit.c:.3g}")
+        ax.errorbar(p[used] / MEGAPASCAL, y[used] * scale, yerr=se[used] * scale, fmt="o", label="used")
+        ax.errorbar(p[~used] / MEGAPASCAL, y[~used] * scale, yerr=se[~used] * scale, fmt="x", color="0.5",
+                    label="excluded")
+        ax.plot(pp / MEGAPASCAL, fit(pp) * scale, "-", label=f"{fit.a:.3g} p^{fit.b:.3g} + {fit.c:.3g}{fit_unit}")
         ax.set_xscale("log")
+        log_ticks(ax, "x")
         ax.set_xlabel("p [MPa]")
         ax.set_ylabel(label)
         ax.legend(fontsize=7)
-    return save_figure(fig, path)
+    return fig
 
 
-def plot_process_check(check: ProcessCheck, path: str | Path) -> Path:
+def plot_fits(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """:func:`figure_fits` written to ``path``."""
+    return save_figure(figure_fits(a), path)
+
+
+def figure_process_check(check: ProcessCheck) -> Figure:
     """Generated process vs target: standard deviation and spectrum (Fig. 3.23)."""
     fig = new_figure(10.0, 3.8)
     ax1, ax2 = fig.subplots(1, 2)
@@ -167,48 +234,66 @@ def plot_process_check(check: ProcessCheck, path: str | Path) -> Path:
     ax1.errorbar(p, check.std_pointwise, yerr=check.std_pointwise_se, fmt="s", label="generated (pointwise)")
     ax1.plot(p, check.std_grid_mean, "x", label="generated (grid, mean)")
     ax1.set_xscale("log")
+    log_ticks(ax1, "x")
     ax1.set_xlabel("p [MPa]")
-    ax1.set_ylabel("σ of μ̂_SD")
+    ax1.set_ylabel("σ of μ̂_SD (dimensionless)")
     ax1.legend(fontsize=7)
-    f = np.asarray(check.frequencies)
+    f = np.asarray(check.frequencies) * _PER_MM
     for j, pj in enumerate(p):
-        line = ax2.plot(f, check.target_psd[j], "-", label=f"target, {pj:.3g} MPa")[0]
-        ax2.plot(f, check.generated_psd[j], ".", color=line.get_color(), label=f"generated ({check.realizations})")
+        line = ax2.plot(f, np.asarray(check.target_psd[j]) * _MM, "-", label=f"target, {pj:.3g} MPa")[0]
+        ax2.plot(f, np.asarray(check.generated_psd[j]) * _MM, ".", color=line.get_color(),
+                 label=f"generated ({check.realizations})")
     ax2.set_yscale("log")
-    ax2.set_xlabel("f [1/m]")
-    ax2.set_ylabel("S [m] (one-sided)")
+    log_ticks(ax2, "y")
+    ax2.set_xlabel("path frequency f [1/mm]")
+    ax2.set_ylabel("S [mm] (one-sided)")
     ax2.legend(fontsize=6)
-    return save_figure(fig, path)
+    return fig
+
+
+def plot_process_check(check: ProcessCheck, path: str | Path) -> Path:
+    """:func:`figure_process_check` written to ``path``."""
+    return save_figure(figure_process_check(check), path)
+
+
+def figure_surrogates(original: np.ndarray, surrogates: dict[str, np.ndarray], *, unit: float = MICROMETRE) -> Figure:
+    """Original and surrogate height maps (one colour scale) with their height PDFs (phase, IAAFT, quilt)."""
+    n = 1 + len(surrogates)
+    fig = new_figure(3.2 * n + 3.4, 3.3)
+    axes = fig.subplots(1, n + 1)
+    maps = {"original": original, **surrogates}
+    lo, hi = float(original.min()) / unit, float(original.max()) / unit
+    im = None
+    for ax, (label, z) in zip(axes[:n], maps.items(), strict=True):
+        im = ax.imshow(z.T / unit, origin="lower", cmap="viridis", vmin=lo, vmax=hi)
+        ax.set_title(label)
+        ax.set_axis_off()
+        axes[n].hist(z.ravel() / unit, bins=80, density=True, histtype="step", label=label)
+    if im is not None:
+        fig.colorbar(im, ax=list(axes[:n]), label="height z [µm]", orientation="horizontal", shrink=0.5,
+                     aspect=30)
+    axes[n].set_yscale("log")
+    axes[n].set_xlabel("z [µm]")
+    axes[n].set_ylabel("probability density [1/µm]")
+    axes[n].legend(fontsize=7)
+    return fig
 
 
 def plot_surrogates(
     original: np.ndarray, surrogates: dict[str, np.ndarray], path: str | Path, *, unit: float = MICROMETRE
 ) -> Path:
-    """Original and surrogate height maps with their height PDFs (phase, IAAFT, quilt)."""
-    n = 1 + len(surrogates)
-    fig = new_figure(3.2 * n + 3.2, 3.2)
-    axes = fig.subplots(1, n + 1)
-    maps = {"original": original, **surrogates}
-    lo, hi = float(original.min()) / unit, float(original.max()) / unit
-    for ax, (label, z) in zip(axes[:n], maps.items(), strict=True):
-        ax.imshow(z.T / unit, origin="lower", cmap="viridis", vmin=lo, vmax=hi)
-        ax.set_title(label)
-        ax.set_axis_off()
-        axes[n].hist(z.ravel() / unit, bins=80, density=True, histtype="step", label=label)
-    axes[n].set_yscale("log")
-    axes[n].set_xlabel("z [µm]")
-    axes[n].legend(fontsize=7)
-    return save_figure(fig, path)
+    """:func:`figure_surrogates` written to ``path``."""
+    return save_figure(figure_surrogates(original, surrogates, unit=unit), path)
 
 
-def plot_surrogate_check(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+def figure_surrogate_check(a: StatisticalContactAnalysis) -> Figure:
     """The measured map against its surrogate ensemble (method §3): μ(u) band and summit statistics.
 
     Left: every realisation's μ(u) (grey), the ensemble mean ± 3 sd, and the measured map's own
     μ(u) (red).  Right: the summit count, mean radius β̄ and σ_S of the realisations as
     histograms in units of their ensemble standard deviation, with the measured map's z marked.
     """
-    fig = new_figure(9.0, 3.6)
+    fig = new_figure(9.0, 3.8)
     axes = fig.subplots(1, 2)
     c = a.surrogate_check
     u = a.ensemble.approach_m / MICROMETRE
@@ -219,7 +304,7 @@ def plot_surrogate_check(a: StatisticalContactAnalysis, path: str | Path) -> Pat
     axes[0].plot(u, m, "C0-")
     axes[0].plot(u, c.mu_measured, "C3o-", ms=3, label="measured map")
     axes[0].set_xlabel("u [µm]")
-    axes[0].set_ylabel("μ")
+    axes[0].set_ylabel(MU_LABEL)
     axes[0].legend()
     stats = a.ensemble.summit_stats
     labels = ("summit count", "mean radius β̄", "σ_S")
@@ -228,14 +313,28 @@ def plot_surrogate_check(a: StatisticalContactAnalysis, path: str | Path) -> Pat
         for k, name in enumerate(("summit_count", "summit_radius_mean_m", "summit_height_std_m")):
             axes[1].hist(z_ens[:, k] + 8 * k, bins=15, color=f"C{k}", alpha=0.5, label=labels[k])
             axes[1].axvline(c.z[name] + 8 * k, color=f"C{k}", lw=2)
-    axes[1].set_xticks([0, 8, 16], labels)
-    axes[1].set_ylabel("realisations")
+        axes[1].set_xticks([0, 8, 16], labels)
+        axes[1].set_xlabel("z per statistic (dimensionless)")
+        axes[1].set_ylabel("realisations (count)")
+    else:
+        axes[1].set_xticks([])
+        axes[1].set_yticks([])
+        axes[1].text(0.5, 0.5, "no summit statistics\nin this ensemble", ha="center", va="center",
+                     transform=axes[1].transAxes)
     axes[1].set_title("z of the measured map (lines) vs the ensemble (bars)", fontsize=9)
+    failures = c.failures()
     fig.suptitle(
         f"surrogates ({c.surrogate}, amplitude {c.amplitude}) vs measured map → "
-        + ("credible" if c.credible else "NOT credible: " + ", ".join(c.failures()[:4]))
+        + ("credible" if c.credible else "NOT credible: " + ", ".join(failures[:4])
+           + (f" (+{len(failures) - 4} more)" if len(failures) > 4 else "")),
+        fontsize=10,
     )
-    return save_figure(fig, path)
+    return fig
+
+
+def plot_surrogate_check(a: StatisticalContactAnalysis, path: str | Path) -> Path:
+    """:func:`figure_surrogate_check` written to ``path``."""
+    return save_figure(figure_surrogate_check(a), path)
 
 
 def write_process_figures(a: StatisticalContactAnalysis, directory: str | Path) -> list[Path]:
@@ -253,7 +352,30 @@ def write_process_figures(a: StatisticalContactAnalysis, directory: str | Path) 
     ]
 
 
-def plot_contact_model_spread(spread: ContactModelSpread, path: str | Path) -> Path:
+#: The figures of an analysis by name (:func:`analysis_figure`); the first is the main figure.
+ANALYSIS_FIGURES: dict[str, Callable[[StatisticalContactAnalysis], Figure]] = {
+    "model_functions": figure_fits,
+    "surrogate_check": figure_surrogate_check,
+    "mu_pdfs": figure_mu_pdfs,
+    "contact_fraction": figure_contact_fraction,
+    "ergodicity": figure_ergodicity,
+    "mu_path": figure_mu_path,
+    "acf_psd": figure_spectra,
+    "process_check": lambda a: figure_process_check(a.process_check),
+}
+
+
+def analysis_figure(a: StatisticalContactAnalysis, which: str | None = None) -> Figure:
+    """The figure ``which`` of the analysis (a name of :data:`ANALYSIS_FIGURES`, the file name
+    :func:`write_process_figures` gives it without ``.png``; default: ``model_functions``, E[μ], σ_μ and
+    E[S] over p with the fitted model functions).  ``ValueError`` for an unknown name."""
+    name = which or next(iter(ANALYSIS_FIGURES))
+    if name not in ANALYSIS_FIGURES:
+        raise ValueError(f"no figure {name!r} of a statistical contact analysis (known: {', '.join(ANALYSIS_FIGURES)})")
+    return ANALYSIS_FIGURES[name](a)
+
+
+def figure_contact_model_spread(spread: ContactModelSpread) -> Figure:
     """The contact models side by side (issue 31): E[μ](p) over the surrogates (±1.96 SE) and over the
     measured windows (95 % interval) per model, the envelope shaded; σ_μ(p) per model; the path spectra per
     model where the spread holds them (normalised by their variance, so the shapes compare)."""
@@ -275,11 +397,13 @@ def plot_contact_model_spread(spread: ContactModelSpread, path: str | Path) -> P
         axes[1].errorbar(p, sur["mu_std"], yerr=1.96 * sur["mu_std_se"], fmt="o-", color=colour, ms=3, label=m)
     from matplotlib.ticker import NullFormatter
 
-    for ax, label in ((axes[0], "E[μ]"), (axes[1], "σ_μ")):
+    for ax, label in ((axes[0], "E[μ] (dimensionless)"), (axes[1], "σ_μ (dimensionless)")):
         ax.set_xscale("log")
         ax.xaxis.set_minor_formatter(NullFormatter())  # labelled minor ticks of a short log range overlap
         if p.size <= 8:  # a short log range has one decade label at most: label the pressures themselves
             ax.set_xticks(p, [f"{v:.3g}" for v in p])
+        else:
+            log_ticks(ax, "x")
         ax.set_xlabel("nominal pressure p [MPa]")
         ax.set_ylabel(label)
     axes[0].legend(fontsize=7, title="shaded: measured windows, 95 %", title_fontsize=7)
@@ -295,8 +419,15 @@ def plot_contact_model_spread(spread: ContactModelSpread, path: str | Path) -> P
             cl = path_m.correlation_length()[0]
             ax.loglog(f * 1e-3, s / var * 1e3, color=f"C{k}",
                       label=f"{m}: ℓ_int = {cl / MICROMETRE:.3g} µm" if np.isfinite(cl) else m)
+        log_ticks(ax, "x")
+        log_ticks(ax, "y")
         ax.set_xlabel("path frequency f [1/mm]")
         ax.set_ylabel("S(f)/σ² [mm]")
         ax.set_title(f"path at p = {next(iter(spread.paths.values())).pressure_pa / MEGAPASCAL:.3g} MPa", fontsize=8)
         ax.legend(fontsize=7)
-    return save_figure(fig, path)
+    return fig
+
+
+def plot_contact_model_spread(spread: ContactModelSpread, path: str | Path) -> Path:
+    """:func:`figure_contact_model_spread` written to ``path``."""
+    return save_figure(figure_contact_model_spread(spread), path)

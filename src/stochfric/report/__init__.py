@@ -6,7 +6,7 @@ chapter-3 analysis, its sections; :func:`plot_phase_portrait` draws one simulati
 
 from __future__ import annotations
 
-from stochfric.report.figures import plot_phase_portrait
+from stochfric.oscillator.figures import plot_phase_portrait
 from stochfric.report.html import write_report
 
 __all__ = ["plot_phase_portrait", "write_report"]

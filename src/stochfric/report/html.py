@@ -30,13 +30,13 @@ from ..oscillator.options import Model
 from ..studies.base import StudyResult
 from ..studies.chapter3 import Chapter3
 from ..studies.damping import DampingSummary, DMaxRisk
+from ..studies.figures import damping_figures, forcing_figures, lyapunov_figures, normal_force_figures
 from ..studies.forcing import ForcingSummary
 from ..studies.kinds import study_kind
 from ..studies.lyapunov import LyapunovSummary
 from ..studies.normal_force import NormalForceSummary
 from ..surface.figures import write_surface_figures
 from .process_section import friction_process_section
-from .study_figures import damping_figures, forcing_figures, lyapunov_figures, normal_force_figures
 
 _CSS = """
 body{font-family:system-ui,sans-serif;max-width:1150px;margin:2em auto;padding:0 1em;color:#222}
@@ -332,6 +332,18 @@ def lyapunov_reading(summary: LyapunovSummary) -> tuple[str, str]:
                    "nonlinear (undefined)", "λ > 2 SE", "λ < −2 SE"], rows), txt
 
 
+#: A table cell whose value would be meaningless (:func:`se_percent`).
+UNDEFINED = "undefined"
+
+
+def se_percent(se: float | None) -> float | str | None:
+    """A standard error as a percentage for a table cell: ``100·se``, or :data:`UNDEFINED` above 100 % (an SE
+    of 2.6·10⁴ % says nothing but that the estimate is not resolved); ``None``/NaN stay empty cells."""
+    if se is None or not math.isfinite(float(se)):
+        return se
+    return UNDEFINED if 100 * float(se) > 100 else 100 * float(se)
+
+
 def normal_force_reading(summary: NormalForceSummary) -> tuple[str, str]:
     """(table, reading) for a normal-force study summary."""
     s = summary
@@ -341,7 +353,7 @@ def normal_force_reading(summary: NormalForceSummary) -> tuple[str, str]:
         for di, d in enumerate(s.damping_ratio):
             for ni, nf in enumerate(s.normal_force_n):
                 rows.append([m, d, nf, s.x_gh_mean[m][ni][di], s.x_gh_mean_se[m][ni][di], s.x_gh_std[m][ni][di],
-                             s.x_gh_std_se[m][ni][di], 100 * s.vark[m][ni][di], 100 * s.vark_se[m][ni][di],
+                             s.x_gh_std_se[m][ni][di], 100 * s.vark[m][ni][di], se_percent(s.vark_se[m][ni][di]),
                              s.n_events[m][ni][di]])
     txt = ""
     if Model.WHITE in s.models and Model.CONTACT in s.models:
@@ -356,6 +368,9 @@ def normal_force_reading(summary: NormalForceSummary) -> tuple[str, str]:
                     parts.append(f"N = {nf:g} N, D = {d:g}: {sc / sw:.2g}{iv}")
         txt = ("σ(X_gh) contact/white [95 % bootstrap interval]: " + "; ".join(parts)
                + ". Empty cells: no stick-slip after the transient.")
+    if any(row[8] == UNDEFINED for row in rows):
+        txt += ((" " if txt else "") + "SE % “undefined”: the standard error of VarK exceeds 100 percentage points "
+                "(E[X_gh] near 0, so VarK = σ/|E| is not resolved by these runs).")
     return _table(["model", "D", "N [N]", "E[X_gh]", "SE", "σ", "SE", "VarK %", "SE %", "events"], rows), txt
 
 

@@ -19,13 +19,13 @@ import json
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, ClassVar, Generic, TypeVar
+from typing import TYPE_CHECKING, Any, ClassVar, Generic, TypeVar
 
 import numpy as np
 import numpy.typing as npt
 import xarray as xr
 
-from ..io_utils import package_versions, write_netcdf_atomic, write_text_atomic
+from ..io_utils import package_versions, read_json_file, read_netcdf, write_netcdf_atomic, write_text_atomic
 from ..oscillator.case import CaseSetup
 from ..progress import Progress
 from . import tasks as task_module
@@ -34,8 +34,11 @@ from .errors import StudyError
 from .executors import Executor, SweepStats, run_tasks
 from .grids import pad_events
 from .store import CheckpointStore
-from .summary import StudySummary, WarningCount, summary_class, to_json
+from .summary import StudySummary, WarningCount, summary_class, summary_kinds, to_json
 from .tasks import TaskSpec, model_choices, setup_for, warnings_of
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
 
 #: Version of a study's saved summary and dataset (2: seeds by cell, D_max(α), converged forced studies,
 #: today's names); :meth:`StudyResult.load` refuses another.
@@ -71,14 +74,26 @@ class StudyResult(Generic[S]):
         """The CLI's ``--json`` object and the saved ``<kind>.json``: the summary as plain JSON values."""
         return self.summary.to_json()
 
+    def plot(self, which: str | None = None, **kwargs: Any) -> Figure:
+        """A figure of the study as a matplotlib figure (save it with ``fig.savefig(path)``): ``which`` names one
+        of the kind's figures (:data:`~stochfric.studies.figures.STUDY_FIGURES`; the report draws them all);
+        default: the kind's main figure — damping: P(stick-slip cycle) over D × N; forcing: the bifurcation
+        diagram; lyapunov: λ over η; normal-force: the PDFs of X_gh (``damping_index=`` picks the D)."""
+        from .figures import study_figure
+
+        return study_figure(self.kind, self.dataset, which, **kwargs)
+
     @classmethod
-    def load(cls, directory: str | Path, kind: str) -> StudyResult[Any]:
-        """The result :meth:`save` wrote to ``directory`` (``<kind>.nc``, ``<kind>.json``), its summary
-        read into the kind's summary class.  A result of another schema (:data:`STUDY_SCHEMA`: written by
-        an older stochfric) is refused with one line saying to rerun; :class:`StudyError`."""
-        d = Path(directory)
+    def load(cls, path: str | Path, kind: str | None = None) -> StudyResult[Any]:
+        """The result :meth:`save` wrote (``<kind>.nc`` and ``<kind>.json``), its summary read into the kind's
+        summary class.  ``path``: either file (the kind is its name) or their directory with ``kind`` (without
+        it: the one study in the directory).  A result of another schema (:data:`STUDY_SCHEMA`: written by an
+        older stochfric) is refused with one line saying to rerun; :class:`StudyError`.  A missing file is a
+        :class:`FileNotFoundError`."""
+        d, kind = _study_files(Path(path).expanduser(), kind)
         path = d / f"{kind}.json"
-        data = json.loads(path.read_text(encoding="utf-8"))
+        what = f"{kind} study summary ({kind}.json of StudyResult.save or stochfric study {kind} --out)"
+        data = read_json_file(path, what)
         found = data.get("schema") if isinstance(data, dict) else None
         if found != STUDY_SCHEMA:
             raise StudyError(f"{path} was written by another stochfric ({found or 'no schema'}; this "
@@ -89,8 +104,7 @@ class StudyResult(Generic[S]):
         except (KeyError, TypeError, ValueError) as exc:
             raise StudyError(f"{path} is not a {kind} study summary of {STUDY_SCHEMA} ({exc!r}): rerun the "
                              "study") from None
-        with xr.open_dataset(d / f"{kind}.nc", engine="h5netcdf") as ds:
-            dataset = ds.load()
+        dataset = read_netcdf(d / f"{kind}.nc", f"{kind} study dataset ({kind}.nc beside {kind}.json)")
         return StudyResult(kind, dataset, summary)
 
     def to_netcdf(self, path: str | Path) -> Path:
@@ -104,6 +118,34 @@ class StudyResult(Generic[S]):
         nc = self.to_netcdf(d / f"{self.kind}.nc")
         js = write_text_atomic(d / f"{self.kind}.json", json.dumps(self.to_json_dict(), indent=1))
         return [nc, js]
+
+
+def _study_files(path: Path, kind: str | None) -> tuple[Path, str]:
+    """The directory and kind of a saved study from a file of it (``<kind>.nc`` / ``<kind>.json``) or its
+    directory (and ``kind``, or the one study summary in it)."""
+    if path.suffix in (".nc", ".json") and not path.is_dir():
+        if kind is not None and kind != path.stem:
+            raise StudyError(f"{path} is no file of a {kind} study (StudyResult.save writes {kind}.nc and "
+                             f"{kind}.json)")
+        if not _is_kind(path.stem):
+            raise StudyError(f"{path} is no file of a study: StudyResult.save writes <kind>.nc and <kind>.json, the "
+                             f"kind one of {', '.join(summary_kinds())}; stochfric.load reads any "
+                             "saved result")
+        return path.parent, path.stem
+    if kind is not None:
+        return path, kind
+    if not path.is_dir():
+        raise FileNotFoundError(f"no directory {path}: give the directory StudyResult.save wrote (or its "
+                                "<kind>.json) and the study kind")
+    kinds = sorted(q.stem for q in path.glob("*.json") if (path / f"{q.stem}.nc").is_file() and _is_kind(q.stem))
+    if len(kinds) != 1:
+        held = f"it holds the studies {', '.join(kinds)}" if kinds else "it holds no <kind>.json with its <kind>.nc"
+        raise StudyError(f"{path}: {held}; give the file (e.g. {path / 'damping.json'}) or the kind")
+    return path, kinds[0]
+
+
+def _is_kind(name: str) -> bool:
+    return name in summary_kinds()
 
 
 def provenance_attrs(

@@ -12,6 +12,7 @@ oscillator's dimensionless x = y/L (L = 1 m) and τ = ω0 t, damping ratio D [-]
 from __future__ import annotations
 
 import dataclasses
+import enum
 import math
 import types
 import typing
@@ -73,6 +74,8 @@ def _decode(tp: Any, v: Any) -> Any:
         return v
     if origin in (typing.Union, types.UnionType):
         return _decode_union(typing.get_args(tp), v)
+    if isinstance(tp, type) and issubclass(tp, enum.Enum):
+        return tp(v)
     if isinstance(tp, type) and dataclasses.is_dataclass(tp):
         if not isinstance(v, dict):
             raise TypeError(f"{tp.__name__}: expected an object, got {type(v).__name__}")
@@ -124,6 +127,11 @@ def summary_class(kind: str) -> type[StudySummary]:
         return _SUMMARY_CLASSES[kind]
     except KeyError:
         raise StudyError(f"unknown study kind {kind!r}; one of {', '.join(sorted(_SUMMARY_CLASSES))}") from None
+
+
+def summary_kinds() -> list[str]:
+    """The study kinds that have a summary class (sorted): the kinds a saved study can be of."""
+    return sorted(_SUMMARY_CLASSES)
 
 
 @dataclass(frozen=True)

@@ -27,19 +27,26 @@ import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import Any, Self
 
 import numpy as np
 import numpy.typing as npt
 
 from ..friction_process.rescaled import band_correlation_length, low_frequency_psd, rescaled_process
-from ..io_utils import package_versions, write_json_atomic, write_netcdf_atomic
+from ..io_utils import (
+    ResultFileError,
+    package_versions,
+    read_json_file,
+    read_netcdf,
+    write_json_atomic,
+    write_netcdf_atomic,
+)
 from ..oscillator.case import CaseError, case_setup
 from ..oscillator.integrate import simulate
 from ..oscillator.options import ExecutionOptions, Model, NoiseOptions, PathCoordinate
 from ..random import BOOTSTRAP_KEY, child_generator, child_seed
 from .grids import window_mask
-from .summary import OPTIONAL, to_json
+from .summary import OPTIONAL, from_json, to_json
 
 __all__ = ["WhiteLimitConfig", "WhiteLimitResult", "WhiteLimitSummary", "power_law_fit", "white_limit_study"]
 
@@ -54,6 +61,9 @@ DT_TOLERANCE_SE = 2.0
 MAX_STEPS = 2e10
 #: Bootstrap replicates (runs resampled) for the standard errors.
 N_BOOT = 400
+
+#: The ``study`` stamp of the white-limit summary and dataset.
+WHITE_LIMIT = "white-limit"
 
 
 @dataclass(frozen=True)
@@ -255,7 +265,7 @@ class WhiteLimitResult:
                                  ("std_difference_se", "1", "paired bootstrap SE of std_difference")):
             data[key] = (("correlation_length",), np.array([getattr(r, key) for r in rows], dtype=float),
                          {"units": units, "long_name": name})
-        attrs = {"study": "white-limit", "summary_json": json.dumps(s.to_json(), allow_nan=True)}
+        attrs = {"study": WHITE_LIMIT, "summary_json": json.dumps(s.to_json(), allow_nan=True)}
         return xr.Dataset(data, coords=coords, attrs=attrs)
 
     def save(self, out: str | Path) -> dict[str, Path]:
@@ -265,6 +275,28 @@ class WhiteLimitResult:
         paths = {"json": write_json_atomic(d / f"{stem}.json", self.summary.to_json()),
                  "netcdf": write_netcdf_atomic(d / f"{stem}.nc", self.dataset())}
         return paths
+
+    @classmethod
+    def load(cls, path: str | Path) -> Self:
+        """The study :meth:`save` wrote, from either file (``white_limit_<preset>.json``, or the ``.nc``
+        whose ``summary_json`` holds the same record): the typed :attr:`summary` and so :meth:`dataset`.
+        The per-run X_gh are not saved: :attr:`x_gh` and :attr:`t_gh` are empty.  A missing file is a
+        :class:`FileNotFoundError`, a file of another kind an :class:`~stochfric.errors.InputError`."""
+        what = "white-limit study (white_limit_<preset>.json or .nc of stochfric white-limit --out)"
+        if Path(path).suffix == ".nc":
+            attrs = read_netcdf(path, what).attrs
+            stamped = attrs.get("study") == WHITE_LIMIT and "summary_json" in attrs
+            data = json.loads(attrs["summary_json"]) if stamped else None
+        else:
+            data = read_json_file(path, what)
+        if not isinstance(data, dict) or data.get("study") != WHITE_LIMIT:
+            raise ResultFileError(f"{path} is not a {what}; stochfric.load reads any saved result")
+        try:
+            summary = from_json(WhiteLimitSummary, data)
+        except (KeyError, TypeError, ValueError) as exc:
+            raise ResultFileError(f"{path} is not a white-limit summary this stochfric reads ({exc!r}): rerun "
+                                  "stochfric white-limit") from None
+        return cls(summary=summary, x_gh=[], t_gh=[])
 
 
 def _pooled_std(x: npt.NDArray[np.float64]) -> float:
@@ -460,7 +492,7 @@ def white_limit_study(cfg: WhiteLimitConfig, progress: Callable[[str], None] | N
                         [rows[j].fine.x_gh_std_se for j in use])
     s0 = low_frequency_psd(st.base, st.pressure_pa)
     summary = WhiteLimitSummary(
-        study="white-limit", config=cfg, preset=st.setup.preset.name, normal_force_n=st.force,
+        study=WHITE_LIMIT, config=cfg, preset=st.setup.preset.name, normal_force_n=st.force,
         pressure_pa=st.pressure_pa, damping_ratio=cfg.damping_ratio, tau_end=st.tau_end,
         gamma0=st.case.params.gamma0, n=st.case.params.n,
         preset_correlation_length_m=band_correlation_length(st.base), preset_low_frequency_psd_m=s0,

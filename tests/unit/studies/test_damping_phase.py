@@ -12,9 +12,9 @@ import pytest
 import xarray as xr
 
 from stochfric.oscillator.case import CaseError, case_setup, with_white_intensity
-from stochfric.report.study_figures import damping_figures
 from stochfric.studies.config import DampingConfig, ForcingConfig
 from stochfric.studies.damping import auto_phase_damping, damping_study, default_phase_force
+from stochfric.studies.figures import damping_figures
 from stochfric.studies.forcing import forcing_study
 
 SMALL = DampingConfig(normal_forces=(4000.0, 5600.0), damping_ratios="0.05:0.25:9", runs=3, seed=3, tau_end=30.0)
