@@ -119,6 +119,7 @@ def test_window_tiles_is_checked(app: typer.Typer, value: str) -> None:
 def test_iaaft_cost_is_said_before_the_work(app: typer.Typer) -> None:
     res = CliRunner().invoke(app, ["friction-process", "--material", "brake-pad", "--realizations", "3",
                                    "--long-surfaces", "3", "--length-factor", "2", "--surrogate", "iaaft",
+                                   "--validation-budget", "4",  # the held-out test at its start size: fast
                                    "--accept-not-credible", "--seed", "1"])
     assert res.exit_code == 0, res.output
     assert "note: IAAFT surrogates iterate FFTs" in res.stderr and " s for 3 maps and 3 long surfaces" in res.stderr

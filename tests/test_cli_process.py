@@ -79,7 +79,9 @@ def test_same_seed_same_result_and_text_output(app: typer.Typer) -> None:
 
 
 def test_iaaft_surrogates(app: typer.Typer) -> None:
-    tiny = ["--realizations", "3", "--long-surfaces", "3", "--length-factor", "2"]
+    # the held-out validation at its start size (IAAFT iterates FFTs: the default budget would make this the
+    # slowest test of the suite)
+    tiny = ["--realizations", "3", "--long-surfaces", "3", "--length-factor", "2", "--validation-budget", "4"]
     res = CliRunner().invoke(
         app, ["friction-process", "--material", "brake-pad", *tiny, "--surrogate", "iaaft", "--seed", "1",
               "--window-shift-um", "20", "--approach-um", "0.1:0.5:5", "--sigma-zeta-rule", "spectral_level", "--json",
