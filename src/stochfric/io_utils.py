@@ -250,6 +250,30 @@ def _package_versions() -> tuple[tuple[str, str], ...]:
     return tuple(out.items())
 
 
+#: The largest input text file read (TOML, JSON: machines, materials, process models, study files) [bytes].
+MAX_TEXT_FILE_BYTES = 64 * 1024**2
+
+
+def read_text_checked(path: str | os.PathLike[str], max_bytes: int = MAX_TEXT_FILE_BYTES) -> str:
+    """The UTF-8 text of ``path``, after checking that it is a regular file of at most ``max_bytes``: a
+    device or pipe (``/dev/zero``) would never end, a directory gives no text.  Raises :class:`OSError`
+    (``strerror`` says which) or :class:`UnicodeDecodeError`, as ``Path.read_text`` does, so callers keep
+    their messages."""
+    import errno
+    import stat
+
+    p = Path(path)
+    mode = p.stat().st_mode
+    if stat.S_ISDIR(mode):
+        raise IsADirectoryError(errno.EISDIR, "Is a directory", str(p))
+    if not stat.S_ISREG(mode):
+        raise OSError(errno.EINVAL, "not a regular file (a device, pipe or socket); give a file", str(p))
+    size = p.stat().st_size
+    if size > max_bytes:
+        raise OSError(errno.EFBIG, f"{size} bytes, more than the {max_bytes} an input text file may have", str(p))
+    return p.read_text(encoding="utf-8")
+
+
 def json_ready(obj: Any) -> Any:
     """``obj`` with tuples as lists, numpy scalars as Python numbers and NaN/inf as None (strict JSON)."""
     if isinstance(obj, dict):

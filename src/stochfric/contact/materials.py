@@ -25,6 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from stochfric.errors import InputError
+from stochfric.io_utils import read_text_checked
 from stochfric.units import GIGAPASCAL, MEGAPASCAL
 
 __all__ = [
@@ -456,7 +457,7 @@ def load_material(spec: str | Path) -> Material:
     p = Path(text)
     if p.suffix.lower() == ".json" or p.is_file():
         try:
-            data = json.loads(p.read_text(encoding="utf-8"))
+            data = json.loads(read_text_checked(p))
         except FileNotFoundError:
             raise MaterialError(f"material file {p} not found") from None
         except (OSError, ValueError) as exc:

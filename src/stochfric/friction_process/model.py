@@ -24,6 +24,7 @@ from stochfric.friction_process.model_base import (
 )
 from stochfric.friction_process.model_function import ModelFunction
 from stochfric.friction_process.tabulated import PressureRule, TabulatedProcessModel, VarianceRule
+from stochfric.io_utils import read_text_checked
 
 __all__ = [
     "LOW_FREQUENCY_FRACTION",
@@ -58,10 +59,10 @@ def load_process_model(path: str | os.PathLike[str]) -> FrictionProcessModel:
     that is not a process model.
     """
     try:
-        with open(path, encoding="utf-8") as fh:
-            data = json.load(fh)
+        data = json.loads(read_text_checked(path))
     except (OSError, json.JSONDecodeError) as exc:
-        raise ProcessModelError(f"cannot read friction-process model {path}: {exc}") from None
+        why = getattr(exc, "strerror", None) or exc
+        raise ProcessModelError(f"cannot read friction-process model {path}: {why}") from None
     except UnicodeDecodeError as exc:
         raise ProcessModelError(f"{path} is not a friction-process model file (not UTF-8 text: byte {exc.start}, "
                          f"{exc.reason})") from None

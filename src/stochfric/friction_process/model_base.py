@@ -27,7 +27,7 @@ from stochfric.friction_process.spectral import (
     generate_process,
     nyquist_frequency,
 )
-from stochfric.io_utils import write_json_atomic
+from stochfric.io_utils import read_text_checked, write_json_atomic
 from stochfric.random import SeedLike
 from stochfric.validation import positive
 
@@ -268,8 +268,7 @@ class ProcessModelBase:
     @classmethod
     def load(cls, path: str | os.PathLike[str]) -> Self:
         """Read a model written by :meth:`save`."""
-        with open(path, encoding="utf-8") as fh:
-            return cls.from_dict(json.load(fh))
+        return cls.from_dict(json.loads(read_text_checked(path)))
 
     def _dict_tail(self) -> dict[str, Any]:
         """The derived entries at the end of :meth:`to_dict` (ignored by ``from_dict``)."""

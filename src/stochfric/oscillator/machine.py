@@ -35,6 +35,8 @@ from typing import Annotated, Any, Literal
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, model_validator
 
+from stochfric.io_utils import read_text_checked
+
 from ..errors import InputError
 from ..friction_process.model import BandLimitedProcessModel, ModelFunction
 from .friction_laws import MU0, FrictionLaw, law_III, pressure_law
@@ -638,7 +640,7 @@ def _load(source: str | Path | Machine, follow: bool) -> Machine:
     if isinstance(source, str) and not path.is_file() and path.suffix != ".toml" and len(path.parts) == 1:
         return _shipped(source)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = read_text_checked(path)
     except OSError as exc:
         raise MachineError(f"cannot read machine file {path}: {exc.strerror or exc}") from None
     except UnicodeDecodeError as exc:

@@ -29,6 +29,8 @@ from typing import Annotated, Any, Literal, TypeVar
 
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, field_validator, model_validator
 
+from stochfric.io_utils import read_text_checked
+
 from ..errors import InputError
 from ..friction_process.presets import ProcessLevel
 from ..oscillator.machine import load_machine
@@ -171,7 +173,7 @@ class StudyConfig(BaseModel):
         d = self.model_dump(mode="json")
         if self.process_file is not None:
             try:
-                d["process_file_content"] = json.loads(Path(self.process_file).read_text(encoding="utf-8"))
+                d["process_file_content"] = json.loads(read_text_checked(self.process_file))
             except (OSError, ValueError):
                 d["process_file_content"] = None
         if self.machine is not None:  # the machine's content, not its path, changes the numbers

@@ -32,6 +32,8 @@ from typing import Any
 
 from pydantic import BaseModel, ConfigDict, Field, TypeAdapter, ValidationError
 
+from stochfric.io_utils import read_text_checked
+
 from .config import NESTED_VALIDATION, AnyStudyConfig
 from .errors import StudyError, format_validation_errors
 from .executors import ExecutorKind
@@ -97,7 +99,7 @@ def load_run_file(path: str | Path) -> RunFile:
     """Read and validate ``path`` (TOML)."""
     p = Path(path)
     try:
-        data = tomllib.loads(p.read_text(encoding="utf-8"))
+        data = tomllib.loads(read_text_checked(p))
     except OSError as exc:
         raise StudyError(f"cannot read {p}: {exc.strerror or exc}") from None
     except UnicodeDecodeError as exc:
