@@ -32,7 +32,7 @@ _PHYSICS = """--preset --machine --allow-extrapolation --model --friction-law --
 --pressures-mpa --forces --risk-level --risk-levels --phase-force --phase-damping --lengths --persson-corrected"""
 _NUMERICS = """--tau-end --dt --integrator --runs --seed --path-coordinate --white-stream --process-length --workers
 --bem-refine --bem-frame --realizations --long-surfaces --length-factor --window-shift-um --approach-rule --surrogate
---validation-budget --window-tiles --accept-not-credible --amplitude --max-area-fraction --pressure-rule
+--validation-budget --summit-budget --window-tiles --accept-not-credible --amplitude --max-area-fraction --pressure-rule
 --variance-rule --sigma-zeta-rule --quick --refine --run-budget --no-refine --executor --scheduler --damping-points
 --no-normal-force-study --path-surfaces --bem-solver --tolerance --max-iterations --time-limit-s --stick-window
 --confidence --p-detect --phase-runs --max-runs-per-cell --target-steps --refine-risk-level --perturbation

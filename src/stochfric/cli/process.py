@@ -113,6 +113,12 @@ def friction_process_command(
             "of the threshold; undecided after the budget. Default: 4 × the start, at most "
             f"{HOLDOUT_MAX_REALIZATIONS}.")
     ] = None,
+    summit_budget: Annotated[
+        int | None, typer.Option(
+            "--summit-budget", min=2, help="Most realisations the summit check may grow the ensemble to: it doubles "
+            "--realizations while a quantity lies within 2 Monte Carlo SE of its limit; undecided after the budget. "
+            "Default: 4 × --realizations.")
+    ] = None,
     window_tiles: Annotated[
         int, typer.Option("--window-tiles", help="Measured-window check: at most N × N disjoint windows per scan "
                           f"(fewer when a window would hold < {WINDOW_MIN_SUMMITS} summits).")
@@ -178,7 +184,7 @@ def friction_process_command(
             sigma_zeta_rule=sigma_zeta_rule, window_tiles=window_tiles, seed=seed,
             holdout_realizations=None if validation_budget is None else min(
                 HOLDOUT_REALIZATIONS, max(4, realizations), validation_budget),
-            holdout_max_realizations=validation_budget,
+            holdout_max_realizations=validation_budget, summit_max_realizations=summit_budget,
         )  # fmt: skip
         with _progress(show=not as_json) as progress:
             run = analyse_scans(

@@ -63,6 +63,7 @@ class AnalysisConfig:
     window_tiles: int = WINDOW_TILES
     holdout_realizations: int | None = None
     holdout_max_realizations: int | None = None
+    summit_max_realizations: int | None = None
     seed: int | None = None
 
     def __post_init__(self) -> None:
@@ -80,13 +81,18 @@ class AnalysisConfig:
             object.__setattr__(self, "holdout_realizations", start)
         if self.holdout_max_realizations is None:  # the sequential decision may quadruple them, up to the cap
             object.__setattr__(self, "holdout_max_realizations", min(HOLDOUT_MAX_REALIZATIONS, 4 * int(start)))
+        if self.summit_max_realizations is None:  # the summit check may quadruple the ensemble to decide
+            object.__setattr__(self, "summit_max_realizations", 4 * int(self.realizations))
         for name in ("realizations", "long_surfaces", "window_shift_points", "pdf_bins", "check_realizations",
-                     "window_tiles", "holdout_realizations", "holdout_max_realizations"):
+                     "window_tiles", "holdout_realizations", "holdout_max_realizations", "summit_max_realizations"):
             object.__setattr__(self, name, count(name, getattr(self, name), error=AnalysisError))
         object.__setattr__(self, "length_factor", count("length_factor", self.length_factor, 2, error=AnalysisError))
         if self.holdout_start < 4 or self.holdout_budget < self.holdout_start:
             raise AnalysisError(f"the held-out validation needs 4 <= holdout_realizations <= holdout_max_realizations, "
                                 f"got {self.holdout_realizations} and {self.holdout_max_realizations}")
+        if int(self.summit_max_realizations or 0) < int(self.realizations):
+            raise AnalysisError(f"summit_max_realizations ({self.summit_max_realizations}) must be at least "
+                                f"realizations ({self.realizations}): it is the most the summit check may grow to")
         if self.window_tiles < 2:
             raise AnalysisError(f"window_tiles must be >= 2 (at least 2 x 2 windows), got {self.window_tiles}")
         if not 0.0 < self.max_area_fraction <= 1.0:

@@ -243,6 +243,7 @@ def ensemble_contact(
     options: SurrogateOptions | None = None,
     tiles: int | None = None,
     workers: int | None = 1,
+    extend: ContactSamples | None = None,
     **surrogate: Unpack[SurrogateKeywords],
 ) -> ContactSamples:
     """Contact of R similar surfaces of original size over ``approach_m`` (method §4a).
@@ -256,10 +257,15 @@ def ensemble_contact(
     the scan of each realisation.  With ``tiles``, ``tile_samples`` holds the GW sums of every
     realisation's disjoint ``tiles × tiles`` windows (R, tiles², U) for the measured-window check.
     ``workers`` processes share the realisations (:func:`~stochfric.process.parallel.map_indexed`;
-    the numbers do not depend on it; ``None``: all cores).
+    the numbers do not depend on it; ``None``: all cores).  ``extend``: an ensemble this call made with fewer
+    realisations (same surfaces, seed, options and tiles); its realisations are kept and only the new ones
+    computed — realisation r depends on the seed and r only, so the result equals a fresh call.
     """
     scans = _scans(surface)
     r_count = _check_count("realizations", realizations)
+    first = 0 if extend is None else int(extend.contact_area_m2.shape[0])
+    if extend is not None and not 0 < first <= r_count:
+        raise AnalysisError(f"an ensemble of {first} realisations cannot be extended to {r_count}")
     opts = SurrogateOptions.of(options, **surrogate)
     u = _approach(approach_m)
     area = np.empty((r_count, u.size))
@@ -280,8 +286,17 @@ def ensemble_contact(
              if tiles is not None else (np.empty((0, u.size)), np.empty((0, u.size)), np.empty((0, u.size), np.int64)))
         return a, f, c, st, t
 
-    done = None if progress is None else (lambda k: progress(k, r_count))
-    for r, (a, f, c, st, t) in enumerate(map_indexed(one, r_count, workers=workers, done=done)):
+    if extend is not None:  # the realisations already made: realisation r depends on the seed and r only
+        area[:first], force[:first], count[:first] = (extend.contact_area_m2, extend.normal_force_n,
+                                                      extend.n_contacts)
+        stats[:first] = extend.summit_stats if extend.summit_stats is not None else np.nan
+        if tiles is not None and extend.tile_samples is not None:
+            old = extend.tile_samples
+            t_area[:first], t_force[:first], t_count[:first] = (old.contact_area_m2, old.normal_force_n,
+                                                                old.n_contacts)
+    done = None if progress is None else (lambda k: progress(first + k, r_count))
+    rows = map_indexed(lambda k: one(first + k), r_count - first, workers=workers, done=done)
+    for r, (a, f, c, st, t) in enumerate(rows, start=first):
         area[r], force[r], count[r], stats[r] = a, f, c, st
         if tiles is not None:
             t_area[r], t_force[r], t_count[r] = t

@@ -43,6 +43,7 @@ from stochfric.process.checks import (
     WINDOW_MIN_SUMMITS,
     ProcessCheck,
     ScanScatter,
+    SurrogateCheck,
     WindowScatterCheck,
     check_generated_process,
     copy_check,
@@ -149,10 +150,8 @@ def analyse(
     options, surrogate_choice = cfg.surrogate_for([s.heights_m for s in scans])
     found = [find_summits(s.heights_m, s.grid_spacing_m, rule=cfg.summit_rule) for s in scans]
     tiles = window_tiles(min(f.count for f in found), cfg.window_tiles)
-    ens = ensemble_contact(
-        scans, material, u, realizations=cfg.realizations, seed=s_ens, progress=_stage(progress, "ensemble"),
-        options=options, tiles=tiles, workers=workers,
-    )  # fmt: skip
+    ens, surrogates = _decided_ensemble(scans, material, u, cfg, options, tiles, s_ens, progress, workers)
+    realizations = int(ens.contact_area_m2.shape[0])
     path = path_contact(
         scans, material, u, long_surfaces=cfg.long_surfaces, length_factor=cfg.length_factor,
         shift_points=cfg.window_shift_points, seed=s_path, progress=_stage(progress, "long surfaces"),
@@ -160,7 +159,6 @@ def analyse(
     )  # fmt: skip
     ens_stats = _ensemble_statistics(ens, cfg.pdf_bins)
     ergodicity = ergodicity_check(path.blocks.mu)
-    surrogates = surrogate_check(scans, material, ens, rule=cfg.summit_rule)
     window_check, scan_scatter, notes = _window_checks(scans, found, material, u, tiles, ens, cfg.summit_rule)
     copies = copy_check(scans, options, spawn_seed_sequences(s_ens, cfg.realizations))
     holdout = _holdout(scans, material, u, options, cfg, child_seed(root, HOLDOUT_STREAM), progress)
@@ -184,7 +182,12 @@ def analyse(
         n_contacts=path.samples.n_contacts.mean(axis=(0, 1)), approach_m=u,
         plasticity_index=plasticity_index_of(found, material), max_area_fraction=cfg.max_area_fraction, name=name or "",
     )  # fmt: skip
-    credibility = _credibility(name or "measured surface", u, checks, moments, ens_stats, fits, cfg.realizations)
+    credibility = _credibility(name or "measured surface", u, checks, moments, ens_stats, fits, realizations)
+    if realizations > cfg.realizations:
+        still = checks.surrogate_check.decided(realizations)[1]
+        notes.append(f"the summit check grew the ensemble from {cfg.realizations} to {realizations} realisations "
+                     f"(budget {cfg.summit_max_realizations}, --summit-budget): "
+                     + ("still undecided, the budget is spent" if still else "decided"))
     if not credibility.credible:
         model = replace(model, not_credible=tuple(f"[{r.code}] {r.message}" for r in credibility.reasons))
     return StatisticalContactAnalysis(
@@ -194,6 +197,30 @@ def analyse(
         process_check=_process_check(model, moments.pressure_pa[fits.mask], cfg, s_check), notes=notes,
         warnings=validity, model_intervals=intervals,
     )  # fmt: skip
+
+
+def _decided_ensemble(
+    scans: list[Surface], material: Material, u: FloatArray, cfg: AnalysisConfig, options: SurrogateOptions,
+    tiles: int | None, seed: np.random.SeedSequence, progress: StagedProgress | None, workers: int | None,
+) -> tuple[ContactSamples, SurrogateCheck]:
+    """The ensemble of ``cfg.realizations`` and its summit check (:func:`~stochfric.process.checks.surrogate_check`),
+    doubled while the check is undecided — a quantity within 2 Monte Carlo SE of its limit and no decided
+    failure (:meth:`~stochfric.process.checks.SurrogateCheck.decided`) — and the doubled size stays within
+    ``cfg.summit_max_realizations`` (issue 29 item 6: realisations are added until the decision is made or the
+    stated budget is spent).  Realisation r depends on the seed and r only, so a grown ensemble starts with
+    the smaller one and the numbers do not depend on how it grew."""
+    r = cfg.realizations
+    ens: ContactSamples | None = None
+    while True:
+        ens = ensemble_contact(
+            scans, material, u, realizations=r, seed=seed, progress=_stage(progress, "ensemble"), options=options,
+            tiles=tiles, workers=workers, extend=ens,
+        )  # fmt: skip
+        check = surrogate_check(scans, material, ens, rule=cfg.summit_rule)
+        failed, near = check.decided(r)
+        if failed or not near or 2 * r > int(cfg.summit_max_realizations or r):
+            return ens, check
+        r *= 2
 
 
 #: The children of the root seed that drive the ensemble, the long surfaces and the out-of-sample validation

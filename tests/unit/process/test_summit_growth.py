@@ -1,0 +1,76 @@
+"""The summit check grows its own ensemble (issue 29 item 6): realisations are added (doubled) while a quantity
+lies within 2 Monte Carlo SE of the limit, until the check decides or ``summit_max_realizations`` is spent; a
+grown ensemble equals a fresh one of that size, so the numbers do not depend on how it grew."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from stochfric.contact.asperity import default_approach_m
+from stochfric.contact.materials import get_material
+from stochfric.errors import AnalysisError
+from stochfric.process import statistics
+from stochfric.process.analysis_config import AnalysisConfig
+from stochfric.process.checks import SurrogateCheck
+from stochfric.process.ensemble import ensemble_contact
+from stochfric.random import as_seed_sequence
+from stochfric.surface.io import Surface, default_surface_path, read_surface
+from stochfric.surface.preprocess import prepare
+from stochfric.surface.summits import summits_of
+
+MAT = get_material("brake-pad")
+
+
+@pytest.fixture(scope="module")
+def coarse() -> Surface:
+    _, c = prepare(read_surface(default_surface_path()))
+    return c
+
+
+def test_an_extended_ensemble_equals_a_fresh_one(coarse: Surface) -> None:
+    u = default_approach_m(summits_of(coarse))[:4]
+    small = ensemble_contact(coarse, MAT, u, realizations=3, seed=7, tiles=2)
+    grown = ensemble_contact(coarse, MAT, u, realizations=6, seed=7, tiles=2, extend=small)
+    fresh = ensemble_contact(coarse, MAT, u, realizations=6, seed=7, tiles=2)
+    for name in ("contact_area_m2", "normal_force_n", "n_contacts", "summit_stats"):
+        np.testing.assert_array_equal(getattr(grown, name), getattr(fresh, name), err_msg=name)
+    assert grown.tile_samples is not None and fresh.tile_samples is not None
+    np.testing.assert_array_equal(grown.tile_samples.normal_force_n, fresh.tile_samples.normal_force_n)
+    assert grown.info["scan"] == fresh.info["scan"] and grown.info["realizations"] == 6
+    with pytest.raises(AnalysisError, match="cannot be extended"):
+        ensemble_contact(coarse, MAT, u, realizations=2, seed=7, extend=small)
+
+
+def _run(coarse: Surface, monkeypatch: pytest.MonkeyPatch, undecided_below: int, **cfg: int) -> tuple[int, list[int]]:
+    """Run the growth loop with a summit check that stays undecided below ``undecided_below`` realisations."""
+    seen: list[int] = []
+
+    def decided(self: SurrogateCheck, realizations: int, margin: float = 2.0) -> tuple[list[str], list[str]]:
+        seen.append(realizations)
+        return [], (["mu(u_0)"] if realizations < undecided_below else [])
+
+    monkeypatch.setattr(SurrogateCheck, "decided", decided)
+    u = default_approach_m(summits_of(coarse))[:3]
+    config = AnalysisConfig(seed=3, **cfg)
+    opts = config.surrogate_options
+    ens, _ = statistics._decided_ensemble([coarse], MAT, u, config, opts, None, as_seed_sequence(3), None, 1)
+    return int(ens.contact_area_m2.shape[0]), seen
+
+
+def test_grows_until_decided(coarse: Surface, monkeypatch: pytest.MonkeyPatch) -> None:
+    n, seen = _run(coarse, monkeypatch, undecided_below=10, realizations=3, summit_max_realizations=24)
+    assert seen == [3, 6, 12] and n == 12
+
+
+def test_stops_at_the_budget(coarse: Surface, monkeypatch: pytest.MonkeyPatch) -> None:
+    n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3)  # default budget 4 × 3
+    assert seen == [3, 6, 12] and n == 12
+    n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3, summit_max_realizations=3)
+    assert seen == [3] and n == 3
+
+
+def test_budget_below_the_realisations_is_refused() -> None:
+    with pytest.raises(AnalysisError, match=r"summit_max_realizations \(5\) must be at least realizations"):
+        AnalysisConfig(realizations=10, summit_max_realizations=5)
+    assert AnalysisConfig(realizations=10).summit_max_realizations == 40
