@@ -64,6 +64,20 @@ _SURROGATE_HELP = (
 
 
 
+ValidationBudgetOpt = Annotated[
+    int | None, typer.Option(
+        "--validation-budget", help="Most surrogates per fold of the held-out validation: it starts with "
+        f"min({HOLDOUT_REALIZATIONS}, --realizations) and doubles while a statistic lies within 2 Monte Carlo SE "
+        "of the threshold; undecided after the budget. Default: 4 × the start, at most "
+        f"{HOLDOUT_MAX_REALIZATIONS}.")
+]
+SummitBudgetOpt = Annotated[
+    int | None, typer.Option(
+        "--summit-budget", min=2, help="Most realisations the summit check may grow the ensemble to: it doubles "
+        "--realizations while a quantity lies within 2 Monte Carlo SE of its limit; undecided after the budget. "
+        "Default: 4 × --realizations.")
+]
+
 FilesArg = Annotated[
     list[Path] | None,
     typer.Argument(
@@ -106,19 +120,8 @@ def friction_process_command(
         str,
         typer.Option("--surrogate", parser=SURROGATE_CHOICE, metavar="METHOD", help=_SURROGATE_HELP),
     ] = AUTO_SURROGATE,
-    validation_budget: Annotated[
-        int | None, typer.Option(
-            "--validation-budget", help="Most surrogates per fold of the held-out validation: it starts with "
-            f"min({HOLDOUT_REALIZATIONS}, --realizations) and doubles while a statistic lies within 2 Monte Carlo SE "
-            "of the threshold; undecided after the budget. Default: 4 × the start, at most "
-            f"{HOLDOUT_MAX_REALIZATIONS}.")
-    ] = None,
-    summit_budget: Annotated[
-        int | None, typer.Option(
-            "--summit-budget", min=2, help="Most realisations the summit check may grow the ensemble to: it doubles "
-            "--realizations while a quantity lies within 2 Monte Carlo SE of its limit; undecided after the budget. "
-            "Default: 4 × --realizations.")
-    ] = None,
+    validation_budget: ValidationBudgetOpt = None,
+    summit_budget: SummitBudgetOpt = None,
     window_tiles: Annotated[
         int, typer.Option("--window-tiles", help="Measured-window check: at most N × N disjoint windows per scan "
                           f"(fewer when a window would hold < {WINDOW_MIN_SUMMITS} summits).")
