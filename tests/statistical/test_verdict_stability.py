@@ -28,4 +28,7 @@ def test_the_status_is_the_same_for_ten_seeds(name: str, shared_file: Callable[[
         run = analyse_scans([path], FILES[name], config=AnalysisConfig(realizations=40, long_surfaces=4, seed=seed),
                             fill_undefined=True, workers=2)
         statuses.append(run.analysis.credibility.status)
+        codes = sorted(r.code for r in run.analysis.credibility.reasons)
+        grown = int(run.analysis.ensemble.contact_area_m2.shape[0])
+        print(f"verdict {name} seed {seed}: {statuses[-1]} {codes} realisations {grown}")  # the docs' table (-s)
     assert len(set(statuses)) == 1, f"{name}: {statuses}"

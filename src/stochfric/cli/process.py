@@ -75,7 +75,8 @@ SummitBudgetOpt = Annotated[
     int | None, typer.Option(
         "--summit-budget", min=2, help="Most realisations the summit check may grow the ensemble to: it doubles "
         "--realizations while a quantity lies within 2 Monte Carlo SE of its limit; undecided after the budget. "
-        "Default: 4 × --realizations.")
+        "Default: --realizations (no growth: on a map at the limit, growth lets a seed decide a failure; "
+        "docs/statistical_contact.md).")
 ]
 
 FilesArg = Annotated[

@@ -81,8 +81,8 @@ class AnalysisConfig:
             object.__setattr__(self, "holdout_realizations", start)
         if self.holdout_max_realizations is None:  # the sequential decision may quadruple them, up to the cap
             object.__setattr__(self, "holdout_max_realizations", min(HOLDOUT_MAX_REALIZATIONS, 4 * int(start)))
-        if self.summit_max_realizations is None:  # the summit check may quadruple the ensemble to decide
-            object.__setattr__(self, "summit_max_realizations", 4 * int(self.realizations))
+        if self.summit_max_realizations is None:  # no growth by default: see docs/statistical_contact.md §0e
+            object.__setattr__(self, "summit_max_realizations", int(self.realizations))
         for name in ("realizations", "long_surfaces", "window_shift_points", "pdf_bins", "check_realizations",
                      "window_tiles", "holdout_realizations", "holdout_max_realizations", "summit_max_realizations"):
             object.__setattr__(self, name, count(name, getattr(self, name), error=AnalysisError))

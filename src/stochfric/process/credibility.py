@@ -110,8 +110,8 @@ def assess_credibility(
             UNDECIDED_SUMMIT_CODE,
             f"{name}: the measured map's {', '.join(surrogate_undecided)} lie(s) within 2 Monte Carlo standard "
             f"errors of the summit check's limit with {realizations} realisations: another seed could decide "
-            f"either way; about {4 * (realizations or 0)} realisations would decide it (the check grows the "
-            "ensemble up to --summit-budget, default 4 × --realizations; raise it)",
+            f"either way; about {4 * (realizations or 0)} realisations would decide it (--summit-budget lets the "
+            "check grow the ensemble to decide)",
         ))  # fmt: skip
     if window_ok is False and holdout is None:  # the in-sample check gates only where no held-out test ran
         out.append(ValidityWarning(

@@ -64,8 +64,10 @@ def test_grows_until_decided(coarse: Surface, monkeypatch: pytest.MonkeyPatch) -
 
 
 def test_stops_at_the_budget(coarse: Surface, monkeypatch: pytest.MonkeyPatch) -> None:
-    n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3)  # default budget 4 × 3
+    n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3, summit_max_realizations=12)
     assert seen == [3, 6, 12] and n == 12
+    n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3)  # default: no growth
+    assert seen == [3] and n == 3
     n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3, summit_max_realizations=3)
     assert seen == [3] and n == 3
 
@@ -73,4 +75,4 @@ def test_stops_at_the_budget(coarse: Surface, monkeypatch: pytest.MonkeyPatch) -
 def test_budget_below_the_realisations_is_refused() -> None:
     with pytest.raises(AnalysisError, match=r"summit_max_realizations \(5\) must be at least realizations"):
         AnalysisConfig(realizations=10, summit_max_realizations=5)
-    assert AnalysisConfig(realizations=10).summit_max_realizations == 40
+    assert AnalysisConfig(realizations=10).summit_max_realizations == 10
