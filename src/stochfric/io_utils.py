@@ -254,24 +254,29 @@ def _package_versions() -> tuple[tuple[str, str], ...]:
 MAX_TEXT_FILE_BYTES = 64 * 1024**2
 
 
-def read_text_checked(path: str | os.PathLike[str], max_bytes: int = MAX_TEXT_FILE_BYTES) -> str:
-    """The UTF-8 text of ``path``, after checking that it is a regular file of at most ``max_bytes``: a
-    device or pipe (``/dev/zero``) would never end, a directory gives no text.  Raises :class:`OSError`
-    (``strerror`` says which) or :class:`UnicodeDecodeError`, as ``Path.read_text`` does, so callers keep
-    their messages."""
+def regular_file(path: str | os.PathLike[str], max_bytes: int | None = None) -> Path:
+    """``path`` after checking that it is a regular file (of at most ``max_bytes``): checked before any reader
+    opens it, since a device or pipe (``/dev/zero``) would never end.  Raises :class:`FileNotFoundError`,
+    :class:`IsADirectoryError` or an :class:`OSError` whose ``strerror`` says what is wrong (not a regular
+    file; too large), so that each caller words its own message."""
     import errno
     import stat
 
     p = Path(path)
-    mode = p.stat().st_mode
-    if stat.S_ISDIR(mode):
+    st = p.stat()
+    if stat.S_ISDIR(st.st_mode):
         raise IsADirectoryError(errno.EISDIR, "Is a directory", str(p))
-    if not stat.S_ISREG(mode):
-        raise OSError(errno.EINVAL, "not a regular file (a device, pipe or socket); give a file", str(p))
-    size = p.stat().st_size
-    if size > max_bytes:
-        raise OSError(errno.EFBIG, f"{size} bytes, more than the {max_bytes} an input text file may have", str(p))
-    return p.read_text(encoding="utf-8")
+    if not stat.S_ISREG(st.st_mode):
+        raise OSError(errno.EINVAL, "not a regular file (a device, pipe or socket)", str(p))
+    if max_bytes is not None and st.st_size > max_bytes:
+        raise OSError(errno.EFBIG, f"{st.st_size} bytes, more than the {max_bytes} such a file may have", str(p))
+    return p
+
+
+def read_text_checked(path: str | os.PathLike[str], max_bytes: int = MAX_TEXT_FILE_BYTES) -> str:
+    """The UTF-8 text of ``path`` after :func:`regular_file`.  Raises :class:`OSError` (``strerror`` says
+    which) or :class:`UnicodeDecodeError`, as ``Path.read_text`` does, so callers keep their messages."""
+    return regular_file(path, max_bytes).read_text(encoding="utf-8")
 
 
 def json_ready(obj: Any) -> Any:
@@ -306,10 +311,13 @@ def result_file(path: str | os.PathLike[str], what: str) -> Path:
         inside = sorted(q.name for q in p.iterdir() if q.suffix in (".nc", ".json") and not q.name.startswith("."))
         hint = f"; it holds {', '.join(inside)}" if inside else "; it holds no .nc or .json file"
         raise ResultFileError(f"{path} is a directory, not a file: give the file of the {what}{hint}")
-    if not p.is_file():
+    try:
+        return regular_file(p)
+    except FileNotFoundError:
         where = "" if p.parent.is_dir() else f" (the folder {p.parent} does not exist either)"
-        raise FileNotFoundError(f"no file {path}{where}: give the path of a saved {what}")
-    return p
+        raise FileNotFoundError(f"no file {path}{where}: give the path of a saved {what}") from None
+    except OSError as exc:
+        raise ResultFileError(f"{path} is {exc.strerror or exc}: give the file of a saved {what}") from None
 
 
 def read_netcdf(path: str | os.PathLike[str], what: str) -> Any:

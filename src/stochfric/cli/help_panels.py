@@ -61,18 +61,11 @@ def _records(command: Any, ctx: Any) -> dict[str, list[tuple[str, str]]]:
         if getattr(param, "hidden", False):
             continue
         record = param.get_help_record(ctx)
-        if record is None:  # an argument: click gives none; show its metavar and the command's own words
-            record = (param.make_metavar(ctx) if _takes_ctx(param) else param.make_metavar(),
-                      getattr(param, "help", None) or "")
+        if record is None:  # an argument without typer's help record: its name and its help
+            record = (param.human_readable_name, getattr(param, "help", None) or "")
         panel = OUTPUT if "--help" in getattr(param, "opts", ()) else panel_of(param)
         grouped[panel].append((record[0], record[1] or ""))
     return {k: v for k, v in grouped.items() if v}
-
-
-def _takes_ctx(param: Any) -> bool:
-    import inspect
-
-    return "ctx" in inspect.signature(param.make_metavar).parameters
 
 
 def render_help(command: Any, ctx: Any, width: int | None = None) -> str:

@@ -66,6 +66,11 @@ class Credibility:
         """JSON-ready dictionary."""
         return {"credible": self.credible, "status": self.status, "reasons": [r.to_dict() for r in self.reasons]}
 
+    @classmethod
+    def from_dict(cls, d: dict[str, Any]) -> Credibility:
+        """The inverse of :meth:`to_dict` (``credible`` and ``status`` follow from the reasons)."""
+        return cls(tuple(ValidityWarning(r["code"], r["message"], tuple(r.get("indices", ()))) for r in d["reasons"]))
+
 
 def _where(u: npt.NDArray[np.float64], mask: npt.NDArray[np.bool_]) -> str:
     idx = np.flatnonzero(mask)

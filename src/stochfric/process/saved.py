@@ -23,7 +23,6 @@ import numpy as np
 import xarray as xr
 
 from stochfric.arrays import FloatArray
-from stochfric.contact.validity import ValidityWarning
 from stochfric.io_utils import ResultFileError, read_netcdf, write_netcdf_atomic
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.credibility import Credibility
@@ -36,6 +35,21 @@ ANALYSIS_TITLE = "stochfric statistical contact analysis"
 #: The JSON attributes read into dictionaries (``None`` where the analysis did not have the check).
 _RECORDS = ("fits", "ergodicity", "surrogate_check", "window_check", "scan_scatter", "copy_check", "holdout",
             "measured_windows", "model_intervals", "sources", "contact_fraction_fit")
+
+
+class _Column:
+    """A read-only attribute: the dataset variable of the attribute's name as a float array."""
+
+    def __init__(self, doc: str) -> None:
+        self.__doc__ = doc
+
+    def __set_name__(self, owner: type, name: str) -> None:
+        self.name = name
+
+    def __get__(self, obj: SavedAnalysis | None, owner: type) -> FloatArray:
+        if obj is None:
+            raise AttributeError(self.name)
+        return np.asarray(obj.dataset[self.name].values, dtype=np.float64)
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -89,8 +103,7 @@ class SavedAnalysis:
                 dataset=ds, config=AnalysisConfig(**json.loads(a["config"])), seed_entropy=int(a["seed_entropy"]),
                 material=json.loads(a["material"]), surface_info=json.loads(a["surface"]),
                 surrogate_choice=str(a["surrogate_choice"]),
-                credibility=Credibility(tuple(ValidityWarning(r["code"], r["message"], tuple(r.get("indices", ())))
-                                              for r in cred["reasons"])),
+                credibility=Credibility.from_dict(cred),
                 window_shift_m=float(a["window_shift_m"]), window_length_m=float(a["window_length_m"]),
                 long_surface_length_m=float(a["long_surface_length_m"]), versions=json.loads(a["versions"]),
                 **records,
@@ -98,6 +111,17 @@ class SavedAnalysis:
         except (KeyError, TypeError, ValueError) as exc:
             raise ResultFileError(f"{source} is not a statistical contact analysis this stochfric reads ({exc!r}): "
                                   "run stochfric friction-process again") from None
+
+    approach_m = _Column("The approaches u [m].")
+    pressure_pa = _Column("Mean pressure p(u) of the path windows [Pa].")
+    area_fraction = _Column("Mean A_c/A_nom of the path windows.")
+    mu_mean = _Column("E[μ] along the path.")
+    mu_std = _Column("σ_μ along the path.")
+    mu_mean_se = _Column("Standard error of E[μ] over the long surfaces.")
+    mu_std_se = _Column("Standard error of σ_μ over the long surfaces.")
+    correlation_length_m = _Column("Integral correlation length S(0)/(4σ_μ²) [m], mean over the long surfaces.")
+    correlation_length_se_m = _Column("Its standard error [m].")
+    psd_level = _Column("Low-frequency level E[S] = S(f→0) of the one-sided PSD of μ̂ [m].")
 
     def __repr__(self) -> str:
         p = self.pressure_pa / 1e6
@@ -108,63 +132,10 @@ class SavedAnalysis:
                 f"p {np.nanmin(p):.3g}…{np.nanmax(p):.3g} MPa, E[μ] {np.nanmin(mu):.3g}…{np.nanmax(mu):.3g}; "
                 f"{verdict})")
 
-    def _values(self, name: str) -> FloatArray:
-        return np.asarray(self.dataset[name].values, dtype=np.float64)
-
     @property
     def credible(self) -> bool:
         """The gate's verdict (:mod:`stochfric.process.credibility`)."""
         return self.credibility.credible
-
-    @property
-    def approach_m(self) -> FloatArray:
-        """The approaches u [m]."""
-        return self._values("approach_m")
-
-    @property
-    def pressure_pa(self) -> FloatArray:
-        """Mean pressure p(u) of the path windows [Pa]."""
-        return self._values("pressure_pa")
-
-    @property
-    def area_fraction(self) -> FloatArray:
-        """Mean A_c/A_nom of the path windows."""
-        return self._values("area_fraction")
-
-    @property
-    def mu_mean(self) -> FloatArray:
-        """E[μ] along the path."""
-        return self._values("mu_mean")
-
-    @property
-    def mu_std(self) -> FloatArray:
-        """σ_μ along the path."""
-        return self._values("mu_std")
-
-    @property
-    def mu_mean_se(self) -> FloatArray:
-        """Standard error of E[μ] over the long surfaces."""
-        return self._values("mu_mean_se")
-
-    @property
-    def mu_std_se(self) -> FloatArray:
-        """Standard error of σ_μ over the long surfaces."""
-        return self._values("mu_std_se")
-
-    @property
-    def correlation_length_m(self) -> FloatArray:
-        """Integral correlation length S(0)/(4σ_μ²) [m], mean over the long surfaces."""
-        return self._values("correlation_length_m")
-
-    @property
-    def correlation_length_se_m(self) -> FloatArray:
-        """Its standard error [m]."""
-        return self._values("correlation_length_se_m")
-
-    @property
-    def psd_level(self) -> FloatArray:
-        """Low-frequency level E[S] = S(f→0) of the one-sided PSD of μ̂ [m]."""
-        return self._values("psd_level")
 
     def to_dataset(self) -> xr.Dataset:
         """The dataset as read (units in the variables' attributes, provenance in the dataset's)."""

@@ -25,6 +25,7 @@ import numpy.typing as npt
 
 from stochfric.arrays import FloatArray
 from stochfric.errors import InputError
+from stochfric.io_utils import regular_file
 from stochfric.units import length_to_m
 
 __all__ = [
@@ -272,12 +273,14 @@ MAX_MAP_FILE_BYTES = 4 * 1024**3
 def _readable_map_file(p: Path) -> Path:
     """``p`` if it is a regular, non-empty file of at most :data:`MAX_MAP_FILE_BYTES`; else a SurfaceError that
     says which (checked before any reader opens it: a device or a pipe would block or never end)."""
-    if p.is_dir():
-        raise SurfaceError(f"{p} is a directory; give a height-map file")
-    if not p.exists():
-        raise SurfaceError(f"no such file: {p}")
-    if not p.is_file():
-        raise SurfaceError(f"{p} is not a regular file (a device, pipe or socket); give a height-map file")
+    try:
+        regular_file(p)
+    except FileNotFoundError:
+        raise SurfaceError(f"no such file: {p}") from None
+    except IsADirectoryError:
+        raise SurfaceError(f"{p} is a directory; give a height-map file") from None
+    except OSError as exc:
+        raise SurfaceError(f"{p} is {exc.strerror or exc}; give a height-map file") from None
     size = p.stat().st_size
     if size == 0:
         raise SurfaceError(f"{p} is empty (0 bytes); give a height-map file")
