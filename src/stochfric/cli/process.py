@@ -43,6 +43,7 @@ from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
 from stochfric.process.checks import WINDOW_MIN_SUMMITS, WINDOW_TILES
 from stochfric.process.credibility import NOT_CREDIBLE_EXIT
+from stochfric.process.decisions import looks_within
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.holdout import HOLDOUT_MAX_REALIZATIONS, HOLDOUT_REALIZATIONS
 from stochfric.process.pipeline import MODEL_FILE, STATISTICS_FILE, ApproachRule, ScanAnalysis, analyse_scans
@@ -68,15 +69,15 @@ ValidationBudgetOpt = Annotated[
     int | None, typer.Option(
         "--validation-budget", help="Most surrogates per fold of the held-out validation: it starts with "
         f"min({HOLDOUT_REALIZATIONS}, --realizations) and doubles while a statistic lies within 2 Monte Carlo SE "
-        "of the threshold; undecided after the budget. Default: 4 × the start, at most "
-        f"{HOLDOUT_MAX_REALIZATIONS}.")
+        "of the threshold; undecided after the budget. Default: 4 × the "
+        f"start, at most {HOLDOUT_MAX_REALIZATIONS}.")
 ]
 SummitBudgetOpt = Annotated[
     int | None, typer.Option(
         "--summit-budget", min=2, help="Most realisations the summit check may grow the ensemble to: it doubles "
-        "--realizations while a quantity lies within 2 Monte Carlo SE of its limit; undecided after the budget. "
-        "Default: --realizations (no growth: on a map at the limit, growth lets a seed decide a failure; "
-        "docs/statistical_contact.md).")
+        "--realizations while a quantity lies within the decision margin (Monte Carlo SE, 5 % family-wise) of "
+        "its limit; undecided after the budget. Default: --realizations (no growth: on a map at the limit, "
+        "growth lets a seed decide a failure; docs/statistical_contact.md).")
 ]
 
 FilesArg = Annotated[
@@ -246,6 +247,18 @@ def _gate(analysis: StatisticalContactAnalysis, *, accept_not_credible: bool) ->
     raise typer.Exit(code=NOT_CREDIBLE_EXIT)
 
 
+def _summit_verdict(analysis: StatisticalContactAnalysis) -> tuple[str, str]:
+    """The summit check as the gate reads it (decided against its Monte Carlo error, docs §0a):
+    ('pass' | 'FAIL' | 'undecided', 'credible' | 'NOT credible' | 'undecided')."""
+    cfg = analysis.config
+    realizations = int(analysis.ensemble.contact_area_m2.shape[0])
+    failed, near = analysis.surrogate_check.decided(
+        realizations, looks=looks_within(cfg.realizations, int(cfg.summit_max_realizations or cfg.realizations)))
+    if failed:
+        return "FAIL", "NOT credible"
+    return ("undecided", "undecided (within the Monte Carlo margin of the limit)") if near else ("pass", "credible")
+
+
 def _echo_checks(analysis: StatisticalContactAnalysis) -> None:
     """The two checks of the surrogates against the measurement, one line each on stderr (also with --json)."""
     sc, wc = analysis.surrogate_check, analysis.window_check
@@ -253,7 +266,7 @@ def _echo_checks(analysis: StatisticalContactAnalysis) -> None:
     typer.echo(
         f"check: summits ({sc.surrogate}) z count {z['summit_count']:+.1f}, β̄ {z['summit_radius_mean_m']:+.1f}, "
         f"σ_S {z['summit_height_std_m']:+.1f}, max |z| of μ(u) {_num(sc.max_abs_mu_z, '.1f')} (limit "
-        f"{sc.limit:g}) → {'pass' if sc.credible else 'FAIL'}", err=True)
+        f"{sc.limit:g}) → {_summit_verdict(analysis)[0]}", err=True)
     if wc is None:
         typer.echo("check: measured windows not checked (too few summits for 2 x 2 windows)", err=True)
     else:
@@ -371,7 +384,7 @@ def _print_checks(analysis: StatisticalContactAnalysis) -> None:
         f"{es['summit_radius_mean_m'] / um:.2g} µm (z {zs['summit_radius_mean_m']:+.1f}), σ_S "
         f"{me['summit_height_std_m'] / um:.4g} vs {em['summit_height_std_m'] / um:.4g} ± "
         f"{es['summit_height_std_m'] / um:.2g} µm (z {zs['summit_height_std_m']:+.1f}), max |z| of μ(u) "
-        f"{_num(sc.max_abs_mu_z, '.1f')} → {'credible' if sc.credible else 'NOT credible'}"
+        f"{_num(sc.max_abs_mu_z, '.1f')} → {_summit_verdict(analysis)[1]}"
     )
     wc = analysis.window_check
     if wc is None:

@@ -26,6 +26,7 @@ from stochfric.contact.materials import Material
 from stochfric.errors import AnalysisError, InputError
 from stochfric.friction_process.model_base import FrictionProcessModel
 from stochfric.friction_process.spectral import one_sided_psd
+from stochfric.process.decisions import decision_margin
 from stochfric.process.ensemble import ContactSamples, SurrogateOptions, summit_statistics
 from stochfric.process.verbatim import (
     BlockMatcher,
@@ -228,7 +229,7 @@ class SurrogateCheck:
         """The largest |z| of the measured map's μ(u) against the ensemble (None without approaches)."""
         return float(np.nanmax(np.abs(self.mu_z))) if self.mu_z else None
 
-    def decided(self, realizations: int, margin: float = 2.0) -> tuple[list[str], list[str]]:
+    def decided(self, realizations: int, margin: float | None = None, looks: int = 1) -> tuple[list[str], list[str]]:
         """The failures a seed cannot undo and the quantities a seed could flip.
 
         z of the measured map carries the Monte Carlo error of the ensemble's median and MAD scale: SE_z is
@@ -236,8 +237,13 @@ class SurrogateCheck:
         follows the ensemble's own shape (μ over surrogates is peaked with wide shoulders: the Gaussian
         formula √((π/2)/R + 1.36 z²/R), used where no bootstrap is recorded, understates it 2–3 times on
         al3d-1).  Decided failures: |z| − margin·SE_z ≥ limit; undecided: |z| within margin·SE_z of the limit
-        on either side (more realisations decide them)."""
+        on either side (more realisations decide them).  The margin defaults to
+        :func:`~stochfric.process.decisions.decision_margin` over the quantities checked and ``looks``, the
+        looks the ensemble may take (:func:`~stochfric.process.decisions.looks_within`): a decision another
+        seed would reverse has a family-wise probability ≤ 5 %."""
         items = [*self.z.items(), *((f"mu(u_{k})", v) for k, v in enumerate(self.mu_z))]
+        if margin is None:
+            margin = decision_margin(max(1, sum(1 for _, v in items if not math.isnan(v))), looks)
         boot = [*(self.z_se.get(n, math.nan) for n in self.z),
                 *(self.mu_z_se[k] if k < len(self.mu_z_se) else math.nan for k in range(len(self.mu_z)))]
         r = max(int(realizations), 3)

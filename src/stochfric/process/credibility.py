@@ -113,10 +113,10 @@ def assess_credibility(
     if surrogate_ok and surrogate_undecided:
         out.append(ValidityWarning(
             UNDECIDED_SUMMIT_CODE,
-            f"{name}: the measured map's {', '.join(surrogate_undecided)} lie(s) within 2 Monte Carlo standard "
-            f"errors of the summit check's limit with {realizations} realisations: another seed could decide "
-            f"either way; about {4 * (realizations or 0)} realisations would decide it (--summit-budget lets the "
-            "check grow the ensemble to decide)",
+            f"{name}: the measured map's {', '.join(surrogate_undecided)} lie(s) within the decision margin "
+            f"(Monte Carlo standard errors, 5 % family-wise) of the summit check's limit with {realizations} "
+            f"realisations: another seed could decide either way; about {4 * (realizations or 0)} realisations "
+            "would decide it (--summit-budget lets the check grow the ensemble to decide)",
         ))  # fmt: skip
     if window_ok is False and holdout is None:  # the in-sample check gates only where no held-out test ran
         out.append(ValidityWarning(

@@ -22,10 +22,18 @@ needed.  All tests of both folds form one family: the model fails when any |z| e
 c = Φ⁻¹(1 − α/(2m)) (Bonferroni over the m tests, family-wise false-alarm rate α = :data:`HOLDOUT_ALPHA`).
 
 **A verdict that does not move with the seed.**  With R surrogates z carries a Monte Carlo error
-SE_z ≈ √(1/R + z²/(2(R − 1))).  The verdict is ``credible`` when every |z| + 2 SE_z < c, ``not credible``
-when some |z| − 2 SE_z > c, and otherwise more surrogates are made (R doubled, the first R unchanged:
+SE_z ≈ √(1/R + z²/(2(R − 1))).  The verdict is ``credible`` when every |z| + k SE_z < c, ``not credible``
+when some |z| − k SE_z > c, and otherwise more surrogates are made (R doubled, the first R unchanged:
 prefix-stable seed streams) until it is decided or :data:`HOLDOUT_MAX_REALIZATIONS` are spent; then it is
-``undecided`` and says how many it needs.  A seed can only flip a decided verdict by a 4-SE swing.
+``undecided`` and says how many it needs.  The margin is k = :data:`DECISION_MARGIN` = 2: a verdict another
+seed *reverses* needs a 2k = 4-SE swing (one seed deciding each way).
+
+**The model's predictive distribution.**  The surrogates that stand for the model are drawn by
+:meth:`~stochfric.surface.surrogates.SurrogateMethod.predictive_heights`: a prediction of an *independent*
+sample.  For random phases that is a new Gaussian field of the training half's smoothed spectrum with random
+amplitudes (:func:`~stochfric.surface.synthesis.gaussian_field_heights`), not the half's own periodogram:
+surrogates that all keep the training half's realised low-wavenumber power make the model's distribution too
+narrow for a new sample, and a Gaussian map was refused by its own exact model (docs §0a).
 
 **Power.**  The output states the smallest ratio of held-out to model scatter of μ, and the smallest
 shift of the held-out window mean of μ (in units of the window sd), that the test detects with 80 %
@@ -82,7 +90,11 @@ HOLDOUT_MIN_SUMMITS = 20
 #: Surrogates per fold to start with, and the most the sequential decision may make.
 HOLDOUT_REALIZATIONS = 24
 HOLDOUT_MAX_REALIZATIONS = 96
-#: Monte Carlo standard errors a decision keeps from the threshold.
+#: Monte Carlo standard errors a decision keeps from the threshold.  Not the Bonferroni margin of the summit
+#: check (:func:`~stochfric.process.decisions.decision_margin`, 3.45 for 60 tests and 3 looks): a reversal
+#: needs one seed to decide each way, a 2k-SE swing, probability about Φ(−k)² ≈ 5·10⁻⁴ per test on its
+#: threshold at k = 2, ≤ 5 % for up to 100 tests × looks; the wider margin only moved files into
+#: ``undecided`` for some seeds (opd-1: 1 of 10 seeds, docs/statistical_contact.md §0a).
 DECISION_MARGIN = 2.0
 #: Most windows per side.
 HOLDOUT_TILES = 4
@@ -331,7 +343,7 @@ def holdout_validation(
     model: list[list[FloatArray]] = [[], []]
     r = 0
     target = min(int(realizations), int(max_realizations))
-    c = 0.0
+    c = margin = 0.0
     tests: list[HeldOutTest] = []
     while True:
         for f in range(2):
@@ -340,7 +352,7 @@ def holdout_validation(
                 for pair in halves:
                     train = pair[f]
                     gen = np.random.Generator(np.random.PCG64(seeds[f * max_realizations + k]))
-                    h = method.heights(train.heights_m, gen, factor=1, settings=settings)
+                    h = method.predictive_heights(train.heights_m, gen, settings=settings)
                     stats_k.append(_statistics(_window_quantities(h, train.grid_spacing_m, material, u, tiles, rule)))
                 model[f].append(np.mean(stats_k, axis=0))
                 if progress is not None:
@@ -348,8 +360,9 @@ def holdout_validation(
         r = target
         tests = _fold_tests(1, held[0], np.stack(model[0]), names) + _fold_tests(2, held[1], np.stack(model[1]), names)
         c = float(sps.norm.isf(alpha / (2.0 * max(len(tests), 1))))
-        fail = any(abs(t.z) - DECISION_MARGIN * t.mc_se > c for t in tests)
-        passed = all(abs(t.z) + DECISION_MARGIN * t.mc_se < c for t in tests)
+        margin = DECISION_MARGIN
+        fail = any(abs(t.z) - margin * t.mc_se > c for t in tests)
+        passed = all(abs(t.z) + margin * t.mc_se < c for t in tests)
         ratio, shift, rel = _power(tests, c, r)
         if fail or passed or r >= max_realizations:
             break
@@ -361,7 +374,8 @@ def holdout_validation(
                   f"± {worst.mc_se:.2f} of the model's distribution, beyond {c:.2f}")
     elif passed and ratio <= REQUIRED_SCATTER_RATIO:
         verdict = "credible"
-        reason = f"every held-out statistic within {c:.2f} standard deviations of the model's (2 MC SE margin)"
+        reason = (f"every held-out statistic within {c:.2f} standard deviations of the model's ({margin:.2f} MC SE "
+                  "margin)")
     elif passed:
         verdict = "undecided"
         reason = (f"no held-out statistic contradicts the model, but the test detects only a scatter ratio of μ "
@@ -369,9 +383,9 @@ def holdout_validation(
                   f"scans of this size would decide it")
     else:
         verdict = "undecided"
-        near = [t for t in tests if abs(abs(t.z) - c) <= DECISION_MARGIN * t.mc_se]
-        reason = (f"{len(near)} statistic(s) within 2 Monte Carlo SE of the threshold {c:.2f} after {r} surrogates "
-                  f"per fold; about {4 * r} would decide it (raise --validation-budget)")
+        near = [t for t in tests if abs(abs(t.z) - c) <= margin * t.mc_se]
+        reason = (f"{len(near)} statistic(s) within {margin:.2f} Monte Carlo SE of the threshold {c:.2f} after {r} "
+                  f"surrogates per fold; about {4 * r} would decide it (raise --validation-budget)")
         if not ratio <= REQUIRED_SCATTER_RATIO:
             reason += (f"; even then the test detects only a scatter ratio of μ ≥ {ratio:.2g}: about "
                        f"{_scans_needed(c, r, rel, len(scans))} scans of this size are needed")

@@ -53,6 +53,7 @@ from stochfric.process.checks import (
     window_tiles,
 )
 from stochfric.process.credibility import Credibility, assess_credibility
+from stochfric.process.decisions import looks_within
 from stochfric.process.ensemble import (
     ContactSamples,
     PathContact,
@@ -182,9 +183,10 @@ def analyse(
         n_contacts=path.samples.n_contacts.mean(axis=(0, 1)), approach_m=u,
         plasticity_index=plasticity_index_of(found, material), max_area_fraction=cfg.max_area_fraction, name=name or "",
     )  # fmt: skip
-    credibility = _credibility(name or "measured surface", u, checks, moments, ens_stats, fits, realizations)
+    credibility = _credibility(name or "measured surface", u, checks, moments, ens_stats, fits, realizations,
+                               _summit_looks(cfg))
     if realizations > cfg.realizations:
-        still = checks.surrogate_check.decided(realizations)[1]
+        still = checks.surrogate_check.decided(realizations, looks=_summit_looks(cfg))[1]
         notes.append(f"the summit check grew the ensemble from {cfg.realizations} to {realizations} realisations "
                      f"(budget {cfg.summit_max_realizations}, --summit-budget): "
                      + ("still undecided, the budget is spent" if still else "decided"))
@@ -204,7 +206,8 @@ def _decided_ensemble(
     tiles: int | None, seed: np.random.SeedSequence, progress: StagedProgress | None, workers: int | None,
 ) -> tuple[ContactSamples, SurrogateCheck]:
     """The ensemble of ``cfg.realizations`` and its summit check (:func:`~stochfric.process.checks.surrogate_check`),
-    doubled while the check is undecided — a quantity within 2 Monte Carlo SE of its limit and no decided
+    doubled while the check is undecided — a quantity within the decision margin
+    (:func:`~stochfric.process.decisions.decision_margin`, Monte Carlo SE) of its limit and no decided
     failure (:meth:`~stochfric.process.checks.SurrogateCheck.decided`) — and the doubled size stays within
     ``cfg.summit_max_realizations`` (issue 29 item 6: realisations are added until the decision is made or the
     stated budget is spent).  Realisation r depends on the seed and r only, so a grown ensemble starts with
@@ -217,10 +220,16 @@ def _decided_ensemble(
             tiles=tiles, workers=workers, extend=ens,
         )  # fmt: skip
         check = surrogate_check(scans, material, ens, rule=cfg.summit_rule)
-        failed, near = check.decided(r)
+        failed, near = check.decided(r, looks=_summit_looks(cfg))
         if failed or not near or 2 * r > int(cfg.summit_max_realizations or r):
             return ens, check
         r *= 2
+
+
+def _summit_looks(cfg: AnalysisConfig) -> int:
+    """The looks the summit check may take: the ensemble doubles from ``cfg.realizations`` within
+    ``cfg.summit_max_realizations``."""
+    return looks_within(cfg.realizations, int(cfg.summit_max_realizations or cfg.realizations))
 
 
 #: The children of the root seed that drive the ensemble, the long surfaces and the out-of-sample validation
@@ -473,12 +482,12 @@ def plasticity_index_of(found: Sequence[Summits], material: Material) -> float |
 
 def _credibility(
     name: str, u: FloatArray, checks: SurrogateChecks, moments: PathMoments, ens_stats: EnsembleStatistics, fits: _Fits,
-    realizations: int,
+    realizations: int, looks: int = 1,
 ) -> Credibility:
     """The gate (:mod:`stochfric.process.credibility`) on the checks, E[μ] and A_c/A_nom of the path
     and the ensemble, and the points the fits use; the summit check decided against its Monte Carlo error
     (:meth:`~stochfric.process.checks.SurrogateCheck.decided`)."""
-    decided = checks.surrogate_check.decided(realizations)
+    decided = checks.surrogate_check.decided(realizations, looks=looks)
     window = checks.window_check
     return assess_credibility(
         holdout=checks.holdout, uncertain_fits=_uncertain_fits(fits.fits)[0], between_scans=checks.between_scans,

@@ -57,6 +57,7 @@ from stochfric.surface.synthesis import (
     PHASE_METHOD,
     AmplitudeEstimate,
     checked_heights,
+    gaussian_field_heights,
     iaaft_longer_heights,
     phase_longer_heights,
     surrogate_surface,
@@ -122,6 +123,14 @@ class SurrogateMethod:
         """A surrogate of ``heights`` with ``factor`` times its length in y, from ``rng`` only."""
         raise NotImplementedError
 
+    def predictive_heights(self, heights: FloatArray, rng: np.random.Generator, *,
+                           settings: SurrogateSettings) -> FloatArray:
+        """A map of the size of ``heights`` drawn from the method's model as a prediction of an
+        *independent* sample of the surface (the held-out validation, :mod:`stochfric.process.holdout`).
+        By default the method's own surrogate; a method whose surrogates are conditioned on a statistic of
+        the map that an independent sample would not share overrides it (:class:`PhaseSurrogate`)."""
+        return self.heights(heights, rng, factor=1, settings=settings)
+
     def applicable(self, heights: FloatArray, *, rule: str) -> tuple[bool, str]:
         """Can this map (summits by ``rule``) be made into surrogates by this method?  ``(yes, reason)``."""
         return True, f"{self.name} applies to any map"
@@ -146,6 +155,13 @@ class PhaseSurrogate(SurrogateMethod):
     def heights(self, heights: FloatArray, rng: np.random.Generator, *, factor: int,
                 settings: SurrogateSettings) -> FloatArray:
         return phase_longer_heights(heights, factor, rng, amplitude=settings.amplitude)
+
+    def predictive_heights(self, heights: FloatArray, rng: np.random.Generator, *,
+                           settings: SurrogateSettings) -> FloatArray:
+        """The random-phase model as a prediction of a new sample: the Gaussian field of the map's
+        smoothed spectrum with random amplitudes (:func:`~stochfric.surface.synthesis.gaussian_field_heights`),
+        not the map's own periodogram with random phases."""
+        return gaussian_field_heights(heights, rng, amplitude=settings.amplitude)
 
 
 class IaaftSurrogate(SurrogateMethod):

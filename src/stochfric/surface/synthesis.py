@@ -16,6 +16,7 @@ from enum import StrEnum
 
 import numpy as np
 import numpy.typing as npt
+from scipy.ndimage import uniform_filter
 from scipy.signal import windows as sig_windows
 
 from stochfric.arrays import FloatArray
@@ -25,6 +26,7 @@ from stochfric.surface.io import Surface, SurfaceError
 __all__ = [
     "AMPLITUDE_METHODS",
     "DEFAULT_AMPLITUDE",
+    "GAUSSIAN_SMOOTHING",
     "IAAFT_METHOD",
     "PHASE_METHOD",
     "TUKEY_ALPHA",
@@ -33,6 +35,7 @@ __all__ = [
     "amplitude_error",
     "amplitude_spectrum",
     "checked_heights",
+    "gaussian_field_heights",
     "iaaft_heights",
     "iaaft_longer_heights",
     "iaaft_surface",
@@ -61,6 +64,10 @@ IAAFT_METHOD = "iaaft"
 DEFAULT_AMPLITUDE = AmplitudeEstimate.TUKEY
 #: Fraction of each axis inside the cosine tapers of the ``"tukey"`` estimate (half at each edge).
 TUKEY_ALPHA = 0.2
+#: Side of the Daniell (box) kernel that smooths the periodogram of :func:`gaussian_field_heights`,
+#: in frequency bins: 3 × 3 averages 9 bins (the estimate's relative sd falls from 1 to 1/3 per bin)
+#: while moving power by at most one bin.
+GAUSSIAN_SMOOTHING = 3
 
 ComplexArray = npt.NDArray[np.complex128]
 
@@ -165,6 +172,47 @@ def random_phase_heights(
     gen = as_generator(rng)
     half = _half_amplitudes(z, amplitude)
     return _phase_from_half_amplitudes(half, z.shape, float(z.mean()), gen)
+
+
+def gaussian_field_heights(
+    heights: npt.ArrayLike, rng: np.random.Generator | SeedLike = None, *, amplitude: str = DEFAULT_AMPLITUDE,
+    smoothing: int = GAUSSIAN_SMOOTHING,
+) -> FloatArray:
+    """A new sample of the Gaussian random field whose spectrum is estimated from ``heights`` [m].
+
+    The random-phase surrogate (:func:`random_phase_heights`, thesis 3.4–3.5) keeps the map's amplitude
+    |Z| exactly: it is the Gaussian model *conditioned on the map's periodogram*, right for statistics of
+    the map itself, but every surrogate then has the map's own realised low-wavenumber power.  An
+    independent sample of the same surface (a held-out half, another scan) has its own: its |Z|² scatter
+    about the spectrum as a χ²₂/2 variable per bin.  This generator draws that sample: the periodogram of
+    the estimate ``amplitude`` (:func:`amplitude_spectrum`) is smoothed by a periodic ``smoothing`` ×
+    ``smoothing`` box (Daniell) kernel to Ŝ, and the coefficients are Ŝ^½ · W/√(MN), W the DFT of white
+    Gaussian noise (complex Gaussian: Rayleigh amplitudes, uniform phases, Hermitian).  So
+    E|DFT2(h)|² = Ŝ bin by bin, and the map's variance, summit count and summit-height scatter vary from
+    sample to sample as an independent sample's do (docs/statistical_contact.md §0a, "The model's
+    predictive distribution").  The mean is the map's mean.
+    """
+    z = checked_heights(heights)
+    k = int(smoothing)
+    if k < 1 or k % 2 == 0:
+        raise SurfaceError(f"the smoothing kernel must be an odd number of bins >= 1 (centred), got {smoothing!r}")
+    gen = as_generator(rng)
+    periodogram = _full_amplitudes(z, amplitude) ** 2
+    periodogram[0, 0] = 0.0  # the mean is not a fluctuation: kept out of the smoothing
+    spectrum = _smoothed(periodogram, k)
+    # the estimate as it might have come out of another sample: the periodogram of a Gaussian field of
+    # that spectrum is the spectrum times |W|²/(MN), an exponential variable per bin (Hermitian)
+    resampled = np.abs(np.fft.fft2(gen.standard_normal(z.shape))) ** 2 / z.size
+    power = _smoothed(spectrum * resampled, k)
+    white = np.fft.fft2(gen.standard_normal(z.shape)) / np.sqrt(z.size)
+    return np.asarray(np.fft.ifft2(np.sqrt(power) * white).real + float(z.mean()))
+
+
+def _smoothed(power: FloatArray, k: int) -> FloatArray:
+    """``power`` (DC bin 0) averaged over a periodic k × k box of bins, the DC bin set to 0 again."""
+    out = uniform_filter(power, size=k, mode="wrap") if k > 1 else power.copy()
+    out[0, 0] = 0.0
+    return np.asarray(out)
 
 
 def interpolate_amplitudes(amplitude: npt.ArrayLike, factor: int) -> FloatArray:

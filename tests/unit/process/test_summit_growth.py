@@ -1,5 +1,6 @@
 """The summit check grows its own ensemble (issue 29 item 6): realisations are added (doubled) while a quantity
-lies within 2 Monte Carlo SE of the limit, until the check decides or ``summit_max_realizations`` is spent; a
+lies within the decision margin (Monte Carlo SE, Bonferroni over quantities and looks) of
+the limit, until the check decides or ``summit_max_realizations`` is spent; a
 grown ensemble equals a fresh one of that size, so the numbers do not depend on how it grew."""
 
 from __future__ import annotations
@@ -45,9 +46,12 @@ def test_an_extended_ensemble_equals_a_fresh_one(coarse: Surface) -> None:
 def _run(coarse: Surface, monkeypatch: pytest.MonkeyPatch, undecided_below: int, **cfg: int) -> tuple[int, list[int]]:
     """Run the growth loop with a summit check that stays undecided below ``undecided_below`` realisations."""
     seen: list[int] = []
+    looks_seen: list[int] = []
 
-    def decided(self: SurrogateCheck, realizations: int, margin: float = 2.0) -> tuple[list[str], list[str]]:
+    def decided(self: SurrogateCheck, realizations: int, margin: float | None = None,
+                looks: int = 1) -> tuple[list[str], list[str]]:
         seen.append(realizations)
+        looks_seen.append(looks)
         return [], (["mu(u_0)"] if realizations < undecided_below else [])
 
     monkeypatch.setattr(SurrogateCheck, "decided", decided)
@@ -55,6 +59,7 @@ def _run(coarse: Surface, monkeypatch: pytest.MonkeyPatch, undecided_below: int,
     config = AnalysisConfig(seed=3, **cfg)
     opts = config.surrogate_options
     ens, _ = statistics._decided_ensemble([coarse], MAT, u, config, opts, None, as_seed_sequence(3), None, 1)
+    assert set(looks_seen) == {statistics._summit_looks(config)}
     return int(ens.contact_area_m2.shape[0]), seen
 
 
@@ -76,3 +81,30 @@ def test_budget_below_the_realisations_is_refused() -> None:
     with pytest.raises(AnalysisError, match=r"summit_max_realizations \(5\) must be at least realizations"):
         AnalysisConfig(realizations=10, summit_max_realizations=5)
     assert AnalysisConfig(realizations=10).summit_max_realizations == 10
+
+
+def test_the_margin_counts_quantities_and_looks() -> None:
+    """k = Φ⁻¹(1 − 0.05/(m L)): the family-wise bound on a decision another seed would reverse."""
+    from scipy import stats as sps
+
+    from stochfric.process.decisions import decision_margin, looks_within
+
+    assert looks_within(3, 3) == 1 and looks_within(3, 5) == 1 and looks_within(3, 12) == 3
+    assert looks_within(24, 96) == 3 and looks_within(40, 160) == 3
+    for m, n in ((1, 1), (16, 1), (16, 3), (60, 3)):
+        k = decision_margin(m, n)
+        assert sps.norm.sf(k) * m * n == pytest.approx(0.05, rel=1e-9)
+    assert decision_margin(16, 3) > decision_margin(16, 1) > 2.0
+    with pytest.raises(AnalysisError, match="decision margin"):
+        decision_margin(0, 1)
+    # a check's default margin is the family's: a quantity 2.5 SE past the limit is decided with one
+    # quantity, undecided among sixteen
+    one = SurrogateCheck(measured={}, ensemble_mean={}, ensemble_std={}, z={"n": 3.5}, mu_measured=(),
+                         mu_z=(), limit=3.0, credible=False, surrogate="phase", amplitude="raw",
+                         z_se={"n": 0.2})
+    assert one.decided(100) == (["n"], [])
+    many = SurrogateCheck(measured={}, ensemble_mean={}, ensemble_std={},
+                          z={"n": 3.5, **{f"q{i}": 0.0 for i in range(15)}},
+                          mu_measured=(), mu_z=(), limit=3.0, credible=False, surrogate="phase", amplitude="raw",
+                          z_se={"n": 0.2, **{f"q{i}": 0.1 for i in range(15)}})
+    assert many.decided(100) == ([], ["n"])
