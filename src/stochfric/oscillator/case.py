@@ -29,6 +29,7 @@ command line shows its flags instead.
 from __future__ import annotations
 
 import dataclasses
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -437,6 +438,13 @@ class FrictionInput:
     sigma_zeta: float | None = None
     #: Use the process model outside its fitted pressures (every output stamped) instead of refusing.
     allow_extrapolation: bool = False
+
+    def __post_init__(self) -> None:
+        # checked whether or not the model reads them: a value that cannot be right is refused, not ignored
+        if self.process_length is not None and not (math.isfinite(self.process_length) and self.process_length > 0):
+            raise CaseError(f"the process length ℓ must be a finite length > 0 [m], got {self.process_length!r}")
+        if self.sigma_zeta is not None and not (math.isfinite(self.sigma_zeta) and self.sigma_zeta >= 0):
+            raise CaseError(f"the white-noise intensity σ_ζ must be a finite number >= 0, got {self.sigma_zeta!r}")
 
 
 def _parameters(pre: Preset | None, phys: PhysicalInput, dim: DimensionlessInput) -> OscillatorParameters:

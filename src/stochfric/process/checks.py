@@ -260,6 +260,27 @@ class SurrogateCheck:
                 near.append(name)
         return failed, near
 
+    def realizations_to_decide(self, realizations: int, looks: int = 1) -> int | None:
+        """About how many realisations would decide every undecided quantity of :meth:`decided`: SE_z falls as
+        1/√R, so a quantity at distance δ = ||z| − limit| is decided once k·SE_z·√(R/R') < δ, R' = R (k SE_z/δ)²
+        (the largest over the undecided quantities, rounded up to R·2^j; None when nothing is undecided).  An
+        estimate: on al3d-1 the seed-to-seed spread of z was 1.3 × its bootstrap SE (docs §0a)."""
+        _, near = self.decided(realizations, looks=looks)
+        if not near:
+            return None
+        items = {**self.z, **{f"mu(u_{k})": v for k, v in enumerate(self.mu_z)}}
+        ses = {**self.z_se, **{f"mu(u_{k})": v for k, v in enumerate(self.mu_z_se)}}
+        k = decision_margin(max(1, sum(1 for v in items.values() if not math.isnan(v))), looks)
+        r = max(int(realizations), 1)
+        need = r
+        for name in near:
+            gap = abs(abs(items[name]) - self.limit)
+            se = ses.get(name, math.nan)
+            if not (math.isfinite(se) and se > 0.0) or gap < 1e-3:
+                return None  # on the limit itself: no number of realisations decides it
+            need = max(need, math.ceil(r * (k * se / gap) ** 2))
+        return int(r * 2 ** math.ceil(math.log2(need / r))) if need > r else 2 * r
+
     def failures(self) -> list[str]:
         """Names of the quantities with |z| ≥ limit (μ as ``mu(u_k)``)."""
         out = [n for n, v in self.z.items() if not abs(v) < self.limit]

@@ -85,6 +85,7 @@ def assess_credibility(
     surrogate_failures: list[str],
     surrogate_undecided: list[str] | None = None,
     realizations: int | None = None,
+    realizations_to_decide: int | None = None,
     window_ok: bool | None,
     window_max_z: float | None,
     copies: CopyCheck | None = None,
@@ -115,8 +116,10 @@ def assess_credibility(
             UNDECIDED_SUMMIT_CODE,
             f"{name}: the measured map's {', '.join(surrogate_undecided)} lie(s) within the decision margin "
             f"(Monte Carlo standard errors, 5 % family-wise) of the summit check's limit with {realizations} "
-            f"realisations: another seed could decide either way; about {4 * (realizations or 0)} realisations "
-            "would decide it (--summit-budget lets the check grow the ensemble to decide)",
+            "realisations: another seed could decide either way; "
+            + (f"about {realizations_to_decide} realisations would decide it (--summit-budget lets the check grow "
+               "the ensemble to decide)" if realizations_to_decide else
+               "a quantity sits on the limit itself: more realisations would not decide it"),
         ))  # fmt: skip
     if window_ok is False and holdout is None:  # the in-sample check gates only where no held-out test ran
         out.append(ValidityWarning(

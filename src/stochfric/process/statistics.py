@@ -493,6 +493,7 @@ def _credibility(
         holdout=checks.holdout, uncertain_fits=_uncertain_fits(fits.fits)[0], between_scans=checks.between_scans,
         name=name, approach_m=u, surrogate_ok=not decided[0], surrogate_failures=decided[0],
         surrogate_undecided=decided[1], realizations=realizations,
+        realizations_to_decide=checks.surrogate_check.realizations_to_decide(realizations, looks),
         window_ok=None if window is None else window.consistent,
         window_max_z=None if window is None else window.max_abs_z, copies=checks.copy_check,
         mu_means=[moments.mu_mean, ens_stats.ensemble_mu_mean],

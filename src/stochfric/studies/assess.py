@@ -38,6 +38,7 @@ from ..io_utils import check_output_path, package_versions, write_text_atomic
 from ..oscillator.machine import Machine, load_machine
 from ..process.analysis_config import AnalysisConfig
 from ..process.checks import window_tiles
+from ..process.contact_models import parse_contact_models
 from ..process.pipeline import MODEL_FILE, ScanAnalysis, analyse_scans, cap_on_windows
 from ..surface.io import Surface
 from ..surface.summits import summits_of
@@ -87,6 +88,9 @@ class AssessSettings:
                 raise InputError(f"{name} must be an integer >= {low}, got {v!r}")
         if not (isinstance(self.risk_level, float | int) and 0.0 < float(self.risk_level) < 1.0):
             raise InputError(f"risk_level must lie in (0, 1), got {self.risk_level!r}")
+        parse_contact_models(self.contact_model)  # an unknown model is refused before the surface analysis
+        if self.tau_end is not None and not (math.isfinite(self.tau_end) and self.tau_end > 0.0):
+            raise InputError(f"tau_end (--tau-end) must be a finite simulated time > 0, got {self.tau_end!r}")
 
 
 @dataclass(frozen=True)

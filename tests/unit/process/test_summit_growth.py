@@ -108,3 +108,16 @@ def test_the_margin_counts_quantities_and_looks() -> None:
                           mu_measured=(), mu_z=(), limit=3.0, credible=False, surrogate="phase", amplitude="raw",
                           z_se={"n": 0.2, **{f"q{i}": 0.1 for i in range(15)}})
     assert many.decided(100) == ([], ["n"])
+
+
+def test_realisations_to_decide_scale_with_the_gap() -> None:
+    """R' = R (k SE/δ)², rounded up to R·2^j: a quantity 0.4 beyond the limit with SE 0.3 at R = 100 and one
+    quantity (k = Φ⁻¹(1 − 0.05) = 1.645) needs (1.645 × 0.3/0.4)² = 1.52 → 200; with SE 0.6, 6.1 → 800."""
+    def check(se: float, z: float = 3.4) -> SurrogateCheck:
+        return SurrogateCheck(measured={}, ensemble_mean={}, ensemble_std={}, z={"n": z}, mu_measured=(), mu_z=(),
+                              limit=3.0, credible=False, surrogate="phase", amplitude="raw", z_se={"n": se})
+
+    assert check(0.3).realizations_to_decide(100) == 200
+    assert check(0.6).realizations_to_decide(100) == 800
+    assert check(0.1).realizations_to_decide(100) is None  # decided already
+    assert check(0.3, z=3.0).realizations_to_decide(100) is None  # on the limit: nothing decides it
