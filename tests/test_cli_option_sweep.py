@@ -3,8 +3,9 @@ ends in one clear line and exit status 2 — never a traceback, never silently a
 clean-error sweep).
 
 Each command runs from a minimal valid invocation (:data:`BASE`) with one option replaced: floats get NaN, ∞
-and −1, integers −5, texts the empty string, paths a file that can be neither read nor created.  A value that is accepted starts real work; a SIGALRM stops it after
-:data:`ACCEPT_SECONDS` and the case fails as "accepted".  About 390 invocations, 40 s on one core (every one
+and −1, integers −5, texts the empty string, paths a file that can be neither read nor created.  A value
+that is accepted starts real work; a SIGALRM stops it after :data:`ACCEPT_SECONDS` and the case fails as
+"accepted".  About 390 invocations, 40 s on one core (every one
 is refused before any work starts).  Found and fixed by it: ``simulate --process-length inf`` ended in a
 traceback, ``simulate --sigma-zeta nan`` was ignored without a model that reads it, ``assess --tau-end nan``
 and ``assess --contact-model ''`` started the analysis."""
