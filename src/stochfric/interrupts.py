@@ -20,7 +20,7 @@ import threading
 from collections.abc import Iterator
 from typing import Any
 
-__all__ = ["CTRL_C", "command_ctrl_c_latch", "ctrl_c_latch"]
+__all__ = ["CTRL_C", "command_ctrl_c_latch", "ctrl_c_latch", "startup_ctrl_c_latch"]
 
 #: Set by the latch's SIGINT handler; cleared when a latch starts.
 CTRL_C = threading.Event()
@@ -54,6 +54,27 @@ def command_ctrl_c_latch() -> Iterator[None]:
         _process_latch = False
         CTRL_C.clear()
         signal.signal(signal.SIGINT, previous)
+
+
+@contextlib.contextmanager
+def startup_ctrl_c_latch() -> Iterator[threading.Event]:
+    """The latch for a program's start (the console script's imports): yields an event that is set when a Ctrl-C
+    came, even one swallowed in a ctypes callback — on a fresh installation numba compiles while the command
+    line's modules are imported, and a Ctrl-C then was lost and the command ran to its end (exit 0).  The
+    default handler is back afterwards, so that :func:`command_ctrl_c_latch` can take over."""
+    if not _can_install():
+        yield threading.Event()
+        return
+    CTRL_C.clear()
+    previous = signal.signal(signal.SIGINT, _on_sigint)
+    seen = threading.Event()
+    try:
+        yield seen
+    finally:
+        signal.signal(signal.SIGINT, previous)
+        if CTRL_C.is_set():
+            seen.set()
+        CTRL_C.clear()
 
 
 @contextlib.contextmanager

@@ -14,6 +14,7 @@ from __future__ import annotations
 import sys
 from typing import Any
 
+from ..interrupts import startup_ctrl_c_latch
 from ..vector_width import configure
 
 __all__ = ["app", "main"]
@@ -24,16 +25,18 @@ def main() -> None:
     SIMD width of ``STOCHFRIC_VECTOR_WIDTH`` (default ``auto``: full width only on the CPUs where it was
     measured faster; :func:`stochfric.vector_width.configure`) to its own process; a bad value ends in one
     line, status 2.  Importing the library changes no setting."""
-    try:
-        configure()
-    except ValueError as exc:
-        sys.stderr.write(f"error: {exc}\n")
-        raise SystemExit(2) from None
-    try:
-        from .application import main as run
-    except KeyboardInterrupt:
+    with startup_ctrl_c_latch() as ctrl_c:  # a Ctrl-C swallowed while numba compiles at import is not lost
+        try:
+            configure()
+            from .application import main as run
+        except ValueError as exc:
+            sys.stderr.write(f"error: {exc}\n")
+            raise SystemExit(2) from None
+        except KeyboardInterrupt:
+            ctrl_c.set()
+    if ctrl_c.is_set():
         sys.stderr.write("interrupted while starting; nothing was run\n")
-        raise SystemExit(130) from None
+        raise SystemExit(130)
     run()
 
 
