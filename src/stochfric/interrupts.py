@@ -59,9 +59,9 @@ def command_ctrl_c_latch() -> Iterator[None]:
 @contextlib.contextmanager
 def startup_ctrl_c_latch() -> Iterator[threading.Event]:
     """The latch for a program's start (the console script's imports): yields an event that is set when a Ctrl-C
-    came, even one swallowed in a ctypes callback — on a fresh installation numba compiles while the command
-    line's modules are imported, and a Ctrl-C then was lost and the command ran to its end (exit 0).  The
-    default handler is back afterwards, so that :func:`command_ctrl_c_latch` can take over."""
+    came, even one whose KeyboardInterrupt was swallowed during the imports (in a ctypes callback, as numba's
+    compiler uses), which would otherwise let the command run to its end.  The default handler is back
+    afterwards, so that :func:`command_ctrl_c_latch` can take over."""
     if not _can_install():
         yield threading.Event()
         return

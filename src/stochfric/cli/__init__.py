@@ -25,7 +25,7 @@ def main() -> None:
     SIMD width of ``STOCHFRIC_VECTOR_WIDTH`` (default ``auto``: full width only on the CPUs where it was
     measured faster; :func:`stochfric.vector_width.configure`) to its own process; a bad value ends in one
     line, status 2.  Importing the library changes no setting."""
-    with startup_ctrl_c_latch() as ctrl_c:  # a Ctrl-C swallowed while numba compiles at import is not lost
+    with startup_ctrl_c_latch() as ctrl_c:  # a Ctrl-C swallowed during the imports is not lost
         try:
             configure()
             from .application import main as run

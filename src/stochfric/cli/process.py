@@ -43,7 +43,6 @@ from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
 from stochfric.process.checks import WINDOW_MIN_SUMMITS, WINDOW_TILES
 from stochfric.process.credibility import NOT_CREDIBLE_EXIT
-from stochfric.process.decisions import looks_within
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.holdout import HOLDOUT_MAX_REALIZATIONS, HOLDOUT_REALIZATIONS
 from stochfric.process.pipeline import MODEL_FILE, STATISTICS_FILE, ApproachRule, ScanAnalysis, analyse_scans
@@ -252,8 +251,7 @@ def _summit_verdict(analysis: StatisticalContactAnalysis) -> tuple[str, str]:
     ('pass' | 'FAIL' | 'undecided', 'credible' | 'NOT credible' | 'undecided')."""
     cfg = analysis.config
     realizations = int(analysis.ensemble.contact_area_m2.shape[0])
-    failed, near = analysis.surrogate_check.decided(
-        realizations, looks=looks_within(cfg.realizations, int(cfg.summit_max_realizations or cfg.realizations)))
+    failed, near = analysis.surrogate_check.decided(realizations, looks=cfg.summit_looks)
     if failed:
         return "FAIL", "NOT credible"
     return ("undecided", "undecided (within the Monte Carlo margin of the limit)") if near else ("pass", "credible")

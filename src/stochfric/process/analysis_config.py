@@ -17,6 +17,7 @@ from stochfric.errors import AnalysisError
 from stochfric.friction_process.model_base import SigmaZetaRule
 from stochfric.friction_process.tabulated import PressureRule, VarianceRule
 from stochfric.process.checks import WINDOW_TILES
+from stochfric.process.decisions import looks_within
 from stochfric.process.ensemble import SurrogateOptions
 from stochfric.process.fit import DEFAULT_MAX_AREA_FRACTION
 from stochfric.process.holdout import HOLDOUT_MAX_REALIZATIONS, HOLDOUT_REALIZATIONS
@@ -118,6 +119,12 @@ class AnalysisConfig:
     def holdout_start(self) -> int:
         """Surrogates per fold the held-out validation starts with (resolved in ``__post_init__``)."""
         return int(self.holdout_realizations or HOLDOUT_REALIZATIONS)
+
+    @property
+    def summit_looks(self) -> int:
+        """The looks the summit check may take: the ensemble doubles from ``realizations`` within
+        ``summit_max_realizations`` (the L of :func:`~stochfric.process.decisions.decision_margin`)."""
+        return looks_within(self.realizations, int(self.summit_max_realizations or self.realizations))
 
     @property
     def holdout_budget(self) -> int:

@@ -241,24 +241,34 @@ class SurrogateCheck:
         :func:`~stochfric.process.decisions.decision_margin` over the quantities checked and ``looks``, the
         looks the ensemble may take (:func:`~stochfric.process.decisions.looks_within`): a decision another
         seed would reverse has a family-wise probability ≤ 5 %."""
-        items = [*self.z.items(), *((f"mu(u_{k})", v) for k, v in enumerate(self.mu_z))]
-        if margin is None:
-            margin = decision_margin(max(1, sum(1 for _, v in items if not math.isnan(v))), looks)
-        boot = [*(self.z_se.get(n, math.nan) for n in self.z),
-                *(self.mu_z_se[k] if k < len(self.mu_z_se) else math.nan for k in range(len(self.mu_z)))]
-        r = max(int(realizations), 3)
+        items = self._estimates(realizations)
+        k = self._margin(items, looks) if margin is None else margin
         failed, near = [], []
-        for (name, v), se_boot in zip(items, boot, strict=True):
+        for name, v, se in items:
             if not math.isfinite(v):
                 if math.isinf(v):
                     failed.append(name)
                 continue
-            se = se_boot if math.isfinite(se_boot) else math.sqrt(0.5 * math.pi / r + MAD_SCALE_VARIANCE * v * v / r)
-            if abs(v) - margin * se >= self.limit:
+            if abs(v) - k * se >= self.limit:
                 failed.append(name)
-            elif abs(v) + margin * se >= self.limit:
+            elif abs(v) + k * se >= self.limit:
                 near.append(name)
         return failed, near
+
+    def _estimates(self, realizations: int) -> list[tuple[str, float, float]]:
+        """(name, z, SE_z) of every quantity (μ as ``mu(u_k)``): the bootstrap SE where recorded, else the
+        Gaussian formula √((π/2)/R + 1.36 z²/R)."""
+        r = max(int(realizations), 3)
+        items = [*self.z.items(), *((f"mu(u_{k})", v) for k, v in enumerate(self.mu_z))]
+        boot = [*(self.z_se.get(n, math.nan) for n in self.z),
+                *(self.mu_z_se[k] if k < len(self.mu_z_se) else math.nan for k in range(len(self.mu_z)))]
+        return [(name, v, se if math.isfinite(se) else math.sqrt(0.5 * math.pi / r + MAD_SCALE_VARIANCE * v * v / r))
+                for (name, v), se in zip(items, boot, strict=True)]
+
+    @staticmethod
+    def _margin(items: list[tuple[str, float, float]], looks: int) -> float:
+        """:func:`~stochfric.process.decisions.decision_margin` over the defined quantities and ``looks``."""
+        return decision_margin(max(1, sum(1 for _, v, _ in items if not math.isnan(v))), looks)
 
     def realizations_to_decide(self, realizations: int, looks: int = 1) -> int | None:
         """About how many realisations would decide every undecided quantity of :meth:`decided`: SE_z falls as
@@ -268,15 +278,15 @@ class SurrogateCheck:
         _, near = self.decided(realizations, looks=looks)
         if not near:
             return None
-        items = {**self.z, **{f"mu(u_{k})": v for k, v in enumerate(self.mu_z)}}
-        ses = {**self.z_se, **{f"mu(u_{k})": v for k, v in enumerate(self.mu_z_se)}}
-        k = decision_margin(max(1, sum(1 for v in items.values() if not math.isnan(v))), looks)
+        items = self._estimates(realizations)
+        k = self._margin(items, looks)
         r = max(int(realizations), 1)
         need = r
-        for name in near:
-            gap = abs(abs(items[name]) - self.limit)
-            se = ses.get(name, math.nan)
-            if not (math.isfinite(se) and se > 0.0) or gap < 1e-3:
+        for name, v, se in items:
+            if name not in near:
+                continue
+            gap = abs(abs(v) - self.limit)
+            if not se > 0.0 or gap < 1e-3:
                 return None  # on the limit itself: no number of realisations decides it
             need = max(need, math.ceil(r * (k * se / gap) ** 2))
         return int(r * 2 ** math.ceil(math.log2(need / r))) if need > r else 2 * r

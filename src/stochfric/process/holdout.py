@@ -343,7 +343,7 @@ def holdout_validation(
     model: list[list[FloatArray]] = [[], []]
     r = 0
     target = min(int(realizations), int(max_realizations))
-    c = margin = 0.0
+    c = 0.0
     tests: list[HeldOutTest] = []
     while True:
         for f in range(2):
@@ -360,9 +360,8 @@ def holdout_validation(
         r = target
         tests = _fold_tests(1, held[0], np.stack(model[0]), names) + _fold_tests(2, held[1], np.stack(model[1]), names)
         c = float(sps.norm.isf(alpha / (2.0 * max(len(tests), 1))))
-        margin = DECISION_MARGIN
-        fail = any(abs(t.z) - margin * t.mc_se > c for t in tests)
-        passed = all(abs(t.z) + margin * t.mc_se < c for t in tests)
+        fail = any(abs(t.z) - DECISION_MARGIN * t.mc_se > c for t in tests)
+        passed = all(abs(t.z) + DECISION_MARGIN * t.mc_se < c for t in tests)
         ratio, shift, rel = _power(tests, c, r)
         if fail or passed or r >= max_realizations:
             break
@@ -374,8 +373,7 @@ def holdout_validation(
                   f"± {worst.mc_se:.2f} of the model's distribution, beyond {c:.2f}")
     elif passed and ratio <= REQUIRED_SCATTER_RATIO:
         verdict = "credible"
-        reason = (f"every held-out statistic within {c:.2f} standard deviations of the model's ({margin:.2f} MC SE "
-                  "margin)")
+        reason = f"every held-out statistic within {c:.2f} standard deviations of the model's (2 MC SE margin)"
     elif passed:
         verdict = "undecided"
         reason = (f"no held-out statistic contradicts the model, but the test detects only a scatter ratio of μ "
@@ -383,8 +381,8 @@ def holdout_validation(
                   f"scans of this size would decide it")
     else:
         verdict = "undecided"
-        near = [t for t in tests if abs(abs(t.z) - c) <= margin * t.mc_se]
-        reason = (f"{len(near)} statistic(s) within {margin:.2f} Monte Carlo SE of the threshold {c:.2f} after {r} "
+        near = [t for t in tests if abs(abs(t.z) - c) <= DECISION_MARGIN * t.mc_se]
+        reason = (f"{len(near)} statistic(s) within 2 Monte Carlo SE of the threshold {c:.2f} after {r} "
                   f"surrogates per fold; about {4 * r} would decide it (raise --validation-budget)")
         if not ratio <= REQUIRED_SCATTER_RATIO:
             reason += (f"; even then the test detects only a scatter ratio of μ ≥ {ratio:.2g}: about "

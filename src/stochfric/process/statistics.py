@@ -53,7 +53,6 @@ from stochfric.process.checks import (
     window_tiles,
 )
 from stochfric.process.credibility import Credibility, assess_credibility
-from stochfric.process.decisions import looks_within
 from stochfric.process.ensemble import (
     ContactSamples,
     PathContact,
@@ -184,9 +183,9 @@ def analyse(
         plasticity_index=plasticity_index_of(found, material), max_area_fraction=cfg.max_area_fraction, name=name or "",
     )  # fmt: skip
     credibility = _credibility(name or "measured surface", u, checks, moments, ens_stats, fits, realizations,
-                               _summit_looks(cfg))
+                               cfg.summit_looks)
     if realizations > cfg.realizations:
-        still = checks.surrogate_check.decided(realizations, looks=_summit_looks(cfg))[1]
+        still = checks.surrogate_check.decided(realizations, looks=cfg.summit_looks)[1]
         notes.append(f"the summit check grew the ensemble from {cfg.realizations} to {realizations} realisations "
                      f"(budget {cfg.summit_max_realizations}, --summit-budget): "
                      + ("still undecided, the budget is spent" if still else "decided"))
@@ -220,16 +219,10 @@ def _decided_ensemble(
             tiles=tiles, workers=workers, extend=ens,
         )  # fmt: skip
         check = surrogate_check(scans, material, ens, rule=cfg.summit_rule)
-        failed, near = check.decided(r, looks=_summit_looks(cfg))
+        failed, near = check.decided(r, looks=cfg.summit_looks)
         if failed or not near or 2 * r > int(cfg.summit_max_realizations or r):
             return ens, check
         r *= 2
-
-
-def _summit_looks(cfg: AnalysisConfig) -> int:
-    """The looks the summit check may take: the ensemble doubles from ``cfg.realizations`` within
-    ``cfg.summit_max_realizations``."""
-    return looks_within(cfg.realizations, int(cfg.summit_max_realizations or cfg.realizations))
 
 
 #: The children of the root seed that drive the ensemble, the long surfaces and the out-of-sample validation

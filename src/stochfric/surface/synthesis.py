@@ -186,11 +186,12 @@ def gaussian_field_heights(
     independent sample of the same surface (a held-out half, another scan) has its own: its |Z|² scatter
     about the spectrum as a χ²₂/2 variable per bin.  This generator draws that sample: the periodogram of
     the estimate ``amplitude`` (:func:`amplitude_spectrum`) is smoothed by a periodic ``smoothing`` ×
-    ``smoothing`` box (Daniell) kernel to Ŝ, and the coefficients are Ŝ^½ · W/√(MN), W the DFT of white
-    Gaussian noise (complex Gaussian: Rayleigh amplitudes, uniform phases, Hermitian).  So
-    E|DFT2(h)|² = Ŝ bin by bin, and the map's variance, summit count and summit-height scatter vary from
-    sample to sample as an independent sample's do (docs/statistical_contact.md §0a, "The model's
-    predictive distribution").  The mean is the map's mean.
+    ``smoothing`` box (Daniell) kernel to Ŝ; Ŝ is re-estimated as another sample would have given it (Ŝ times an
+    exponential variable per bin, smoothed again), and the coefficients are that estimate's square root times
+    W/√(MN), W the DFT of white Gaussian noise (complex Gaussian: Rayleigh amplitudes, uniform phases,
+    Hermitian).  So E|DFT2(h)|² is Ŝ smoothed once more, and the map's variance, summit count and
+    summit-height scatter vary from sample to sample as an independent sample's do
+    (docs/statistical_contact.md §0a).  The mean is the map's mean.
     """
     z = checked_heights(heights)
     k = int(smoothing)

@@ -59,7 +59,7 @@ def _run(coarse: Surface, monkeypatch: pytest.MonkeyPatch, undecided_below: int,
     config = AnalysisConfig(seed=3, **cfg)
     opts = config.surrogate_options
     ens, _ = statistics._decided_ensemble([coarse], MAT, u, config, opts, None, as_seed_sequence(3), None, 1)
-    assert set(looks_seen) == {statistics._summit_looks(config)}
+    assert set(looks_seen) == {config.summit_looks}
     return int(ens.contact_area_m2.shape[0]), seen
 
 
