@@ -11,7 +11,11 @@ Rules, the same for every file (no per-file tuning):
   compared over its own GW range (the lowest approaches touch too few pixels for a boundary-element solution
   of the coarse map);
 * a file whose solve fails (an under-resolved contact) is printed with the reason, not dropped silently;
-* ``--realizations`` surrogates of the analysis's default method (``auto``), seed ``--seed``.
+* ``--realizations`` surrogates of the analysis's default method (``auto``), seed ``--seed``;
+* the boundary-element resolution on the measured (coarsened) map itself at the three pressures, elastic, its
+  summit frame lowered as in the analysis: *px/patch*, the mean contact pixels per patch, and *A'/A*, the
+  perimeter-corrected area (the models' default, docs/bem_validation.md §4) over the pixel count — where the
+  contacts are one or two pixels the two areas differ by up to 2×, and neither is validated there.
 
 Run: ``python benchmarks/contact_model_table.py --realizations 20`` (about 10–20 min on 2 cores);
 ``--files al3d-1.al3d`` for one file; ``--json PATH`` writes every number.
@@ -44,6 +48,7 @@ def main() -> None:
     args = ap.parse_args()
 
     from stochfric.contact.asperity import asperity_contact
+    from stochfric.contact.bem import BemSettings, bem_contact
     from stochfric.contact.materials import get_material
     from stochfric.errors import AnalysisError
     from stochfric.process.analysis_config import AnalysisConfig
@@ -51,11 +56,12 @@ def main() -> None:
     from stochfric.process.pipeline import choose_approach
     from stochfric.surface.preprocess import Preparation
     from stochfric.surface.scans import load_scan
+    from stochfric.surface.summits import SUMMIT_RULES
 
     rows = []
     print("| file | grid (step) | material | γ | p [MPa] | gw | bem | bem-plastic | persson | gw/bem | σ_μ gw / bem |"
-          " ±sampling / ±model | s |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+          " ±sampling / ±model | px/patch | A'/A | s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for name in args.files:
         path = SHARED / name
         raw = load_scan(path, fill_undefined=True)
@@ -77,6 +83,11 @@ def main() -> None:
                 rows.append({"file": name, "material": mat_name, "error": str(exc)})
                 continue
             seconds = time.perf_counter() - t0
+            sol = bem_contact(surface.heights_m, surface.physical_size_m, mat.e_star_pa, p,
+                              settings=BemSettings(frame_points=SUMMIT_RULES["thesis"].margin))
+            per_patch = sol.contact_area_m2 / sol.nominal_area_m2 * np.prod(surface.nb_grid_pts) / sol.n_patches
+            assert sol.corrected_area_m2 is not None
+            kept = sol.corrected_area_m2 / sol.contact_area_m2
             stats = {m: spread.surrogate_statistics(m) for m in spread.models}
             split = spread.uncertainty_split()
             ratio = spread.ratio("gw", "bem")
@@ -87,9 +98,10 @@ def main() -> None:
                       f"{spread.plasticity_index:.3g} | {pk / 1e6:.3g} | {cells} | {ratio[k]:.2f} | "
                       f"{stats['gw']['mu_std'][k]:.3f} / {stats['bem']['mu_std'][k]:.3f} | "
                       f"{split['sampling_half_width'][k]:.3f} / {split['model_half_width'][k]:.3f} | "
-                      f"{seconds:.0f} |", flush=True)
+                      f"{per_patch[k]:.1f} | {kept[k]:.2f} | {seconds:.0f} |", flush=True)
             rows.append({"file": name, "step": step, "grid": list(surface.nb_grid_pts), "material": mat_name,
-                         "seconds": seconds, "spread": spread.to_dict()})
+                         "seconds": seconds, "pixels_per_patch": per_patch.tolist(),
+                         "corrected_over_pixel_area": kept.tolist(), "spread": spread.to_dict()})
     if args.json is not None:
         args.json.write_text(json.dumps(rows, indent=1, default=str))
 

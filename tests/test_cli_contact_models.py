@@ -29,6 +29,22 @@ def test_contact_models_json_and_files(tmp_path: Path) -> None:
         assert Path(d["files"][key]).is_file()
 
 
+def test_bem_area_is_corrected_unless_asked_for_pixels() -> None:
+    """The boundary-element area is the perimeter-corrected one by default and the count with --bem-pixel-area;
+    the JSON says which, and the corrected E[μ] is the lower (docs/bem_validation.md §4)."""
+    pytest.importorskip("tamaas")
+    mu = {}
+    for flag in ([], ["--bem-pixel-area"]):
+        res = runner.invoke(app, ["contact-models", "--models", "bem", "--pressures-mpa", "2,4", *FAST, *flag,
+                                  "--json"])
+        assert res.exit_code == 0, res.output
+        d = json.loads(res.stdout)
+        area = d["load_control"]["bem_area"]
+        assert area == ("pixels" if flag else "corrected")
+        mu[area] = d["per_model"]["bem"]["surrogates"]["mu_mean"]
+    assert all(c < n for c, n in zip(mu["corrected"], mu["pixels"], strict=True))
+
+
 def test_contact_models_text_table() -> None:
     res = runner.invoke(app, ["contact-models", "--models", "gw,persson", "--pressures-mpa", "1,2", *FAST])
     assert res.exit_code == 0, res.output

@@ -92,6 +92,9 @@ def contact_models_command(
     persson_corrected: Annotated[bool, typer.Option(
         "--persson-corrected", help="Persson with the small-load slope κ = 2 of exact solutions instead of "
                                     "√(8/π) (docs/persson.md).")] = False,
+    bem_pixel_area: Annotated[bool, typer.Option(
+        "--bem-pixel-area", help="Boundary-element area as the count of contact pixels, without the perimeter "
+                                 "correction of Yastrebov et al. 2017 (docs/bem_validation.md §4).")] = False,
     seed: Annotated[int, typer.Option("--seed", min=0, help=SEED_RULE)] = 0,
     workers: Annotated[int | None, typer.Option("--workers", min=1, help="Processes (default: all cores); the "
                                                                          "numbers do not depend on it.")] = None,
@@ -123,7 +126,8 @@ def contact_models_command(
             assert pressures_mpa is not None
             pressures = parse_pressures_mpa(pressures_mpa)
         control = LoadControl(bem_solver=bem_solver, tolerance=tolerance, max_iterations=max_iterations,
-                              time_limit_s=time_limit_s, persson_corrected=persson_corrected)
+                              time_limit_s=time_limit_s, persson_corrected=persson_corrected,
+                              bem_area="pixels" if bem_pixel_area else "corrected")
         cfg = AnalysisConfig(realizations=realizations, surrogate=surrogate, summit_rule=surf.summit_rule, seed=seed)
         paths: list[Path | None] = list(files) if files else [None]
         pooled = pool_scans([load_scan(p, preparation=surf.preparation(), summit_rule=cfg.summit_rule,

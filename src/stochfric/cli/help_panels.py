@@ -29,7 +29,8 @@ _INPUT = """file files --median-radius --step --detrend --fill-undefined --summi
 _PHYSICS = """--preset --machine --allow-extrapolation --model --friction-law --mu0 --normal-force --damping-coefficient
 --forcing-amplitude --mass --stiffness --belt-speed --contact-area --damping-ratio --gamma0 --n --q --eta --omega0
 --x0 --sigma-zeta --white-intensity --process-level --material --approach-um --method --contact-model --models
---pressures-mpa --forces --risk-level --risk-levels --phase-force --phase-damping --lengths --persson-corrected"""
+--pressures-mpa --forces --risk-level --risk-levels --phase-force --phase-damping --lengths --persson-corrected
+--bem-pixel-area"""
 _NUMERICS = """--tau-end --dt --integrator --runs --seed --path-coordinate --white-stream --process-length --workers
 --bem-refine --bem-frame --realizations --long-surfaces --length-factor --window-shift-um --approach-rule --surrogate
 --validation-budget --summit-budget --window-tiles --accept-not-credible --amplitude --max-area-fraction --pressure-rule

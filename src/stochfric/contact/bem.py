@@ -61,7 +61,9 @@ from stochfric.contact.halfspace import framed_and_refined
 
 __all__ = [
     "BEM_SOLVERS",
+    "COARSE_PATCH_PIXELS",
     "MIN_GRID_POINTS",
+    "PERIMETER_CORRECTION",
     "UNDER_RESOLVED_PIXELS",
     "BemError",
     "BemSettings",
@@ -69,6 +71,7 @@ __all__ = [
     "bem_available",
     "bem_contact",
     "check_nominal_pressures",
+    "contact_edges",
 ]
 
 #: The wrapped solvers (see the module docstring).
@@ -77,10 +80,18 @@ BEM_SOLVERS = ("tamaas", "contactmechanics")
 MIN_GRID_POINTS = 16
 #: Fewer pixels in contact than this at some pressure → an "under-resolved" warning in the solution.
 UNDER_RESOLVED_PIXELS = 10
+#: Fewer contact pixels per patch than this on average at some pressure → a "coarse contacts" warning: the
+#: pixel count and the perimeter-corrected area then differ by more than about 20 % (a 2 × 2 patch keeps
+#: 1 − 8 × 0.118 / 4 = 76 % of its count, a single pixel 53 %), and κ was validated on larger contacts.
+COARSE_PATCH_PIXELS = 4.0
 #: Relative deviation of the carried force from p·A_nom above which the solution carries a warning.
 FORCE_CHECK_RTOL = 1e-6
 #: A pixel is at the cap (plastic) when its pressure is >= H × (1 − this).
 PLASTIC_RTOL = 1e-9
+#: Area removed per contact/non-contact pixel edge, in pixel areas: (π − 1 + ln 2)/24 (Yastrebov,
+#: Anciaux & Molinari, Tribol. Int. 114 (2017) 161; the value Tamaas' ``Statistics2D.contact``
+#: applies, checked in tests/unit/contact/test_bem.py).
+PERIMETER_CORRECTION = (math.pi - 1.0 + math.log(2.0)) / 24.0
 
 _FloatArray = npt.NDArray[np.float64]
 _MODULES = {"tamaas": "tamaas", "contactmechanics": "ContactMechanics"}
@@ -207,6 +218,17 @@ class BemSolution:
         Real contact area A_c [m²]: pixels with positive pressure × pixel area.
     area_fraction:
         A_c / A_nom.
+    corrected_area_m2:
+        A_c with the perimeter correction of Yastrebov, Anciaux & Molinari (Tribol. Int. 114
+        (2017) 161) [m²]: A_c − :data:`PERIMETER_CORRECTION` × (elastic contact edges) × pixel
+        area.  Counting pixels overestimates the area of a contact whose pressure falls to zero
+        like √(distance) at its edge (elastic) by a fraction of a pixel per edge; the correction
+        is their geometric average over edge orientations.  Only edges of pixels below the cap
+        count: a pixel at the hardness has no elastic edge, so the fully plastic limit
+        A_c = N/H stays exact.  docs/bem_validation.md §4 measures κ with both areas.
+    contact_edges:
+        Elastic contact/non-contact pixel edges (4-neighbourhood; across the periodic wrap when
+        periodic) per pressure; see ``corrected_area_m2``.
     plastic_area_m2:
         Pixels at the cap (pressure ≥ H(1 − :data:`PLASTIC_RTOL`)) × pixel area [m²]; 0 when elastic.
     n_patches:
@@ -243,6 +265,14 @@ class BemSolution:
     solver: str
     settings: dict[str, Any] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
+    corrected_area_m2: _FloatArray | None = None
+    contact_edges: npt.NDArray[np.int64] | None = None
+
+    @property
+    def corrected_area_fraction(self) -> _FloatArray:
+        """corrected_area_m2 / A_nom (the pixel count where no correction was computed)."""
+        area = self.contact_area_m2 if self.corrected_area_m2 is None else self.corrected_area_m2
+        return np.asarray(area / self.nominal_area_m2, dtype=np.float64)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (SI units in the keys; NaN → ``None``)."""
@@ -258,6 +288,8 @@ class BemSolution:
             "contact_area_m2": floats(self.contact_area_m2),
             "area_fraction": floats(self.area_fraction),
             "plastic_area_m2": floats(self.plastic_area_m2),
+            "corrected_area_m2": None if self.corrected_area_m2 is None else floats(self.corrected_area_m2),
+            "contact_edges": None if self.contact_edges is None else [int(v) for v in self.contact_edges],
             "n_patches": [int(v) for v in self.n_patches],
             "approach_m": floats(self.approach_m),
             "iterations": [int(v) for v in self.iterations],
@@ -380,6 +412,7 @@ def bem_contact(
     force, area, plastic = np.empty(nb), np.empty(nb), np.zeros(nb)
     approach = np.empty(nb)
     patches, iterations = np.empty(nb, dtype=np.int64), np.empty(nb, dtype=np.int64)
+    edges = np.empty(nb, dtype=np.int64)
     for k in np.argsort(p, kind="stable"):
         sol = fields[k]
         if sol.note:
@@ -388,9 +421,11 @@ def bem_contact(
         n_contact = int(np.count_nonzero(in_contact))
         force[k] = float(sol.pressure.sum()) * grid.pixel_area
         area[k] = n_contact * grid.pixel_area
+        at_cap = None
         if settings.hardness_pa is not None:
             at_cap = sol.pressure >= settings.hardness_pa * (1.0 - PLASTIC_RTOL)
             plastic[k] = float(np.count_nonzero(at_cap)) * grid.pixel_area
+        edges[k] = contact_edges(in_contact, periodic=settings.periodic, exclude=at_cap)
         patches[k] = int(ndimage.label(in_contact)[1])
         approach[k] = sol.approach
         iterations[k] = sol.iterations
@@ -398,6 +433,12 @@ def bem_contact(
             notes.append(
                 f"under-resolved: {n_contact} pixels in contact at p = {_mpa(float(p[k]))} "
                 f"(fewer than {UNDER_RESOLVED_PIXELS}): refine the map or raise the pressure"
+            )
+        elif patches[k] > 0 and n_contact < COARSE_PATCH_PIXELS * patches[k]:
+            notes.append(
+                f"coarse contacts: fewer than {COARSE_PATCH_PIXELS:g} pixels per contact patch on average at "
+                f"p = {_mpa(float(p[k]))}: the pixel count and the perimeter-corrected area differ by 20-50 % "
+                "there; refine the map (a smaller coarsening step) for a resolved area"
             )
         target = float(p[k]) * grid.size[0] * grid.size[1]
         dev = abs(force[k] - target) / target
@@ -419,7 +460,33 @@ def bem_contact(
         pressure_pa=p.copy(), normal_force_n=force, contact_area_m2=area, area_fraction=area / nominal,
         plastic_area_m2=plastic, n_patches=patches, approach_m=approach, iterations=iterations, seconds=seconds,
         nominal_area_m2=nominal, solver=settings.solver, settings=detail, warnings=tuple(notes),
+        corrected_area_m2=area - PERIMETER_CORRECTION * edges * grid.pixel_area, contact_edges=edges,
     )  # fmt: skip
+
+
+def contact_edges(
+    in_contact: npt.NDArray[np.bool_], *, periodic: bool = True, exclude: npt.NDArray[np.bool_] | None = None
+) -> int:
+    """Edges between a contact and a non-contact pixel (4-neighbourhood) of a 2-D mask, across
+    the wrap when ``periodic``; edges whose contact pixel is in ``exclude`` (e.g. at the hardness)
+    do not count.  The perimeter, in pixel edges, of Yastrebov et al. (2017)'s area correction."""
+    mask = np.asarray(in_contact, dtype=bool)
+    if mask.ndim != 2:
+        raise BemError(f"in_contact must be 2-D, got shape {mask.shape}")
+    counted = mask if exclude is None else mask & ~np.asarray(exclude, dtype=bool)
+    total = 0
+    for axis in (0, 1):
+        if periodic:
+            for shift in (1, -1):
+                total += int(np.count_nonzero(counted & ~np.roll(mask, shift, axis=axis)))
+        else:
+            lo = [slice(None)] * 2
+            hi = [slice(None)] * 2
+            lo[axis], hi[axis] = slice(None, -1), slice(1, None)
+            a, b = mask[tuple(lo)], mask[tuple(hi)]
+            ca, cb = counted[tuple(lo)], counted[tuple(hi)]
+            total += int(np.count_nonzero(ca & ~b)) + int(np.count_nonzero(cb & ~a))
+    return total
 
 
 def _solve(

@@ -63,6 +63,7 @@ from stochfric.surface.summits import SUMMIT_RULES, find_summits
 
 __all__ = [
     "ALL_MODELS",
+    "BEM_AREAS",
     "STATISTICAL_CONTACT_MODELS",
     "ContactModelSpread",
     "LoadControl",
@@ -75,6 +76,8 @@ __all__ = [
     "sample_contact",
 ]
 
+#: The boundary-element contact areas (:class:`LoadControl`.bem_area).
+BEM_AREAS: tuple[str, ...] = ("corrected", "pixels")
 #: The contact models of the statistical analysis, in the order they are reported.
 STATISTICAL_CONTACT_MODELS: tuple[str, ...] = ("gw", "bem", "bem-plastic", "persson")
 #: ``--contact-model all``: every model of :data:`STATISTICAL_CONTACT_MODELS`.
@@ -115,7 +118,12 @@ class LoadControl:
     sample, all pressures; reported in the output); ``frame_points``: border frame lowered out of reach
     (``None``: the summit rule's margin, so that every model sees the asperities GW sees);
     ``persson_corrected``: the small-load slope κ = 2 instead of Persson's √(8/π)
-    (:data:`~stochfric.contact.persson.CORRECTED_KAPPA`); ``gradient_method``: the estimator of ḡ.
+    (:data:`~stochfric.contact.persson.CORRECTED_KAPPA`); ``gradient_method``: the estimator of ḡ;
+    ``bem_area``: the boundary-element contact area, ``"corrected"`` (the pixel count less Yastrebov et al.'s
+    (2017) perimeter correction, :attr:`~stochfric.contact.bem.BemSolution.corrected_area_m2`: it brings the
+    small-load slope κ of the elastic BEM to 2.0–2.2 at 512², where the pixel count gives 2.2–2.4,
+    docs/bem_validation.md §4) or ``"pixels"`` (the count, as saved before this option; a file without the
+    key loads as ``"pixels"``).
     """
 
     bem_solver: str = "auto"
@@ -125,10 +133,13 @@ class LoadControl:
     frame_points: int | None = None
     persson_corrected: bool = False
     gradient_method: str = "finite-difference"
+    bem_area: str = "corrected"
 
     def __post_init__(self) -> None:
         from stochfric.contact.bem import BEM_SOLVERS
 
+        if self.bem_area not in BEM_AREAS:
+            raise AnalysisError(f"unknown boundary-element area {self.bem_area!r}; use one of {', '.join(BEM_AREAS)}")
         if self.bem_solver != "auto" and self.bem_solver not in BEM_SOLVERS:
             raise AnalysisError(f"unknown boundary-element solver {self.bem_solver!r}; use auto or one of "
                                 f"{', '.join(BEM_SOLVERS)}")
@@ -213,7 +224,8 @@ def sample_contact(heights_m: FloatArray, physical_size_m: tuple[float, float], 
                                time_limit_s=control.time_limit_s,
                                hardness_pa=material.hardness if model == "bem-plastic" else None)
         sol = bem_contact(h, physical_size_m, material.e_star_pa, p, settings=settings)
-        return _One(area_fraction=np.asarray(sol.area_fraction, dtype=np.float64),
+        area = sol.corrected_area_fraction if control.bem_area == "corrected" else sol.area_fraction
+        return _One(area_fraction=np.asarray(area, dtype=np.float64),
                     n_contacts=np.asarray(sol.n_patches, dtype=np.float64),
                     iterations=np.asarray(sol.iterations, dtype=np.float64), seconds=time.perf_counter() - start,
                     warnings=tuple(sol.warnings), solver=str(sol.settings.get("method", sol.solver)))
@@ -513,7 +525,7 @@ class ContactModelSpread:
             plasticity_index=d.get("plasticity_index"), recommended=tuple(d.get("recommended_models", ())),
             recommendation=d.get("recommendation", ""), surrogate_method=d.get("surrogate_method", ""),
             surrogate_choice=d.get("surrogate_choice", ""), realizations=int(d["realizations"]),
-            control=LoadControl(**d["load_control"]), material=d.get("material", {}),
+            control=LoadControl(**{"bem_area": "pixels", **d["load_control"]}), material=d.get("material", {}),
             seed_entropy=d.get("seed_entropy"), surface_info=d.get("surface", {}), paths=paths,
             notes=list(d.get("notes", [])),
         )  # fmt: skip

@@ -204,7 +204,8 @@ class Assessment:
         spread = None if self.analysis is None else self.analysis.contact_models
         if spread is None:
             out.append("model choice: GW only (--contact-model all solves the same surfaces by every model); GW and "
-                       "boundary-element contact area differ 1.4–1.7× on the shared files (docs/contact_models.md)")
+                       "boundary-element μ differ 1.0–1.5× at equal load on the resolved shared files "
+                       "(docs/contact_models.md)")
         else:
             split = spread.uncertainty_split()
             share = float(np.nanmean(split["model_share_of_variance"]))
