@@ -206,6 +206,24 @@ def test_a_contact_model_spread_reads_back_from_either_file(analysed: dict[str, 
         np.testing.assert_array_equal(again.surrogates["gw"].seconds, spread.surrogates["gw"].seconds)
         np.testing.assert_array_equal(again.paths["gw"].mu, spread.paths["gw"].mu)
         assert type(sf.load(path)) is ContactModelSpread
+    gw_path = spread.paths["gw"]  # the lowest, middle and highest pressure of the spread
+    p = spread.pressure_pa
+    np.testing.assert_allclose(gw_path.pressures_pa, [p[0], float(np.exp(np.mean(np.log(p)))), p[-1]])
+    assert gw_path.mu.shape[0] == 2 and gw_path.mu.shape[2] == 3
+    assert [q["pressure_pa"] for q in spread.to_dict()["path"]["gw"]["by_pressure"]] == gw_path.pressures_pa.tolist()
+    one = tmp_path / "one"  # saved when the path had one pressure: (model, surface, window), "pressure_pa"
+    ds1 = spread.to_dataset()
+    ds1 = ds1.assign(path_mu=(("path_model", "long_surface", "path_window"), ds1["path_mu"].values[:, :, :, 1]))
+    ds1 = ds1.drop_vars("path_pressure")
+    ds1.attrs["paths_json"] = json.dumps({"gw": {"pressure_pa": gw_path.pressure_pa,
+                                                 "window_shift_m": gw_path.window_shift_m,
+                                                 "window_length_m": gw_path.window_length_m}})
+    write_netcdf_atomic(one / "contact_models_samples.nc", ds1)
+    (one / "contact_models.json").write_bytes(Path(files["contact_models_file"]).read_bytes())
+    single = ContactModelSpread.load(one / "contact_models.json").paths["gw"]
+    assert single.pressures_pa.tolist() == [gw_path.pressure_pa] and single.pressure_pa == gw_path.pressure_pa
+    np.testing.assert_array_equal(single.mu[:, :, 0], gw_path.mu[:, :, 1])
+    assert single.correlation_length() == gw_path.correlation_length()
     older = tmp_path / "old"  # before the wall times and paths were saved: NaN wall times, no paths
     ds = spread.to_dataset().drop_vars(["surrogate_seconds", "window_seconds", "path_mu", "path_model"])
     write_netcdf_atomic(older / "contact_models_samples.nc", ds)

@@ -78,8 +78,8 @@ def contact_models_command(
     surrogate: Annotated[str, typer.Option("--surrogate", help="auto or a surrogate method (friction-process "
                                                                "--help).")] = AUTO_SURROGATE,
     path_surfaces: Annotated[int, typer.Option(
-        "--path-surfaces", min=0, help="Long surfaces for the path spectrum per model at the middle pressure "
-                                       "(0: none; each costs a solve per window).")] = 2,
+        "--path-surfaces", min=0, help="Long surfaces for the path spectrum per model at the lowest, middle and "
+                                       "highest pressure (0: none; each costs a solve per window).")] = 2,
     bem_solver: Annotated[str, typer.Option("--bem-solver", help="auto (Tamaas elastic, ContactMechanics with the "
                                                                  "cap: the faster each), tamaas or "
                                                                  "contactmechanics.")] = "auto",
@@ -188,9 +188,10 @@ def _print(d: dict[str, Any]) -> None:
         for w in solver["warnings"]:
             typer.echo(f"warning ({m}): {w}", err=True)
     for m, path in d.get("path", {}).items():
-        cl = path["correlation_length_m"]
-        typer.echo(f"path ({m}, p = {path['pressure_pa'] / MEGAPASCAL:.3g} MPa, {path['long_surfaces']} long "
-                   f"surfaces): integral correlation length {_f(None if cl is None else cl * 1e6, '.3g')} µm")
+        per = path.get("by_pressure") or [path]
+        cells = ", ".join(f"{_f(None if q['correlation_length_m'] is None else q['correlation_length_m'] * 1e6, '.3g')}"
+                          f" µm at {q['pressure_pa'] / MEGAPASCAL:.3g} MPa" for q in per)
+        typer.echo(f"path ({m}, {path['long_surfaces']} long surfaces): integral correlation length {cells}")
     for n in d["notes"]:
         typer.echo(f"note: {n}", err=True)
     for key, value in d.get("files", {}).items():

@@ -270,34 +270,53 @@ class ModelSamples:
 
 @dataclass(frozen=True, kw_only=True, eq=False)
 class ModelPath:
-    """μ along the path of K long surfaces at one pressure by one model (method §4c): windows of the original
-    size shifted by a_y; the mean one-sided PSD (3.19–3.20) and the integral correlation length
-    S(0)/(4σ_μ²) per long surface."""
+    """μ along the path of K long surfaces at P pressures by one model (method §4c): windows of the original
+    size shifted by a_y; per pressure the mean one-sided PSD (3.19–3.20) and the integral correlation length
+    S(0)/(4σ_μ²) per long surface.  ``mu`` is (K, W, P); :attr:`pressure_pa` is the middle pressure, the one
+    :meth:`spectrum` and :meth:`correlation_length` use unless given an index (a file saved before the path had
+    several pressures loads with P = 1)."""
 
     model: str
-    pressure_pa: float
-    mu: FloatArray  # (K, W)
+    pressures_pa: FloatArray  # (P,), ascending
+    mu: FloatArray  # (K, W, P)
     window_shift_m: float
     window_length_m: float
 
-    def spectrum(self) -> tuple[FloatArray, FloatArray, FloatArray]:
-        """``(f [1/m], mean S [m], SE of S)`` over the K long surfaces."""
-        return mean_psd(self.mu, self.window_shift_m)
+    @property
+    def middle(self) -> int:
+        """Index of the middle pressure."""
+        return int(self.pressures_pa.size // 2)
 
-    def correlation_length(self) -> tuple[float, float, float, float]:
-        """Integral correlation length [m]: mean, SE, 95 % interval over the K long surfaces."""
-        per = [integral_correlation_length(r, self.window_shift_m, self.window_length_m) for r in self.mu]
+    @property
+    def pressure_pa(self) -> float:
+        """The middle pressure [Pa]."""
+        return float(self.pressures_pa[self.middle])
+
+    def spectrum(self, k: int | None = None) -> tuple[FloatArray, FloatArray, FloatArray]:
+        """``(f [1/m], mean S [m], SE of S)`` over the K long surfaces at pressure index ``k`` (default: middle)."""
+        return mean_psd(self.mu[:, :, self.middle if k is None else k], self.window_shift_m)
+
+    def correlation_length(self, k: int | None = None) -> tuple[float, float, float, float]:
+        """Integral correlation length [m] at pressure index ``k`` (default: middle): mean, SE, 95 % interval
+        over the K long surfaces."""
+        mu = self.mu[:, :, self.middle if k is None else k]
+        per = [integral_correlation_length(r, self.window_shift_m, self.window_length_m) for r in mu]
         return correlation_length_interval(per)
 
+    def _at(self, k: int) -> dict[str, Any]:
+        mu = self.mu[:, :, k]
+        mean, cl_se, lo, hi = self.correlation_length(k)
+        return {"pressure_pa": float(self.pressures_pa[k]), "mu_mean": float(mu.mean()),
+                "mu_std": float(mu.std(ddof=1)), "correlation_length_m": _finite(mean),
+                "correlation_length_se_m": _finite(cl_se), "correlation_length_ci95_m": [_finite(lo), _finite(hi)]}
+
     def to_dict(self) -> dict[str, Any]:
+        """The middle pressure's spectrum and correlation length at the top level, every pressure's
+        correlation length under ``by_pressure``."""
         f, psd, se = self.spectrum()
-        mean, cl_se, lo, hi = self.correlation_length()
-        return {"pressure_pa": self.pressure_pa, "long_surfaces": int(self.mu.shape[0]),
-                "windows": int(self.mu.shape[1]), "window_shift_m": self.window_shift_m,
-                "mu_mean": float(self.mu.mean()), "mu_std": float(self.mu.std(ddof=1)),
-                "frequencies_per_m": f.tolist(), "psd_m": psd.tolist(), "psd_se_m": se.tolist(),
-                "correlation_length_m": _finite(mean), "correlation_length_se_m": _finite(cl_se),
-                "correlation_length_ci95_m": [_finite(lo), _finite(hi)]}
+        return {**self._at(self.middle), "long_surfaces": int(self.mu.shape[0]), "windows": int(self.mu.shape[1]),
+                "window_shift_m": self.window_shift_m, "frequencies_per_m": f.tolist(), "psd_m": psd.tolist(),
+                "psd_se_m": se.tolist(), "by_pressure": [self._at(k) for k in range(self.pressures_pa.size)]}
 
 
 def _finite(v: float) -> float | None:
@@ -463,7 +482,8 @@ class ContactModelSpread:
                                            {"units": "s", "long_name": "wall time of each sample"})
         if self.paths:
             coords["path_model"] = list(self.paths)
-            data["path_mu"] = (("path_model", "long_surface", "path_window"),
+            coords["path_pressure"] = next(iter(self.paths.values())).pressures_pa
+            data["path_mu"] = (("path_model", "long_surface", "path_window", "path_pressure"),
                                np.stack([v.mu for v in self.paths.values()]),
                                {"units": "1", "long_name": "mu along the windows of the long surfaces (ModelPath)"})
         ds = xr.Dataset(data, coords=coords)
@@ -472,7 +492,8 @@ class ContactModelSpread:
         ds.attrs["seed_entropy"] = str(self.seed_entropy)
         ds.attrs["solvers_json"] = json.dumps({k: {m: list(g[m].solvers) for m in g} for k, g in groups.items()})
         ds.attrs["warnings_json"] = json.dumps({k: {m: list(g[m].warnings) for m in g} for k, g in groups.items()})
-        ds.attrs["paths_json"] = json.dumps({m: {"pressure_pa": v.pressure_pa, "window_shift_m": v.window_shift_m,
+        ds.attrs["paths_json"] = json.dumps({m: {"pressures_pa": v.pressures_pa.tolist(),
+                                                 "window_shift_m": v.window_shift_m,
                                                  "window_length_m": v.window_length_m} for m, v in self.paths.items()})
         return ds
 
@@ -516,7 +537,13 @@ class ContactModelSpread:
         if "path_mu" in ds:
             record = json.loads(ds.attrs["paths_json"])
             for i, m in enumerate(str(v) for v in ds["path_model"].values):
-                paths[m] = ModelPath(model=m, mu=np.asarray(ds["path_mu"].values[i], dtype=np.float64), **record[m])
+                mu = np.asarray(ds["path_mu"].values[i], dtype=np.float64)
+                rec = dict(record[m])
+                if "pressure_pa" in rec:  # saved with one path pressure
+                    rec["pressures_pa"] = [rec.pop("pressure_pa")]
+                    mu = mu[:, :, None]
+                paths[m] = ModelPath(model=m, mu=mu, pressures_pa=np.asarray(rec.pop("pressures_pa"), dtype=np.float64),
+                                     **rec)
         windows = d.get("measured_windows")
         return cls(
             pressure_pa=p_pa, models=models, surrogates=samples("surrogate"), windows=samples("window"),
@@ -550,7 +577,7 @@ def contact_model_spread(
     *,
     control: LoadControl | None = None,
     path_surfaces: int = 0,
-    path_pressure_pa: float | None = None,
+    path_pressure_pa: float | npt.ArrayLike | None = None,
     workers: int | None = 1,
     progress: Callable[[str, int, int], None] | None = None,
 ) -> ContactModelSpread:
@@ -563,8 +590,9 @@ def contact_model_spread(
     numbers do not depend on it.  ``progress(stage, done, total)`` after every sample.
 
     ``path_surfaces`` > 0: also μ along the windows of that many of the analysis's long surfaces (its path
-    stream, so the first K of its long surfaces) at ``path_pressure_pa`` (default: the geometric mean of the
-    pressures) by every model — the path spectrum and correlation length per model (:class:`ModelPath`)."""
+    stream, so the first K of its long surfaces) at ``path_pressure_pa`` [Pa] (one or several; default: the
+    lowest, the geometric mean and the highest of the pressures) by every model — the path spectrum and
+    correlation length per model and pressure (:class:`ModelPath`)."""
     cfg = config if config is not None else AnalysisConfig()
     ctl = control if control is not None else LoadControl()
     scans = [surface] if isinstance(surface, Surface) else list(surface)
@@ -642,40 +670,44 @@ def contact_model_spread(
 
 
 def _paths(scans: list[Surface], material: Material, chosen: tuple[str, ...], cfg: AnalysisConfig,
-           options: SurrogateOptions, root: np.random.SeedSequence, surfaces: int, pressure_pa: float | None,
+           options: SurrogateOptions, root: np.random.SeedSequence, surfaces: int,
+           pressure_pa: float | npt.ArrayLike | None,
            p: FloatArray, rule: str, ctl: LoadControl, workers: int | None,
            progress: Callable[[str, int, int], None] | None) -> dict[str, ModelPath]:
-    """μ along the windows of the first ``surfaces`` long surfaces of the analysis at one pressure, per model."""
+    """μ along the windows of the first ``surfaces`` long surfaces of the analysis at the path pressures (all in
+    one solve per window, warm-started), per model."""
     if surfaces <= 0:
         return {}
     if surfaces < 2:
         raise AnalysisError("path_surfaces must be 0 (no path) or >= 2 (the correlation length needs a scatter)")
-    p_path = float(np.exp(np.mean(np.log(p)))) if pressure_pa is None else float(pressure_pa)
-    _check_pressures([p_path], material, chosen)
+    if pressure_pa is None:
+        p_path = np.unique([float(p.min()), float(np.exp(np.mean(np.log(p)))), float(p.max())])
+    else:
+        p_path = np.unique(np.atleast_1d(np.asarray(pressure_pa, dtype=np.float64)))
+    p_path = _check_pressures(p_path, material, chosen)
     seeds = spawn_seed_sequences(child_seed(root, PATH_STREAM), surfaces)  # the long surfaces of analyse()
     nx, ny = scans[0].nb_grid_pts
     dx, dy = scans[0].grid_spacing_m
     shift = cfg.window_shift_points
-    one_p = np.array([p_path])
 
     def one(k: int) -> dict[str, FloatArray]:
         rng = np.random.Generator(np.random.PCG64(seeds[k]))
         long = options.similar(scans[k % len(scans)], rng, cfg.length_factor).heights_m
         starts = window_starts(long.shape[1], ny, shift)
-        out = {m: np.empty(starts.size) for m in chosen}
+        out = {m: np.empty((starts.size, p_path.size)) for m in chosen}
         for w, s0 in enumerate(starts):
             h = np.ascontiguousarray(long[:, s0: s0 + ny])
             for m in chosen:
                 try:
-                    frac = sample_contact(h, (nx * dx, ny * dy), material, one_p, m, rule=rule, control=ctl)
+                    frac = sample_contact(h, (nx * dx, ny * dy), material, p_path, m, rule=rule, control=ctl)
                 except ContactError as exc:
                     raise AnalysisError(str(exc)) from None
-                out[m][w] = material.shear_strength_pa * float(frac.area_fraction[0]) / p_path
+                out[m][w] = material.shear_strength_pa * frac.area_fraction / p_path
         return out
 
     done = None if progress is None else (lambda k: progress("path", k, surfaces))
     per = map_indexed(one, surfaces, workers=workers, done=done)
-    return {m: ModelPath(model=m, pressure_pa=p_path, mu=np.stack([r[m] for r in per]), window_shift_m=shift * dy,
+    return {m: ModelPath(model=m, pressures_pa=p_path, mu=np.stack([r[m] for r in per]), window_shift_m=shift * dy,
                          window_length_m=ny * dy) for m in chosen}
 
 
@@ -693,8 +725,9 @@ def process_model_for(model: TabulatedProcessModel, spread: ContactModelSpread, 
     analysis's (K long surfaces × all windows at every pressure is beyond a boundary-element budget); its
     level is scaled by (σ_μ,model/σ_μ,GW)² at every tabulated pressure (log-p interpolation of the ratio,
     clamped), so the tabulated variance matches the model too.  Whether the shape carries over is checked
-    where the spread holds a path (:class:`ModelPath`): the correlation lengths of both models are returned
-    in the record.  Returns the model and that record."""
+    where the spread holds a path (:class:`ModelPath`): the correlation lengths of both models at its middle
+    pressure (``correlation_length_m``) and at every path pressure (``path_check``; by default the lowest,
+    middle and highest of the spread's) are returned in the record.  Returns the model and that record."""
     from stochfric.process.fit import fit_model_function
 
     if contact_model == reference:
@@ -723,8 +756,14 @@ def process_model_for(model: TabulatedProcessModel, spread: ContactModelSpread, 
         "spectrum_shape": f"from the {reference} path analysis, level scaled by (sigma_mu ratio)^2",
     }
     if contact_model in spread.paths and reference in spread.paths:
+        mine_path, ref_path = spread.paths[contact_model], spread.paths[reference]
         record["correlation_length_m"] = {m: spread.paths[m].correlation_length()[:2]
                                           for m in (reference, contact_model)}
+        # the check of the GW shape over the path pressures: the model's correlation length over GW's, per pressure
+        record["path_check"] = [
+            {"pressure_pa": float(pk), "correlation_length_m": {reference: ref_path.correlation_length(k)[:2],
+                                                                 contact_model: mine_path.correlation_length(k)[:2]}}
+            for k, pk in enumerate(mine_path.pressures_pa)]
     new = dataclasses.replace(
         model, name=f"{model.name} [{contact_model}]", mu_mean=mean_fit.model_function(),
         mu_std=std_fit.model_function(), psd_level=level,

@@ -12,6 +12,7 @@ from stochfric.contact.asperity import asperity_contact, default_approach_m
 from stochfric.contact.bem import PERIMETER_CORRECTION
 from stochfric.contact.materials import get_material
 from stochfric.errors import AnalysisError
+from stochfric.friction_process.model_function import ModelFunction
 from stochfric.friction_process.tabulated import TabulatedProcessModel
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.contact_models import (
@@ -163,3 +164,28 @@ def test_process_model_takes_the_chosen_model(surface) -> None:  # type: ignore[
     assert record["reference"] == "gw" and len(record["mu_mean_ratio_to_reference"]) == p.size
     same, rec = process_model_for(gw_model, s, "gw")
     assert same is gw_model and rec == {"contact_model": "gw"}
+
+
+def test_the_path_at_three_pressures_holds_the_one_at_the_middle(surface) -> None:  # type: ignore[no-untyped-def]
+    """The path per model is solved at the lowest, middle and highest pressure in one warm-started solve per
+    window; its middle slice equals a path solved at that pressure alone (GW exactly, the boundary-element
+    solution within its tolerance), and the model record checks the correlation length at each pressure."""
+    pytest.importorskip("tamaas")
+    cfg = AnalysisConfig(realizations=6, seed=4, surrogate="phase", long_surfaces=3, length_factor=2)
+    p = np.geomspace(1e6, 8e6, 5)
+    three = contact_model_spread(surface, PAD, p, "gw,bem", cfg, path_surfaces=2)
+    for m in ("gw", "bem"):
+        path = three.paths[m]
+        np.testing.assert_allclose(path.pressures_pa, [1e6, np.sqrt(8e12), 8e6])
+        assert path.mu.shape[0] == 2 and path.mu.shape[2] == 3 and path.pressure_pa == pytest.approx(np.sqrt(8e12))
+    one = contact_model_spread(surface, PAD, p, "gw,bem", cfg, path_surfaces=2, path_pressure_pa=np.sqrt(8e12))
+    np.testing.assert_allclose(three.paths["gw"].mu[:, :, 1], one.paths["gw"].mu[:, :, 0], rtol=1e-9)
+    np.testing.assert_allclose(three.paths["bem"].mu[:, :, 1], one.paths["bem"].mu[:, :, 0], rtol=1e-3)
+    assert one.paths["bem"].pressures_pa.size == 1
+    gw_model = TabulatedProcessModel(
+        name="m", mu_mean=ModelFunction(a=0.0, b=1.0, c=0.4), mu_std=ModelFunction(a=0.0, b=1.0, c=0.05),
+        dx=1e-5, length=1e-3, pressures_pa=(1e6, 8e6), table_frequencies=(1e3, 2e3, 3e3),
+        table_psd=((1.0, 0.5, 0.2), (1.0, 0.5, 0.2)), fitted_range_pa=(1e6, 8e6))
+    _new, record = process_model_for(gw_model, three, "bem")
+    assert [c["pressure_pa"] for c in record["path_check"]] == three.paths["bem"].pressures_pa.tolist()
+    assert all(set(c["correlation_length_m"]) == {"gw", "bem"} for c in record["path_check"])
