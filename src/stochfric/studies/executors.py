@@ -104,14 +104,23 @@ def _exit_with_parent(parent_pid: int, poll_s: float = PARENT_POLL_S) -> None:
 
 @contextlib.contextmanager
 def _workers_ignore_ctrl_c() -> Iterator[None]:
-    """Ignore SIGINT while worker processes are started, so that they start with it ignored (an ignored
-    signal stays ignored across ``exec``, and Python then installs no KeyboardInterrupt handler): a
-    Ctrl-C while a worker is still importing would otherwise print that worker's partial traceback.
-    The parent's handler is restored at once; it answers Ctrl-C for all (terminates the workers)."""
+    """Block SIGINT while worker processes are started, so that they start with it blocked (the signal mask
+    is inherited across ``fork`` and ``exec``; the workers' initializer then ignores it): a Ctrl-C while a
+    worker is still importing would otherwise print that worker's partial traceback.  In the parent a
+    blocked SIGINT stays pending and is delivered when the mask is restored, so a Ctrl-C during the start
+    is answered, not lost (ignoring it here instead lost it: a study run under load then finished and
+    exited 0).  Where the platform has no signal masks, SIGINT is ignored during the start as before."""
     if threading.current_thread() is not threading.main_thread():
         yield
         return
-    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)
+    if hasattr(signal, "pthread_sigmask"):
+        old = signal.pthread_sigmask(signal.SIG_BLOCK, {signal.SIGINT})
+        try:
+            yield
+        finally:
+            signal.pthread_sigmask(signal.SIG_SETMASK, old)
+        return
+    previous = signal.signal(signal.SIGINT, signal.SIG_IGN)  # pragma: no cover - no signal masks
     try:
         yield
     finally:
@@ -183,7 +192,13 @@ class DaskExecutor(Executor):
         client = self._client
         own = client is None
         if own:
-            client = Client(self.address)
+            # never the global default client: a failed or closed default client would capture every later dask
+            # computation in this process (xarray's netCDF writer asks dask for its scheduler)
+            try:
+                client = Client(self.address, set_as_default=False)
+            except (ValueError, OSError, TimeoutError) as exc:
+                raise StudyError(f"cannot use the Dask scheduler {self.address!r} ({exc}): give the address of a "
+                                 "running scheduler, --scheduler tcp://HOST:PORT") from None
         try:
             futs = {}
             for t in tasks:

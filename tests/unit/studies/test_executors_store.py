@@ -277,3 +277,16 @@ phase_runs = 0
     assert first["studies"][0]["tasks"] == {"computed": n, "loaded_from_checkpoint": 0}
     again = json.loads(CliRunner().invoke(app, ["run", str(toml), "--json"]).output)
     assert again["tasks"] == {"computed": 0, "loaded_from_checkpoint": n}
+
+
+def test_a_bad_scheduler_address_is_one_error_and_leaves_no_default_client() -> None:
+    """``--scheduler ''`` (the option sweep) once left a broken global dask client behind, which then captured
+    xarray's netCDF writes in every later test of the same process ("missing port number in address ''")."""
+    pytest.importorskip("distributed")
+    from distributed.client import _get_global_client
+
+    from stochfric.studies.errors import StudyError
+
+    with pytest.raises(StudyError, match=r"cannot use the Dask scheduler '' .*--scheduler tcp://HOST:PORT"):
+        list(DaskExecutor(address="").run(lambda t, n: None, damping_tasks(SMALL)[:1]))  # type: ignore[arg-type]
+    assert _get_global_client() is None

@@ -47,3 +47,29 @@ def test_without_ctrl_c_every_task_runs() -> None:
     tasks = [SimpleNamespace(index=i) for i in range(3)]
     results, stats = run_tasks(tasks, executor=SerialExecutor(), fn=lambda t, threads: {"i": t.index})  # type: ignore[arg-type]
     assert sorted(results) == [0, 1, 2] and stats.computed == 3
+
+
+@pytest.mark.skipif(not hasattr(signal, "pthread_sigmask"), reason="no signal masks on this platform")
+def test_a_ctrl_c_while_workers_start_is_answered_not_lost() -> None:
+    """While worker processes start, SIGINT is blocked, not ignored: a child started then has it blocked (so
+    it prints no traceback of its own), and the parent's Ctrl-C stays pending and arrives when the start is
+    over (ignoring it lost it: a study under load then ran to its end and exited 0)."""
+    import subprocess
+    import sys
+
+    from stochfric.studies.executors import _workers_ignore_ctrl_c
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    child = "import signal; print(int(signal.SIGINT in signal.pthread_sigmask(signal.SIG_BLOCK, [])))"
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            with _workers_ignore_ctrl_c():
+                blocked = subprocess.run([sys.executable, "-c", child], capture_output=True, text=True, check=True)
+                os.kill(os.getpid(), signal.SIGINT)
+                for _ in range(1000):  # a delivered signal would run its handler at the next bytecode boundary
+                    pass
+                reached_the_end_of_the_start = True
+        assert reached_the_end_of_the_start and blocked.stdout.strip() == "1"
+        assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])  # the mask is restored
+    finally:
+        signal.signal(signal.SIGINT, previous)
