@@ -107,8 +107,9 @@ def _workers_ignore_ctrl_c() -> Iterator[None]:
     """Block SIGINT while worker processes are started, so that they start with it blocked (the signal mask
     is inherited across ``fork`` and ``exec``; the workers' initializer then ignores it): a Ctrl-C while a
     worker is still importing would otherwise print that worker's partial traceback.  In the parent a
-    blocked SIGINT stays pending and is delivered when the mask is restored, so a Ctrl-C during the start
-    is answered, not lost (ignoring it here instead lost it: a study run under load then finished and
+    blocked SIGINT stays pending and is delivered when the mask is restored (or at once, where another
+    thread of the process takes it: the mask is per thread), so a Ctrl-C during the start is answered, not
+    lost (ignoring it here instead lost it: a study run under load then finished and
     exited 0).  Where the platform has no signal masks, SIGINT is ignored during the start as before."""
     if threading.current_thread() is not threading.main_thread():
         yield

@@ -53,7 +53,9 @@ def test_without_ctrl_c_every_task_runs() -> None:
 def test_a_ctrl_c_while_workers_start_is_answered_not_lost() -> None:
     """While worker processes start, SIGINT is blocked, not ignored: a child started then has it blocked (so
     it prints no traceback of its own), and the parent's Ctrl-C stays pending and arrives when the start is
-    over (ignoring it lost it: a study under load then ran to its end and exited 0)."""
+    over (ignoring it lost it: a study under load then ran to its end and exited 0).  In a process with other
+    threads (a test runner's) the kernel may hand the signal to one that does not block it; Python then raises
+    it in the main thread inside the block: answered either way, never lost."""
     import subprocess
     import sys
 
@@ -68,8 +70,7 @@ def test_a_ctrl_c_while_workers_start_is_answered_not_lost() -> None:
                 os.kill(os.getpid(), signal.SIGINT)
                 for _ in range(1000):  # a delivered signal would run its handler at the next bytecode boundary
                     pass
-                reached_the_end_of_the_start = True
-        assert reached_the_end_of_the_start and blocked.stdout.strip() == "1"
+        assert blocked.stdout.strip() == "1"
         assert signal.SIGINT not in signal.pthread_sigmask(signal.SIG_BLOCK, [])  # the mask is restored
     finally:
         signal.signal(signal.SIGINT, previous)
