@@ -178,6 +178,11 @@ def _print(d: dict[str, Any]) -> None:
         row += f"  {_f(unc['sampling_half_width'][k], '.3f'):>9}  {_f(unc['model_half_width'][k], '.3f'):>7}"
         typer.echo(row)
     typer.echo(f"sampling: {unc['sampling_source']}; model: half the range of E[mu] over {', '.join(models)}")
+    disc = unc.get("discretisation_half_width")
+    if disc:
+        cells = ", ".join(_f(v, ".3g") for v in disc)
+        typer.echo(f"grid: half the difference of the boundary-element E[mu] between the perimeter-corrected area "
+                   f"and the pixel count, per pressure: {cells} (docs/bem_validation.md §4)")
     for m in models:
         solver = d["per_model"][m]["solver"]
         if m.startswith("bem"):

@@ -168,6 +168,9 @@ class _One:
     seconds: float
     warnings: tuple[str, ...] = ()
     solver: str = "closed form"
+    #: The boundary-element models: A_c/A_nom by the other area estimator (the pixel count when the corrected
+    #: area is used, and the other way round); None for the others.
+    other_area_fraction: FloatArray | None = None
 
 
 def gw_at_pressures(heights_m: FloatArray, spacing_m: tuple[float, float], material: Material,
@@ -224,8 +227,11 @@ def sample_contact(heights_m: FloatArray, physical_size_m: tuple[float, float], 
                                time_limit_s=control.time_limit_s,
                                hardness_pa=material.hardness if model == "bem-plastic" else None)
         sol = bem_contact(h, physical_size_m, material.e_star_pa, p, settings=settings)
-        area = sol.corrected_area_fraction if control.bem_area == "corrected" else sol.area_fraction
+        corrected = control.bem_area == "corrected"
+        area, other = ((sol.corrected_area_fraction, sol.area_fraction) if corrected
+                       else (sol.area_fraction, sol.corrected_area_fraction))
         return _One(area_fraction=np.asarray(area, dtype=np.float64),
+                    other_area_fraction=np.asarray(other, dtype=np.float64),
                     n_contacts=np.asarray(sol.n_patches, dtype=np.float64),
                     iterations=np.asarray(sol.iterations, dtype=np.float64), seconds=time.perf_counter() - start,
                     warnings=tuple(sol.warnings), solver=str(sol.settings.get("method", sol.solver)))
@@ -256,16 +262,22 @@ class ModelSamples:
     warnings: tuple[str, ...]
     #: The solver(s) that solved the samples (a sample may fall back to the other boundary-element solver).
     solvers: tuple[str, ...] = ()
+    #: The boundary-element models: μ with the other area estimator (:class:`LoadControl`.bem_area), the
+    #: discretisation part of the model uncertainty; None for the other models and for older files.
+    mu_other: FloatArray | None = None
 
     @classmethod
     def of(cls, model: str, pressure_pa: FloatArray, solved: Sequence[_One], tau_pa: float) -> ModelSamples:
         frac = np.stack([o.area_fraction for o in solved])
         warnings = tuple(dict.fromkeys(w for o in solved for w in o.warnings))
+        others = [o.other_area_fraction for o in solved]
+        mu_other = (None if not others or any(v is None for v in others)
+                    else tau_pa * np.stack([np.asarray(v) for v in others]) / pressure_pa)
         return cls(model=model, pressure_pa=pressure_pa, area_fraction=frac,
                    n_contacts=np.stack([o.n_contacts for o in solved]), mu=tau_pa * frac / pressure_pa,
                    iterations=np.stack([o.iterations for o in solved]),
                    seconds=np.array([o.seconds for o in solved]), warnings=warnings,
-                   solvers=tuple(dict.fromkeys(o.solver for o in solved)))
+                   solvers=tuple(dict.fromkeys(o.solver for o in solved)), mu_other=mu_other)
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -317,6 +329,14 @@ class ModelPath:
         return {**self._at(self.middle), "long_surfaces": int(self.mu.shape[0]), "windows": int(self.mu.shape[1]),
                 "window_shift_m": self.window_shift_m, "frequencies_per_m": f.tolist(), "psd_m": psd.tolist(),
                 "psd_se_m": se.tolist(), "by_pressure": [self._at(k) for k in range(self.pressures_pa.size)]}
+
+
+def _other(ds: Any, kind: str, i: int) -> FloatArray | None:
+    """The saved μ of model i with the other boundary-element area, None where absent (all NaN or an older file)."""
+    if f"{kind}_mu_other" not in ds:
+        return None
+    v = np.asarray(ds[f"{kind}_mu_other"].values[i], dtype=np.float64)
+    return None if np.all(np.isnan(v)) else v
 
 
 def _finite(v: float) -> float | None:
@@ -404,7 +424,17 @@ class ContactModelSpread:
         with np.errstate(invalid="ignore", divide="ignore"):
             share = model**2 / (model**2 + sampling**2)
         return {"reference_model": reference, "sampling_half_width": sampling, "sampling_source": source,
-                "model_half_width": model, "model_share_of_variance": share}
+                "model_half_width": model, "model_share_of_variance": share,
+                "discretisation_half_width": self.discretisation_half_width()}
+
+    def discretisation_half_width(self) -> FloatArray | None:
+        """Per pressure, the largest half difference of E[μ] (surrogates) of a boundary-element model between its
+        two area estimators — the perimeter-corrected area and the pixel count (docs/bem_validation.md §4): how
+        much of that model's E[μ] rests on the grid rather than the contact.  None without a boundary-element
+        model (or in a file saved before both areas were kept)."""
+        halves = [0.5 * np.abs(self.surrogates[m].mu.mean(axis=0) - other.mean(axis=0))
+                  for m in self.models if (other := self.surrogates[m].mu_other) is not None]
+        return np.max(np.stack(halves), axis=0) if halves else None
 
     # --- output ----------------------------------------------------------------------
 
@@ -426,6 +456,9 @@ class ContactModelSpread:
                     "effective_windows": lst(win["effective_windows"])},
                 "mean_contacts": lst(np.nanmean(samples.n_contacts, axis=0)) if np.any(np.isfinite(samples.n_contacts))
                 else None,
+                "mu_mean_other_area": None if samples.mu_other is None else {
+                    "area": "pixels" if self.control.bem_area == "corrected" else "corrected",
+                    "mu_mean": lst(samples.mu_other.mean(axis=0))},
                 "solver": {"used": list(dict.fromkeys(
                                samples.solvers + (self.windows[m].solvers if m in self.windows else ()))),
                            "max_iterations_used": int(np.max(samples.iterations)) if samples.iterations.size else 0,
@@ -474,6 +507,12 @@ class ContactModelSpread:
             for q in ("mu", "area_fraction", "n_contacts", "iterations"):
                 data[f"{kind}_{q}"] = (("model", kind, "pressure"),
                                        np.stack([getattr(group[m], q) for m in self.models]))
+            if any(group[m].mu_other is not None for m in self.models):
+                other = [np.full_like(g.mu, np.nan) if g.mu_other is None else g.mu_other
+                         for g in (group[m] for m in self.models)]
+                data[f"{kind}_mu_other"] = (("model", kind, "pressure"), np.stack(other),
+                                            {"units": "1", "long_name": "mu with the other boundary-element area "
+                                                                        "estimator (NaN: not a BEM model)"})
         coords: dict[str, Any] = {"model": list(self.models), "pressure": self.pressure_pa}
         groups = {"surrogate": self.surrogates, "window": self.windows}
         for kind, group in groups.items():
@@ -531,6 +570,7 @@ class ContactModelSpread:
                 seconds=(np.asarray(ds[f"{kind}_seconds"].values[i], dtype=np.float64) if f"{kind}_seconds" in ds
                          else np.full(n, np.nan)),
                 warnings=tuple(warnings.get(kind, {}).get(m, ())), solvers=tuple(solvers.get(kind, {}).get(m, ())),
+                mu_other=_other(ds, kind, i),
             ) for i, m in enumerate(models)}  # fmt: skip
 
         paths: dict[str, ModelPath] = {}

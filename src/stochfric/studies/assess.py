@@ -212,7 +212,10 @@ class Assessment:
             out.append(f"model choice: E[μ] over {', '.join(spread.models)} spans ±"
                        f"{_fmt(float(np.nanmax(split['model_half_width'])), '.3g')} (half range), "
                        f"{_fmt(100 * share, '.2g')} % of the variance of E[μ] against the surface sampling "
-                       f"(±{_fmt(float(np.nanmax(split['sampling_half_width'])), '.3g')})")
+                       f"(±{_fmt(float(np.nanmax(split['sampling_half_width'])), '.3g')})"
+                       + ("" if split["discretisation_half_width"] is None else
+                          f"; the boundary-element grid alone (corrected area against pixel count) ±"
+                          f"{_fmt(float(np.nanmax(split['discretisation_half_width'])), '.3g')}"))
         return out
 
     def to_json_dict(self) -> dict[str, Any]:

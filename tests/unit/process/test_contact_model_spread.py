@@ -124,7 +124,7 @@ def test_bad_pressures_and_hardness(surface) -> None:  # type: ignore[no-untyped
         LoadControl(bem_solver="abaqus")
 
 
-def test_bem_models_on_the_same_samples(surface) -> None:  # type: ignore[no-untyped-def]
+def test_bem_models_on_the_same_samples(surface, tmp_path) -> None:  # type: ignore[no-untyped-def]
     """The elastic boundary-element model carries the load on more area than GW at equal load (asperity
     interaction and the full elastic field; thesis Fig. 3.12–3.14, docs/contact_models.md), and the plastic cap
     never lowers the area."""
@@ -144,6 +144,24 @@ def test_bem_models_on_the_same_samples(surface) -> None:  # type: ignore[no-unt
     counted, corrected = pixels.surrogates["bem"].area_fraction, s.surrogates["bem"].area_fraction
     assert np.all(corrected < counted) and np.all(corrected > counted * (1 - 4 * PERIMETER_CORRECTION))
     assert s.control.bem_area == "corrected" and pixels.control.bem_area == "pixels"
+    # each keeps the other estimator's μ: the two runs hold the same pair, and the grid's share is half its gap
+    np.testing.assert_allclose(s.surrogates["bem"].mu_other, pixels.surrogates["bem"].mu, rtol=1e-12)
+    np.testing.assert_allclose(pixels.surrogates["bem"].mu_other, s.surrogates["bem"].mu, rtol=1e-12)
+    half = s.uncertainty_split()["discretisation_half_width"]
+    gap = 0.5 * (pixels.surrogates["bem"].mu.mean(axis=0) - s.surrogates["bem"].mu.mean(axis=0))
+    assert half is not None and np.all(gap > 0)
+    np.testing.assert_allclose(half, np.maximum(gap, 0.5 * np.abs(s.surrogates["bem-plastic"].mu.mean(axis=0)
+                                                               - s.surrogates["bem-plastic"].mu_other.mean(axis=0))))
+    assert s.surrogates["gw"].mu_other is None
+    from stochfric.process.contact_models import ContactModelSpread
+    from stochfric.process.pipeline import write_spread
+
+    again = ContactModelSpread.load(write_spread(s, tmp_path, figures=False)["contact_models_file"])
+    np.testing.assert_array_equal(again.surrogates["bem"].mu_other, s.surrogates["bem"].mu_other)
+    assert again.surrogates["gw"].mu_other is None
+    np.testing.assert_array_equal(again.uncertainty_split()["discretisation_half_width"], half)
+    assert contact_model_spread(surface, PAD, [1e6], "gw", cfg).uncertainty_split()["discretisation_half_width"] \
+        is None
 
 
 def test_process_model_takes_the_chosen_model(surface) -> None:  # type: ignore[no-untyped-def]
