@@ -77,6 +77,7 @@ def test_friction_process_takes_the_chosen_contact_model(tmp_path: Path) -> None
                               "--accept-not-credible", "--out", str(out), "--step", "2"])
     assert res.exit_code in (0, 3), res.output
     assert "contact models" in res.stdout and "persson" in res.stdout
+    assert "±grid" not in res.stdout  # no boundary-element model, no grid column
     model = TabulatedProcessModel.load(out / "friction_process.json")
     assert model.contact_model == "persson" and "[persson]" in model.name
     spread = json.loads((out / "contact_models.json").read_text())

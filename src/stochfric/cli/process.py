@@ -356,13 +356,16 @@ def _print_contact_models(run: ScanAnalysis) -> None:
     stats = {m: spread.surrogate_statistics(m)["mu_mean"] for m in spread.models}
     split = spread.uncertainty_split()
     ratio = spread.ratio("gw", "bem")
+    grid = split["discretisation_half_width"]
     typer.echo(f"contact models ({spread.realizations} surrogates, load control): "
                + "   ".join(f"{m}" for m in spread.models)
-               + ("   gw/bem" if ratio is not None else "") + "   ±sampling ±model")
+               + ("   gw/bem" if ratio is not None else "") + "   ±sampling ±model"
+               + ("" if grid is None else " ±grid (BEM: corrected area vs pixel count)"))
     for k, p in enumerate(spread.pressure_pa):
         typer.echo(f"  p = {p / 1e6:8.4g} MPa  " + "  ".join(f"{stats[m][k]:.4f}" for m in spread.models)
                    + (f"  {ratio[k]:.3f}" if ratio is not None else "")
-                   + f"  {split['sampling_half_width'][k]:.3f} {split['model_half_width'][k]:.3f}")
+                   + f"  {split['sampling_half_width'][k]:.3f} {split['model_half_width'][k]:.3f}"
+                   + ("" if grid is None else f" {grid[k]:.3f}"))
     typer.echo(f"contact   plasticity index {_num(spread.plasticity_index, '.3g')}: {spread.recommendation}")
     typer.echo(f"contact   the model file's E[μ](p), σ_μ(p): {run.model.contact_model}"
                + (" (spectrum shape from GW, level scaled)" if run.model.contact_model != "gw" else ""))
