@@ -263,16 +263,15 @@ class BemSolution:
     seconds: _FloatArray
     nominal_area_m2: float
     solver: str
+    corrected_area_m2: _FloatArray
+    contact_edges: npt.NDArray[np.int64]
     settings: dict[str, Any] = field(default_factory=dict)
     warnings: tuple[str, ...] = ()
-    corrected_area_m2: _FloatArray | None = None
-    contact_edges: npt.NDArray[np.int64] | None = None
 
     @property
     def corrected_area_fraction(self) -> _FloatArray:
-        """corrected_area_m2 / A_nom (the pixel count where no correction was computed)."""
-        area = self.contact_area_m2 if self.corrected_area_m2 is None else self.corrected_area_m2
-        return np.asarray(area / self.nominal_area_m2, dtype=np.float64)
+        """corrected_area_m2 / A_nom."""
+        return np.asarray(self.corrected_area_m2 / self.nominal_area_m2, dtype=np.float64)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready dictionary (SI units in the keys; NaN → ``None``)."""
@@ -288,8 +287,8 @@ class BemSolution:
             "contact_area_m2": floats(self.contact_area_m2),
             "area_fraction": floats(self.area_fraction),
             "plastic_area_m2": floats(self.plastic_area_m2),
-            "corrected_area_m2": None if self.corrected_area_m2 is None else floats(self.corrected_area_m2),
-            "contact_edges": None if self.contact_edges is None else [int(v) for v in self.contact_edges],
+            "corrected_area_m2": floats(self.corrected_area_m2),
+            "contact_edges": [int(v) for v in self.contact_edges],
             "n_patches": [int(v) for v in self.n_patches],
             "approach_m": floats(self.approach_m),
             "iterations": [int(v) for v in self.iterations],

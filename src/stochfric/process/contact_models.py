@@ -121,7 +121,7 @@ class LoadControl:
     (:data:`~stochfric.contact.persson.CORRECTED_KAPPA`); ``gradient_method``: the estimator of ḡ;
     ``bem_area``: the boundary-element contact area, ``"corrected"`` (the pixel count less Yastrebov et al.'s
     (2017) perimeter correction, :attr:`~stochfric.contact.bem.BemSolution.corrected_area_m2`: it brings the
-    small-load slope κ of the elastic BEM to 2.0–2.2 at 512², where the pixel count gives 2.2–2.4,
+    small-load slope κ of the elastic BEM to 2.01–2.14 at 512², where the pixel count gives 2.18–2.62,
     docs/bem_validation.md §4) or ``"pixels"`` (the count, as saved before this option; a file without the
     key loads as ``"pixels"``).
     """
@@ -326,9 +326,10 @@ class ModelPath:
         """The middle pressure's spectrum and correlation length at the top level, every pressure's
         correlation length under ``by_pressure``."""
         f, psd, se = self.spectrum()
-        return {**self._at(self.middle), "long_surfaces": int(self.mu.shape[0]), "windows": int(self.mu.shape[1]),
+        by_pressure = [self._at(k) for k in range(self.pressures_pa.size)]
+        return {**by_pressure[self.middle], "long_surfaces": int(self.mu.shape[0]), "windows": int(self.mu.shape[1]),
                 "window_shift_m": self.window_shift_m, "frequencies_per_m": f.tolist(), "psd_m": psd.tolist(),
-                "psd_se_m": se.tolist(), "by_pressure": [self._at(k) for k in range(self.pressures_pa.size)]}
+                "psd_se_m": se.tolist(), "by_pressure": by_pressure}
 
 
 def _other(ds: Any, kind: str, i: int) -> FloatArray | None:
