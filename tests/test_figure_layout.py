@@ -30,7 +30,6 @@ from stochfric.oscillator.options import IntegrationOptions, NoiseOptions, Outpu
 from stochfric.oscillator.parameters import PhysicalParameters
 from stochfric.oscillator.result import SimulationResult
 from stochfric.plotting import layout_problems, new_figure, save_figure, tick_label_overlaps
-from stochfric.process import checks
 from stochfric.process import figures as pfig
 from stochfric.process.analysis_config import AnalysisConfig
 from stochfric.process.analysis_result import StatisticalContactAnalysis
@@ -93,11 +92,8 @@ class Inputs:
 
     @cached_property
     def analysis(self) -> StatisticalContactAnalysis:
-        with pytest.MonkeyPatch.context() as mp:
-            mp.setattr(checks, "BOOTSTRAP_Z", 20)  # the SE of the check's z: not drawn, and 0.2 s instead of 4 s
-            return analyse(self.map, get_material("brake-pad"), np.linspace(0.2e-6, 2.0e-6, 6),
-                           AnalysisConfig(realizations=6, long_surfaces=3, length_factor=3, seed=3,
-                                          surrogate="phase"))
+        return analyse(self.map, get_material("brake-pad"), np.linspace(0.2e-6, 2.0e-6, 6),
+                       AnalysisConfig(realizations=6, long_surfaces=3, length_factor=3, seed=3, surrogate="phase"))
 
     def spread(self, pressures: int, path: bool = False) -> Any:
         """GW and Persson at ``pressures`` pressures (a short log range), with the path spectra if ``path``."""

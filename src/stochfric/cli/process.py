@@ -67,16 +67,15 @@ _SURROGATE_HELP = (
 ValidationBudgetOpt = Annotated[
     int | None, typer.Option(
         "--validation-budget", help="Most surrogates per fold of the held-out validation: it starts with "
-        f"min({HOLDOUT_REALIZATIONS}, --realizations) and doubles while a statistic lies within 2 Monte Carlo SE "
-        "of the threshold; undecided after the budget. Default: 4 × the "
+        f"min({HOLDOUT_REALIZATIONS}, --realizations) and doubles while the Monte Carlo p-value of its rank test "
+        "is within its binomial error of 5 %; undecided after the budget. Default: 8 × the "
         f"start, at most {HOLDOUT_MAX_REALIZATIONS}.")
 ]
 SummitBudgetOpt = Annotated[
     int | None, typer.Option(
         "--summit-budget", min=2, help="Most realisations the summit check may grow the ensemble to: it doubles "
-        "--realizations while a quantity lies within the decision margin (Monte Carlo SE, 5 % family-wise) of "
-        "its limit; undecided after the budget. Default: --realizations (no growth: on a map at the limit, "
-        "growth lets a seed decide a failure; docs/statistical_contact.md).")
+        "--realizations while the Monte Carlo p-value of its rank test is within its binomial error of 5 %; "
+        "undecided after the budget. Default: 4 × --realizations (docs/statistical_contact.md §0a).")
 ]
 
 FilesArg = Annotated[
@@ -254,7 +253,7 @@ def _summit_verdict(analysis: StatisticalContactAnalysis) -> tuple[str, str]:
     failed, near = analysis.surrogate_check.decided(realizations, looks=cfg.summit_looks)
     if failed:
         return "FAIL", "NOT credible"
-    return ("undecided", "undecided (within the Monte Carlo margin of the limit)") if near else ("pass", "credible")
+    return ("undecided", "undecided (p-value within its Monte Carlo error of 5 %)") if near else ("pass", "credible")
 
 
 def _echo_checks(analysis: StatisticalContactAnalysis) -> None:
@@ -264,7 +263,9 @@ def _echo_checks(analysis: StatisticalContactAnalysis) -> None:
     typer.echo(
         f"check: summits ({sc.surrogate}) z count {z['summit_count']:+.1f}, β̄ {z['summit_radius_mean_m']:+.1f}, "
         f"σ_S {z['summit_height_std_m']:+.1f}, max |z| of μ(u) {_num(sc.max_abs_mu_z, '.1f')} (limit "
-        f"{sc.limit:g}) → {_summit_verdict(analysis)[0]}", err=True)
+        f"{sc.limit:.2f}" + (f", {sc.global_exceed} of {analysis.ensemble.contact_area_m2.shape[0]} realisations "
+                             "reach the map's largest |z|" if sc.global_exceed is not None else "")
+        + f") → {_summit_verdict(analysis)[0]}", err=True)
     if wc is None:
         typer.echo("check: measured windows not checked (too few summits for 2 x 2 windows)", err=True)
     else:

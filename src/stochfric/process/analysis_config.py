@@ -28,7 +28,14 @@ from stochfric.surface.surrogates import AUTO_SURROGATE, SURROGATES, surrogate_m
 from stochfric.surface.synthesis import AMPLITUDE_METHODS, DEFAULT_AMPLITUDE, PHASE_METHOD, AmplitudeEstimate
 from stochfric.validation import count
 
-__all__ = ["AUTO_SURROGATE", "AnalysisConfig"]  # AUTO_SURROGATE: stochfric.surface.surrogates
+__all__ = ["AUTO_SURROGATE", "HOLDOUT_GROWTH", "SUMMIT_GROWTH", "AnalysisConfig"]  # AUTO_SURROGATE: .surface.surrogates
+
+#: The default budgets of the two sequential Monte Carlo tests, as multiples of their start (docs/
+#: statistical_contact.md §0a): a rank test decides a failure only from about 80 draws (K = 0: the Clopper–Pearson
+#: bound 1 − ε^(1/R) < 5 %), and one with K = 1–2 of the draws reaching the data from about 190.  The summit check
+#: starts with the ensemble's R = 100 and may grow to 400; the held-out validation starts with 24 per fold.
+SUMMIT_GROWTH = 4
+HOLDOUT_GROWTH = 8
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -80,10 +87,11 @@ class AnalysisConfig:
         if start is None:  # as many as the ensemble, within 4 … HOLDOUT_REALIZATIONS
             start = min(HOLDOUT_REALIZATIONS, max(4, int(self.realizations)))
             object.__setattr__(self, "holdout_realizations", start)
-        if self.holdout_max_realizations is None:  # the sequential decision may quadruple them, up to the cap
-            object.__setattr__(self, "holdout_max_realizations", min(HOLDOUT_MAX_REALIZATIONS, 4 * int(start)))
-        if self.summit_max_realizations is None:  # no growth by default: see docs/statistical_contact.md §0e
-            object.__setattr__(self, "summit_max_realizations", int(self.realizations))
+        if self.holdout_max_realizations is None:  # the sequential decision may double them 3 times, up to the cap
+            object.__setattr__(self, "holdout_max_realizations",
+                               min(HOLDOUT_MAX_REALIZATIONS, HOLDOUT_GROWTH * int(start)))
+        if self.summit_max_realizations is None:  # the summit check may double the ensemble twice to decide
+            object.__setattr__(self, "summit_max_realizations", SUMMIT_GROWTH * int(self.realizations))
         for name in ("realizations", "long_surfaces", "window_shift_points", "pdf_bins", "check_realizations",
                      "window_tiles", "holdout_realizations", "holdout_max_realizations", "summit_max_realizations"):
             object.__setattr__(self, name, count(name, getattr(self, name), error=AnalysisError))

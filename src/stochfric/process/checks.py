@@ -26,7 +26,13 @@ from stochfric.contact.materials import Material
 from stochfric.errors import AnalysisError, InputError
 from stochfric.friction_process.model_base import FrictionProcessModel
 from stochfric.friction_process.spectral import one_sided_psd
-from stochfric.process.decisions import decision_margin
+from stochfric.process.decisions import (
+    SUMMIT_ALPHA,
+    critical_value,
+    decision_margin,
+    monte_carlo_draws_to_decide,
+    monte_carlo_rank_decision,
+)
 from stochfric.process.ensemble import ContactSamples, SurrogateOptions, summit_statistics
 from stochfric.process.verbatim import (
     BlockMatcher,
@@ -195,12 +201,23 @@ _SUMMIT_STAT_NAMES = ("summit_count", "summit_radius_mean_m", "summit_height_std
 class SurrogateCheck:
     """Does the measured map look like a member of its own surrogate ensemble? (method §3)
 
-    z = (measured − ensemble median) / (1.4826 × ensemble MAD): a robust measure of the ensemble's
-    *spread* (not the standard error of its centre: the question is whether the measured map could be one
-    of the realisations); the sd is not used because a few far-out realisations made it, hence the verdict,
-    swing with the seed (al3d-1: sd 0.047 … 0.084 at R = 40).  Checked: summit count, mean summit radius
-    β̄, summit-height standard deviation σ_S, and μ(u) at every approach (the measured map referenced to its
-    own highest summit, like every realisation).  Credible if every |z| < :data:`SURROGATE_Z_LIMIT`.
+    Checked: summit count, mean summit radius β̄, summit-height standard deviation σ_S, and μ(u) at every
+    approach (the measured map referenced to its own highest summit, like every realisation).  Per quantity
+    z = (value − median) / (1.4826 × MAD), median and MAD over the map *and* its R realisations together: a
+    robust measure of the ensemble's spread (not the standard error of its centre: the question is whether
+    the map could be one of the realisations).
+
+    **One test for all quantities** (since 2026-11-28; a Monte Carlo rank test of the largest |z|, Barnard
+    1963, Besag & Diggle 1977, the "global envelope" of Myllymäki et al. 2017): T = max |z| over the quantities
+    for the map and for every realisation; under "the map is a member of the ensemble" the R + 1 values of T
+    are exchangeable, so the map fails when (1 + K)/(R + 1) ≤ α, K the realisations with T ≥ the map's —
+    an exact family-wise false-alarm rate α = :data:`~stochfric.process.decisions.SUMMIT_ALPHA` for any R and
+    any correlation or shape of the quantities (with S pooled scans, each scan against the ensemble at α/S).
+    ``limit`` is the critical value of T that follows (the realisations' T at that rank): "every |z| <
+    limit" is the test.  The verdict is decided against the Monte Carlo error of K
+    (:func:`~stochfric.process.decisions.monte_carlo_rank_decision`).  Before, each |z| was held against a
+    fixed limit 3 with a bootstrap SE and a Bonferroni margin over 16 quantities; that margin (about ±0.9 in
+    z at R = 100) left an exactly Gaussian map whose model is exact ``undecided`` (docs §0e).
     """
 
     measured: dict[str, float]
@@ -223,6 +240,12 @@ class SurrogateCheck:
     #: Bootstrap standard errors of ``z`` and ``mu_z`` over the realisations (empty: the Gaussian formula).
     z_se: dict[str, float] = field(default_factory=dict)
     mu_z_se: tuple[float, ...] = ()
+    #: The Monte Carlo rank test (class docstring): the map's largest |z| (the worst scan's), how many of the
+    #: R realisations reach it (K), and the level per scan (α/S).  None: a record from before the test, decided
+    #: by the per-quantity rule of :meth:`decided`.
+    global_t: float | None = None
+    global_exceed: int | None = None
+    global_alpha: float | None = None
 
     @property
     def max_abs_mu_z(self) -> float | None:
@@ -232,15 +255,20 @@ class SurrogateCheck:
     def decided(self, realizations: int, margin: float | None = None, looks: int = 1) -> tuple[list[str], list[str]]:
         """The failures a seed cannot undo and the quantities a seed could flip.
 
-        z of the measured map carries the Monte Carlo error of the ensemble's median and MAD scale: SE_z is
-        the bootstrap standard error over the realisations (:data:`BOOTSTRAP_Z` resamples, fixed seed), which
-        follows the ensemble's own shape (μ over surrogates is peaked with wide shoulders: the Gaussian
-        formula √((π/2)/R + 1.36 z²/R), used where no bootstrap is recorded, understates it 2–3 times on
-        al3d-1).  Decided failures: |z| − margin·SE_z ≥ limit; undecided: |z| within margin·SE_z of the limit
-        on either side (more realisations decide them).  The margin defaults to
-        :func:`~stochfric.process.decisions.decision_margin` over the quantities checked and ``looks``, the
-        looks the ensemble may take (:func:`~stochfric.process.decisions.looks_within`): a decision another
-        seed would reverse has a family-wise probability ≤ 5 %."""
+        The Monte Carlo rank test (class docstring) decided against the binomial error of K
+        (:func:`~stochfric.process.decisions.monte_carlo_rank_decision`, ``looks`` the looks the ensemble may
+        take): failed — the quantities at or beyond ``limit`` (the worst at least); undecided — the worst
+        quantity.  A record without the test (saved before 2026-11-28) is decided per quantity: |z| against
+        the limit 3 with its bootstrap SE and the margin ``margin`` (default
+        :func:`~stochfric.process.decisions.decision_margin` over the quantities and ``looks``)."""
+        if self.global_exceed is not None and self.global_alpha is not None:
+            verdict = monte_carlo_rank_decision(self.global_exceed, realizations, self.global_alpha, looks)
+            if verdict == "pass":
+                return [], []
+            items = self._estimates(realizations)
+            worst = [n for n, v, _ in items if not abs(v) < self.limit] or [
+                max(items, key=lambda it: abs(it[1]) if math.isfinite(it[1]) or math.isinf(it[1]) else -1.0)[0]]
+            return (worst, []) if verdict == "fail" else ([], worst)
         items = self._estimates(realizations)
         k = self._margin(items, looks) if margin is None else margin
         failed, near = [], []
@@ -271,10 +299,12 @@ class SurrogateCheck:
         return decision_margin(max(1, sum(1 for _, v, _ in items if not math.isnan(v))), looks)
 
     def realizations_to_decide(self, realizations: int, looks: int = 1) -> int | None:
-        """About how many realisations would decide every undecided quantity of :meth:`decided`: SE_z falls as
-        1/√R, so a quantity at distance δ = ||z| − limit| is decided once k·SE_z·√(R/R') < δ, R' = R (k SE_z/δ)²
-        (the largest over the undecided quantities, rounded up to R·2^j; None when nothing is undecided).  An
-        estimate: on al3d-1 the seed-to-seed spread of z was 1.3 × its bootstrap SE (docs §0a)."""
+        """About how many realisations would decide an undecided check (None when decided, or when the map
+        sits on the limit itself).  The rank test: :func:`~stochfric.process.decisions.monte_carlo_draws_to_decide`.
+        A record without it: SE_z falls as 1/√R, so a quantity at distance δ = ||z| − limit| is decided once
+        k·SE_z·√(R/R') < δ, R' = R (k SE_z/δ)², rounded up to R·2^j."""
+        if self.global_exceed is not None and self.global_alpha is not None:
+            return monte_carlo_draws_to_decide(self.global_exceed, realizations, self.global_alpha, looks)
         _, near = self.decided(realizations, looks=looks)
         if not near:
             return None
@@ -301,7 +331,10 @@ class SurrogateCheck:
         """JSON-ready dictionary: the fields, the largest |z| of μ, the failures and the rule."""
         return {**_json_fields(self), "max_abs_mu_z": self.max_abs_mu_z,
                 "failures": self.failures(),
-                "rule": "z = (measured - ensemble median) / (1.4826 x ensemble MAD); credible if every |z| < limit"}
+                "rule": ("z = (measured - median) / (1.4826 x MAD) over the map and its realisations; Monte Carlo "
+                         "rank test of max |z| at the family-wise level global_alpha: credible if every |z| < limit"
+                         if self.global_exceed is not None else
+                         "z = (measured - ensemble median) / (1.4826 x ensemble MAD); credible if every |z| < limit")}
 
 
 def _worst(z: FloatArray) -> FloatArray:
@@ -312,16 +345,20 @@ def _worst(z: FloatArray) -> FloatArray:
 
 def surrogate_check(
     surface: Surface | Sequence[Surface], material: Material, ensemble: ContactSamples, *,
-    rule: str = DEFAULT_SUMMIT_RULE,
+    rule: str = DEFAULT_SUMMIT_RULE, alpha: float = SUMMIT_ALPHA,
 ) -> SurrogateCheck:
-    """Compare the measured ``surface`` with its surrogate ``ensemble`` (:func:`ensemble_contact`).
+    """Compare the measured ``surface`` with its surrogate ``ensemble`` (:func:`ensemble_contact`) by the Monte
+    Carlo rank test of :class:`SurrogateCheck` at the family-wise level ``alpha``.
 
     With several scans of one surface, every scan is compared with the whole ensemble (all its
-    realisations stand for the same surface); ``measured`` holds the mean over the scans, ``z``
-    and ``mu_z`` the largest-magnitude z over the scans, ``per_scan_z`` each scan's.
+    realisations stand for the same surface) at ``alpha``/S; ``measured`` holds the mean over the scans,
+    ``z`` and ``mu_z`` the largest-magnitude z over the scans, ``per_scan_z`` each scan's, the test the scan
+    with the fewest realisations at least as extreme.
     """
     if ensemble.summit_stats is None:
         raise InputError("the ensemble carries no summit statistics (use ensemble_contact)")
+    if not 0.0 < alpha < 1.0:
+        raise InputError(f"the summit check's level must lie in (0, 1), got {alpha!r}")
     scans = [surface] if isinstance(surface, Surface) else list(surface)
     stats = ensemble.summit_stats
     e_mean = stats.mean(axis=0)
@@ -330,7 +367,10 @@ def surrogate_check(
     u = ensemble.approach_m
     mu_e = ensemble.mu
     mu_center, mu_scale = robust_center_scale(mu_e)
-    metas, mus, zs, mu_zs = [], [], [], []
+    ens_rows = np.column_stack([stats, mu_e])
+    n_stats = stats.shape[1]
+    alpha_scan = float(alpha) / len(scans)
+    metas, mus, zs, mu_zs, tests = [], [], [], [], []
     for scan in scans:
         s = find_summits(scan.heights_m, scan.grid_spacing_m, rule=rule)
         meas = summit_statistics(s.heights_m, s.radius_m)
@@ -339,21 +379,22 @@ def surrogate_check(
             mu_meas = bowden_tabor_mu(area, force, material.shear_strength_pa)
         else:
             mu_meas = np.full(u.size, np.nan)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            mu_z = (mu_meas - mu_center) / mu_scale
-            z = (meas - e_center) / e_scale
+        z_rows = _pooled_z(np.vstack([np.concatenate([meas, mu_meas])[None, :], ens_rows]))
+        t = _max_abs(z_rows)
+        exceed = int(np.sum(t[1:] >= t[0]))
+        tests.append((exceed, float(t[0]), critical_value(t[1:], alpha_scan)))
         metas.append(meas)
         mus.append(mu_meas)
-        zs.append(np.where(np.isfinite(z), z, np.where(meas == e_center, 0.0, np.inf)))
-        mu_zs.append(np.where(np.isfinite(mu_z), mu_z, np.inf))
+        zs.append(z_rows[0, :n_stats])
+        mu_zs.append(z_rows[0, n_stats:])
     z = _worst(np.stack(zs))
     mu_z = _worst(np.stack(mu_zs))
-    z_se = _bootstrap_z_se(stats, _worst_measured(np.stack(zs), np.stack(metas)))
-    mu_z_se = _bootstrap_z_se(mu_e, _worst_measured(np.stack(mu_zs), np.stack(mus)))
+    exceed, t_map, limit = min(tests, key=lambda it: (it[0], -it[1]))
     meas = np.mean(np.stack(metas), axis=0)
     mu_meas = np.mean(np.stack(mus), axis=0)
     names = _SUMMIT_STAT_NAMES
-    credible = bool(np.all(np.abs(z) < SURROGATE_Z_LIMIT) and np.all(np.abs(mu_z) < SURROGATE_Z_LIMIT))
+    r = ens_rows.shape[0]
+    credible = bool((1.0 + exceed) / (r + 1.0) > alpha_scan)
     return SurrogateCheck(
         measured={n: float(v) for n, v in zip(names, meas, strict=True)},
         ensemble_mean={n: float(v) for n, v in zip(names, e_mean, strict=True)},
@@ -361,7 +402,7 @@ def surrogate_check(
         z={n: float(v) for n, v in zip(names, z, strict=True)},
         mu_measured=tuple(float(v) for v in mu_meas),
         mu_z=tuple(float(v) for v in mu_z),
-        limit=SURROGATE_Z_LIMIT,
+        limit=limit,
         credible=credible,
         surrogate=str(ensemble.info.get("surrogate", "")),
         amplitude=str(ensemble.info.get("amplitude", "")),
@@ -369,35 +410,25 @@ def surrogate_check(
         ensemble_center={n: float(v) for n, v in zip(names, e_center, strict=True)},
         ensemble_scale={n: float(v) for n, v in zip(names, e_scale, strict=True)},
         mu_center=tuple(float(v) for v in mu_center), mu_scale=tuple(float(v) for v in mu_scale),
-        z_se={n: float(v) for n, v in zip(names, z_se, strict=True)}, mu_z_se=tuple(float(v) for v in mu_z_se),
+        global_t=t_map, global_exceed=exceed, global_alpha=alpha_scan,
     )
 
 
-#: Bootstrap resamples of the summit check's z (:meth:`SurrogateCheck.decided`) and their fixed seed.
-BOOTSTRAP_Z = 400
-BOOTSTRAP_Z_SEED = 20260
+def _pooled_z(rows: FloatArray) -> FloatArray:
+    """z of every row (the map first, then the realisations) per column against the median and 1.4826 × MAD of
+    all rows together (exchangeable under the null).  A column all rows share has z = 0; one the rows differ
+    in with no spread (MAD and sd 0 cannot differ) is impossible; a row's NaN stays NaN."""
+    center, scale = robust_center_scale(rows)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        z = (rows - center) / scale
+    z = np.where(np.isfinite(scale) & (scale > 0.0), z, np.where(rows == center, 0.0, np.inf))
+    return np.where(np.isnan(rows), np.nan, z)
 
 
-def _worst_measured(z: FloatArray, measured: FloatArray) -> FloatArray:
-    """Per column, the measured value of the scan whose z has the largest magnitude (as :func:`_worst`)."""
-    idx = np.argmax(np.abs(np.where(np.isnan(z), 0.0, z)), axis=0)
-    return np.take_along_axis(measured, idx[None, :], axis=0)[0]
-
-
-def _bootstrap_z_se(samples: FloatArray, measured: FloatArray) -> FloatArray:
-    """Bootstrap SE of z = (measured − median)/(1.4826 MAD) over resamples of the realisations (rows)."""
-    x = np.asarray(samples, dtype=np.float64)
-    rng = np.random.default_rng(BOOTSTRAP_Z_SEED)
-    r = x.shape[0]
-    zb = np.empty((BOOTSTRAP_Z, x.shape[1]))
-    for b in range(BOOTSTRAP_Z):
-        c, sc = robust_center_scale(x[rng.integers(0, r, r)])
-        with np.errstate(divide="ignore", invalid="ignore"):
-            zb[b] = (measured - c) / sc
-    zb[~np.isfinite(zb)] = np.nan
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RuntimeWarning)
-        return np.asarray(np.nanstd(zb, axis=0, ddof=1), dtype=np.float64)
+def _max_abs(z: FloatArray) -> FloatArray:
+    """Per row the largest |z| over the columns with a value (−∞ for a row without any)."""
+    a = np.abs(z)
+    return np.asarray(np.max(np.where(np.isnan(a), -np.inf, a), axis=1), dtype=np.float64)
 
 
 #: 1.4826 × MAD estimates a Gaussian sd; its asymptotic variance is about 1.36 σ²/R (efficiency 37 %).

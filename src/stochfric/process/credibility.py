@@ -107,19 +107,20 @@ def assess_credibility(
     if not surrogate_ok:
         out.append(ValidityWarning(
             "surrogate-check-failed",
-            f"{name}: the measured map lies outside its surrogate ensemble (|z| >= 3) for "
-            f"{', '.join(surrogate_failures)}: the surrogates do not resemble this surface; try another "
+            f"{name}: the measured map lies outside its surrogate ensemble (the largest |z| beyond the Monte Carlo "
+            f"rank test's critical value, 5 % family-wise, decided) at {', '.join(surrogate_failures)}: the "
+            "surrogates do not resemble this surface; try another "
             "--surrogate (quilt keeps local non-Gaussian structure) or check the preparation",
         ))  # fmt: skip
     if surrogate_ok and surrogate_undecided:
         out.append(ValidityWarning(
             UNDECIDED_SUMMIT_CODE,
-            f"{name}: the measured map's {', '.join(surrogate_undecided)} lie(s) within the decision margin "
-            f"(Monte Carlo standard errors, 5 % family-wise) of the summit check's limit with {realizations} "
+            f"{name}: the summit check's Monte Carlo p-value (the map's largest |z|, at "
+            f"{', '.join(surrogate_undecided)}) lies within its binomial error of 5 % with {realizations} "
             "realisations: another seed could decide either way; "
             + (f"about {realizations_to_decide} realisations would decide it (--summit-budget lets the check grow "
                "the ensemble to decide)" if realizations_to_decide else
-               "a quantity sits on the limit itself: more realisations would not decide it"),
+               "the map sits on the limit itself: no affordable number of realisations decides it"),
         ))  # fmt: skip
     if window_ok is False and holdout is None:  # the in-sample check gates only where no held-out test ran
         out.append(ValidityWarning(

@@ -17,11 +17,21 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+import numpy.typing as npt
 from scipy import stats as sps
 
 from stochfric.errors import AnalysisError
 
-__all__ = ["FLIP_ALPHA", "decision_margin", "looks_within"]
+__all__ = [
+    "FLIP_ALPHA",
+    "SUMMIT_ALPHA",
+    "critical_value",
+    "decision_margin",
+    "looks_within",
+    "monte_carlo_draws_to_decide",
+    "monte_carlo_rank_decision",
+]
 
 #: The largest probability that a decided verdict is one another seed would reverse (all quantities and
 #: looks of one check together).
@@ -45,3 +55,60 @@ def looks_within(start: int, budget: int) -> int:
     if s < 1:
         raise AnalysisError(f"a check needs at least 1 realisation to start with, got {start}")
     return 1 + max(0, math.floor(math.log2(max(b, s) / s) + 1e-12))
+
+
+#: The family-wise false-alarm probability of the summit check's Monte Carlo test (all quantities and scans
+#: together): a map that *is* a member of its surrogate ensemble is called not credible with probability ≤ 5 %.
+SUMMIT_ALPHA = 0.05
+
+
+def monte_carlo_rank_decision(exceed: int, realizations: int, alpha: float, looks: int = 1,
+                              flip_alpha: float = FLIP_ALPHA) -> str:
+    """The sequential decision of a Monte Carlo rank test (Barnard 1963; Besag & Clifford 1991).
+
+    ``exceed`` = K of ``realizations`` = R null draws have a statistic at least as extreme as the data's.  The
+    exact Monte Carlo p-value is (1 + K)/(R + 1); the p-value of infinitely many draws, p*, is estimated by
+    K/R with a binomial error.  Decided ``"fail"`` when the one-sided Clopper–Pearson upper bound of p* at
+    confidence 1 − ε lies below ``alpha`` (and (1 + K)/(R + 1) ≤ alpha, the exact test rejects), ``"pass"``
+    when the lower bound lies above it, else ``"undecided"`` (more draws decide it).  ε = ``flip_alpha`` /
+    ``looks``: over all looks the chance that a map whose p* lies exactly at ``alpha`` is decided on either
+    side is at most ``flip_alpha`` — one statistic, so no Bonferroni factor over quantities."""
+    k, r, n = int(exceed), int(realizations), int(looks)
+    if r < 1 or not 0 <= k <= r or n < 1 or not 0.0 < alpha < 1.0:
+        raise AnalysisError(f"a Monte Carlo decision needs 0 <= K <= R, R >= 1, looks >= 1 and 0 < alpha < 1, got "
+                            f"K = {exceed}, R = {realizations}, looks = {looks}, alpha = {alpha}")
+    eps = float(flip_alpha) / n
+    upper = 1.0 if k >= r else float(sps.beta.ppf(1.0 - eps, k + 1, r - k))
+    lower = 0.0 if k <= 0 else float(sps.beta.ppf(eps, k, r - k + 1))
+    if upper < alpha and (1.0 + k) / (r + 1.0) <= alpha:
+        return "fail"
+    if lower > alpha:
+        return "pass"
+    return "undecided"
+
+
+def monte_carlo_draws_to_decide(exceed: int, realizations: int, alpha: float, looks: int = 1,
+                                flip_alpha: float = FLIP_ALPHA) -> int | None:
+    """About how many draws decide an undecided :func:`monte_carlo_rank_decision`: with p̂ = K/R the binomial
+    bound is decided once z_ε √(p̂(1 − p̂)/R') < |p̂ − alpha|, R' = z_ε² p̂(1 − p̂)/(p̂ − alpha)² (at least the
+    draws an exact test needs to reject at all, 1/alpha − 1), rounded up to R·2^j; None when p̂ is within
+    0.1 alpha of alpha (on the limit: no affordable number decides it) or the decision is made."""
+    k, r = int(exceed), int(realizations)
+    if monte_carlo_rank_decision(k, r, alpha, looks, flip_alpha) != "undecided":
+        return None
+    p = max(k, 0.5) / r  # K = 0: half a count, so that the estimate is finite
+    gap = abs(p - alpha)
+    if gap < 0.1 * alpha:
+        return None
+    z = float(sps.norm.isf(float(flip_alpha) / int(looks)))
+    need = max(z * z * p * (1.0 - p) / (gap * gap), 1.0 / alpha)
+    return int(r * 2 ** max(1, math.ceil(math.log2(need / r)))) if need > r else 2 * r
+
+
+def critical_value(t_null: npt.ArrayLike, alpha: float) -> float:
+    """The largest-|z| critical value of the exact Monte Carlo test at ``alpha``: it rejects when (1 + K)/(R + 1)
+    ≤ alpha, K = #(T_j ≥ T_map), i.e. when T_map exceeds the (k* + 1)-th largest T_j, k* = ⌊alpha (R + 1)⌋ − 1.
+    With too few realisations to reject at all (alpha (R + 1) < 1) the largest T_j (the envelope)."""
+    t = np.sort(np.asarray(t_null, dtype=np.float64))[::-1]
+    k = math.floor(alpha * (t.size + 1) + 1e-9) - 1
+    return float(t[max(k, 0)]) if t.size else math.inf

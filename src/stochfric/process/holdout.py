@@ -64,6 +64,12 @@ from stochfric.contact.asperity import bowden_tabor_mu
 from stochfric.contact.materials import Material
 from stochfric.errors import AnalysisError
 from stochfric.io_utils import json_ready
+from stochfric.process.decisions import (
+    critical_value,
+    looks_within,
+    monte_carlo_draws_to_decide,
+    monte_carlo_rank_decision,
+)
 from stochfric.process.ensemble import SurrogateOptions, summit_statistics, tile_contact, tile_grid
 from stochfric.random import SeedLike, spawn_seed_sequences
 from stochfric.surface.io import Surface
@@ -89,7 +95,7 @@ HOLDOUT_ALPHA = 0.05
 HOLDOUT_MIN_SUMMITS = 20
 #: Surrogates per fold to start with, and the most the sequential decision may make.
 HOLDOUT_REALIZATIONS = 24
-HOLDOUT_MAX_REALIZATIONS = 96
+HOLDOUT_MAX_REALIZATIONS = 192
 #: Monte Carlo standard errors a decision keeps from the threshold.  Not the Bonferroni margin of the summit
 #: check (:func:`~stochfric.process.decisions.decision_margin`, 3.45 for 60 tests and 3 looks): a reversal
 #: needs one seed to decide each way, a 2k-SE swing, probability about Φ(−k)² ≈ 5·10⁻⁴ per test on its
@@ -139,10 +145,14 @@ class HoldoutValidation:
     detectable_scatter_ratio: float
     detectable_mean_shift_sd: float
     tests: tuple[HeldOutTest, ...] = field(repr=False)
+    #: K of the rank test: surrogate pairs whose largest |z| reaches the held-out one (None: a record from
+    #: before the rank test, decided by |z| against a Bonferroni threshold).
+    exceedances: int | None = None
     rule: str = ("2-fold cross-validation over halves of every scan; per window mu(u), summit count, mean summit "
-                 "radius, summit-height sd; mean and sd over the windows of a map against their distribution over "
-                 "the surrogates of the other half; |z| <= Bonferroni threshold (family-wise alpha); decided only "
-                 "2 Monte Carlo SE away from it, else more surrogates")
+                 "radius, summit-height sd; mean and sd over the windows of a map, z against the held-out value and "
+                 "the surrogates of the other half together; Monte Carlo rank test of the largest |z| over all "
+                 "tests of both folds (family-wise alpha, exact for any number of surrogates); decided only when "
+                 "the Clopper-Pearson bound of its p-value excludes alpha, else more surrogates")
 
     @property
     def credible(self) -> bool:
@@ -162,7 +172,7 @@ class HoldoutValidation:
         """The JSON form (the tests as a list of dicts)."""
         out = {k: getattr(self, k) for k in (
             "method", "verdict", "reason", "alpha", "threshold", "realizations", "tiles", "held_out_windows",
-            "max_abs_z", "worst", "detectable_scatter_ratio", "detectable_mean_shift_sd", "rule")}
+            "max_abs_z", "worst", "detectable_scatter_ratio", "detectable_mean_shift_sd", "exceedances", "rule")}
         out["window_size_m"] = list(self.window_size_m)
         out["tests"] = [t.__dict__.copy() for t in self.tests]
         return json_ready(out)
@@ -287,25 +297,47 @@ def _scans_needed(c: float, r: int, rel: float, scans: int) -> int:
     return max(scans + 1, math.ceil(scans * (rel / lo) ** 2)) if lo > 0 else scans + 1
 
 
-def _fold_tests(fold: int, held: FloatArray, model: FloatArray, names: list[str]) -> list[HeldOutTest]:
-    """Tests of one fold: ``held`` (2, Q) statistics of the held-out windows, ``model`` (R, 2, Q) of the surrogates."""
-    out = []
+def _fold_tests(fold: int, held: FloatArray, model: FloatArray,
+                names: list[str]) -> tuple[list[HeldOutTest], FloatArray]:
+    """Tests of one fold: ``held`` (2, Q) statistics of the held-out windows, ``model`` (R, 2, Q) of the
+    surrogates.
+
+    Per statistic z = (value − mean)/sd with mean and sd over the held-out value and the R surrogates together
+    (exchangeable under "the model describes the held-out half"), for the held-out half (the tests) and for
+    every surrogate: the second result, (R, tests), feeds the rank test of :func:`holdout_validation`.  A
+    statistic a surrogate lacks (NaN) does not count for that surrogate."""
+    out, null = [], []
     for s, stat in enumerate(("mean", "sd")):
         for q, name in enumerate(names):
-            values = model[:, s, q]
-            values = values[np.isfinite(values)]
+            column = model[:, s, q]
+            values = column[np.isfinite(column)]
             x = float(held[s, q])
             if values.size < 3 or not math.isfinite(x):
                 continue
             m, sd = float(values.mean()), float(values.std(ddof=1))
-            if sd <= 0.0:
-                z = 0.0 if x == m else math.copysign(math.inf, x - m)
+            pooled = np.concatenate([[x], values])
+            pm, psd = float(pooled.mean()), float(pooled.std(ddof=1))
+            if psd <= 0.0:
+                z = 0.0
+                z_null = np.zeros(column.shape)
             else:
-                z = (x - m) / (sd * math.sqrt(1.0 + 1.0 / values.size))
-            se = math.sqrt(1.0 / values.size + z * z / (2.0 * (values.size - 1))) if math.isfinite(z) else 0.0
+                z = (x - pm) / psd
+                z_null = (column - pm) / psd
+            se = math.sqrt(1.0 / values.size + z * z / (2.0 * (values.size - 1)))
             out.append(HeldOutTest(fold=fold, quantity=name, statistic=stat, held_out=x, model_mean=m, model_sd=sd,
                                    z=float(z), mc_se=float(se)))
-    return out
+            null.append(np.where(np.isfinite(z_null), z_null, np.nan))
+    return out, (np.stack(null, axis=1) if null else np.zeros((model.shape[0], 0)))
+
+
+def _rank_test(tests: list[HeldOutTest], null: FloatArray, alpha: float) -> tuple[int, float, float]:
+    """The Monte Carlo rank test of the largest |z| over every test of both folds (module docstring): K, the
+    surrogates (paired across the folds by index) whose largest |z| reaches the held-out one; T, the held-out
+    largest |z|; c, the critical value of T at ``alpha`` (:func:`~stochfric.process.decisions.critical_value`)."""
+    t_held = max((abs(t.z) for t in tests), default=0.0)
+    a = np.abs(null)
+    t_null = np.max(np.where(np.isnan(a), -np.inf, a), axis=1) if a.shape[1] else np.zeros(a.shape[0])
+    return int(np.sum(t_null >= t_held)), float(t_held), critical_value(t_null, alpha)
 
 
 def holdout_validation(
@@ -338,12 +370,15 @@ def holdout_validation(
     held = [np.mean([_statistics(_window_quantities(pair[1 - f].heights_m, pair[1 - f].grid_spacing_m, material,
                                                     u, tiles, rule)) for pair in halves], axis=0)
             for f in range(2)]  # fold f trains on half f, tests on half 1 − f (pooled over scans)
-    seeds = spawn_seed_sequences(seed, 2 * max_realizations)
+    # one stream per fold, surrogate k its child k: the first surrogates never depend on the budget
+    seeds = [spawn_seed_sequences(fold_seed, int(max_realizations)) for fold_seed in spawn_seed_sequences(seed, 2)]
     settings = options.settings
     model: list[list[FloatArray]] = [[], []]
     r = 0
     target = min(int(realizations), int(max_realizations))
     c = 0.0
+    exceed = 0
+    looks = looks_within(target, int(max_realizations))
     tests: list[HeldOutTest] = []
     while True:
         for f in range(2):
@@ -351,39 +386,46 @@ def holdout_validation(
                 stats_k = []
                 for pair in halves:
                     train = pair[f]
-                    gen = np.random.Generator(np.random.PCG64(seeds[f * max_realizations + k]))
+                    gen = np.random.Generator(np.random.PCG64(seeds[f][k]))
                     h = method.predictive_heights(train.heights_m, gen, settings=settings)
                     stats_k.append(_statistics(_window_quantities(h, train.grid_spacing_m, material, u, tiles, rule)))
                 model[f].append(np.mean(stats_k, axis=0))
                 if progress is not None:
                     progress(len(model[0]) + len(model[1]), 2 * target)
         r = target
-        tests = _fold_tests(1, held[0], np.stack(model[0]), names) + _fold_tests(2, held[1], np.stack(model[1]), names)
-        c = float(sps.norm.isf(alpha / (2.0 * max(len(tests), 1))))
-        fail = any(abs(t.z) - DECISION_MARGIN * t.mc_se > c for t in tests)
-        passed = all(abs(t.z) + DECISION_MARGIN * t.mc_se < c for t in tests)
+        tests1, null1 = _fold_tests(1, held[0], np.stack(model[0]), names)
+        tests2, null2 = _fold_tests(2, held[1], np.stack(model[1]), names)
+        tests = tests1 + tests2
+        exceed, t_held, c = _rank_test(tests, np.concatenate([null1, null2], axis=1), alpha)
+        decision = monte_carlo_rank_decision(exceed, r, alpha, looks)
+        fail, passed = decision == "fail", decision == "pass"
         ratio, shift, rel = _power(tests, c, r)
         if fail or passed or r >= max_realizations:
             break
         target = min(2 * r, int(max_realizations))
     worst = max(tests, key=lambda t: abs(t.z)) if tests else None
+    p_value = (1.0 + exceed) / (r + 1.0)
     if fail and worst is not None:
         verdict = "not credible"
-        reason = (f"held-out {worst.statistic} of {worst.quantity} (fold {worst.fold}) lies at z = {worst.z:+.2f} "
-                  f"± {worst.mc_se:.2f} of the model's distribution, beyond {c:.2f}")
+        reason = (f"held-out {worst.statistic} of {worst.quantity} (fold {worst.fold}) lies at z = {worst.z:+.2f} of "
+                  f"the model's distribution, beyond {c:.2f}: {exceed} of {r} surrogate pairs reach the held-out "
+                  f"largest |z| (Monte Carlo p = {p_value:.3f} < {alpha:g}, decided)")
     elif passed and ratio <= REQUIRED_SCATTER_RATIO:
         verdict = "credible"
-        reason = f"every held-out statistic within {c:.2f} standard deviations of the model's (2 MC SE margin)"
+        reason = (f"{exceed} of {r} surrogate pairs reach the held-out largest |z| {t_held:.2f} (Monte Carlo p = "
+                  f"{p_value:.2f} > {alpha:g}, decided)")
     elif passed:
         verdict = "undecided"
-        reason = (f"no held-out statistic contradicts the model, but the test detects only a scatter ratio of μ "
-                  f"≥ {ratio:.2g} (needed: {REQUIRED_SCATTER_RATIO:g}); about {_scans_needed(c, r, rel, len(scans))} "
-                  f"scans of this size would decide it")
+        reason = (f"no held-out statistic contradicts the model (Monte Carlo p = {p_value:.2f}), but the test "
+                  f"detects only a scatter ratio of μ ≥ {ratio:.2g} (needed: {REQUIRED_SCATTER_RATIO:g}); about "
+                  f"{_scans_needed(c, r, rel, len(scans))} scans of this size would decide it")
     else:
         verdict = "undecided"
-        near = [t for t in tests if abs(abs(t.z) - c) <= DECISION_MARGIN * t.mc_se]
-        reason = (f"{len(near)} statistic(s) within 2 Monte Carlo SE of the threshold {c:.2f} after {r} "
-                  f"surrogates per fold; about {4 * r} would decide it (raise --validation-budget)")
+        need = monte_carlo_draws_to_decide(exceed, r, alpha, looks)
+        reason = (f"{exceed} of {r} surrogate pairs reach the held-out largest |z| {t_held:.2f} (Monte Carlo p = "
+                  f"{p_value:.3f}): within the Monte Carlo error of {alpha:g}; "
+                  + (f"about {need} per fold would decide it (raise --validation-budget)" if need else
+                     "the held-out half sits on the limit: more surrogates would not decide it"))
         if not ratio <= REQUIRED_SCATTER_RATIO:
             reason += (f"; even then the test detects only a scatter ratio of μ ≥ {ratio:.2g}: about "
                        f"{_scans_needed(c, r, rel, len(scans))} scans of this size are needed")
@@ -391,6 +433,7 @@ def holdout_validation(
     dx, dy = scans[0].grid_spacing_m
     return HoldoutValidation(
         method=method.name, verdict=verdict, reason=reason, alpha=alpha, threshold=c, realizations=r, tiles=tiles,
+        exceedances=exceed,
         window_size_m=((i1 - i0) * dx, (j1 - j0) * dy), held_out_windows=tiles * tiles * len(scans),
         max_abs_z=float(max((abs(t.z) for t in tests), default=0.0)),
         worst=f"{worst.statistic} of {worst.quantity}, fold {worst.fold}" if worst else "",

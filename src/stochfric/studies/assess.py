@@ -125,7 +125,7 @@ class ForceVerdict:
 
 @dataclass(frozen=True, kw_only=True, eq=False)
 class Assessment:
-    """The result of :func:`assess`: status (``verdict`` | ``not credible`` | ``not covered``), the
+    """The result of :func:`assess`: status (``verdict`` | ``not credible`` | ``undecided`` | ``not covered``), the
     reasons, the verdict per force, the scan analysis and the study results (None where not run)."""
 
     status: str
@@ -456,8 +456,9 @@ def assess(
             f"a measured static coefficient ([friction_law] mu0 = {mu_top + 0.2:.2g} or more) or law = \"III\"")
     if not cred.credible and not cfg.accept_not_credible:
         reasons = [f"[{r.code}] {r.message}" for r in cred.reasons]
-        result = Assessment(status="not credible", reasons=reasons, approach_m=u, analysis=run, forces=[],
-                            studies={}, **base)
+        # "undecided" is said as such: the same exit 3, but what would decide it differs (more runs, more area)
+        result = Assessment(status="undecided" if cred.status == "undecided" else "not credible", reasons=reasons,
+                            approach_m=u, analysis=run, forces=[], studies={}, **base)
         return _finish(result, directory)
     studies, summary = _run_studies(machine_file, directory / "friction_process" / MODEL_FILE, m, cfg, directory,
                                     progress)

@@ -1,7 +1,7 @@
-"""The summit check grows its own ensemble (issue 29 item 6): realisations are added (doubled) while a quantity
-lies within the decision margin (Monte Carlo SE, Bonferroni over quantities and looks) of
-the limit, until the check decides or ``summit_max_realizations`` is spent; a
-grown ensemble equals a fresh one of that size, so the numbers do not depend on how it grew."""
+"""The summit check grows its own ensemble (issue 29 item 6): realisations are added (doubled) while its
+Monte Carlo rank test is within its binomial error of the level (records from before the rank test: a quantity
+within the decision margin of the limit), until the check decides or ``summit_max_realizations`` (default 4 R)
+is spent; a grown ensemble equals a fresh one of that size, so the numbers do not depend on how it grew."""
 
 from __future__ import annotations
 
@@ -71,8 +71,8 @@ def test_grows_until_decided(coarse: Surface, monkeypatch: pytest.MonkeyPatch) -
 def test_stops_at_the_budget(coarse: Surface, monkeypatch: pytest.MonkeyPatch) -> None:
     n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3, summit_max_realizations=12)
     assert seen == [3, 6, 12] and n == 12
-    n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3)  # default: no growth
-    assert seen == [3] and n == 3
+    n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3)  # default: up to 4 R
+    assert seen == [3, 6, 12] and n == 12
     n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3, summit_max_realizations=3)
     assert seen == [3] and n == 3
 
@@ -80,7 +80,7 @@ def test_stops_at_the_budget(coarse: Surface, monkeypatch: pytest.MonkeyPatch) -
 def test_budget_below_the_realisations_is_refused() -> None:
     with pytest.raises(AnalysisError, match=r"summit_max_realizations \(5\) must be at least realizations"):
         AnalysisConfig(realizations=10, summit_max_realizations=5)
-    assert AnalysisConfig(realizations=10).summit_max_realizations == 10
+    assert AnalysisConfig(realizations=10).summit_max_realizations == 40
 
 
 def test_the_margin_counts_quantities_and_looks() -> None:
@@ -121,3 +121,49 @@ def test_realisations_to_decide_scale_with_the_gap() -> None:
     assert check(0.6).realizations_to_decide(100) == 800
     assert check(0.1).realizations_to_decide(100) is None  # decided already
     assert check(0.3, z=3.0).realizations_to_decide(100) is None  # on the limit: nothing decides it
+
+
+def test_the_rank_decision_follows_the_binomial_error_of_its_p_value() -> None:
+    """K of R draws reach the data: decided 'fail' when the Clopper–Pearson upper bound of p (confidence
+    1 − 0.05/looks) lies below α (and the exact test rejects), 'pass' when the lower bound lies above it."""
+    from scipy import stats as sps
+
+    from stochfric.process.decisions import (
+        critical_value,
+        monte_carlo_draws_to_decide,
+        monte_carlo_rank_decision,
+    )
+
+    assert monte_carlo_rank_decision(0, 100, 0.05, looks=3) == "fail"  # bound 1 − (0.05/3)^(1/100) = 0.040
+    assert 1 - (0.05 / 3) ** (1 / 100) < 0.05 < 1 - (0.05 / 3) ** (1 / 48)
+    assert monte_carlo_rank_decision(0, 48, 0.05, looks=3) == "undecided"
+    assert monte_carlo_rank_decision(0, 12, 0.05) == "undecided"  # the exact test cannot reject with 12 draws
+    assert monte_carlo_rank_decision(11, 100, 0.05, looks=3) == "pass"
+    assert sps.beta.ppf(0.05 / 3, 11, 90) > 0.05 > sps.beta.ppf(0.05 / 3, 10, 91)
+    assert monte_carlo_rank_decision(10, 100, 0.05, looks=3) == "undecided"
+    need = monte_carlo_draws_to_decide(2, 100, 0.05, looks=3)
+    assert need is not None and need > 100 and monte_carlo_draws_to_decide(0, 100, 0.05, looks=3) is None
+    assert monte_carlo_draws_to_decide(5, 100, 0.05) is None  # p̂ = α: no affordable number decides it
+    # the critical value: the exact test rejects iff (1 + K)/(R + 1) <= α iff T > the ⌊α(R + 1)⌋-th largest T_j
+    t = np.arange(1.0, 100.0)  # 99 draws: ⌊0.05 × 100⌋ = 5 → the 5th largest, 95
+    assert critical_value(t, 0.05) == 95.0
+    assert critical_value(t[:10], 0.05) == 10.0  # too few to reject at all: the envelope
+
+
+def test_the_summit_check_has_its_stated_false_alarm_rate() -> None:
+    """Exactness of the rank test: a 'map' drawn from the same (skewed, correlated) distribution as its R
+    realisations is called not credible with probability ≤ α at any R.  400 trials at R = 39, α = 0.05: the
+    exact rate of (1 + K)/(R + 1) ≤ α is 2/40 = 0.05; the count must lie within the binomial 99.9 % range of 20."""
+    from stochfric.process.checks import _max_abs, _pooled_z
+    from stochfric.process.decisions import critical_value
+
+    rng = np.random.default_rng(11)
+    cov = np.full((6, 6), 0.6) + 0.4 * np.eye(6)
+    rejections = 0
+    for _ in range(400):
+        rows = np.exp(rng.multivariate_normal(np.zeros(6), cov, size=40))  # row 0 is the "map"
+        t = _max_abs(_pooled_z(rows))
+        k = int(np.sum(t[1:] >= t[0]))
+        rejections += (1 + k) / 40 <= 0.05
+        assert (t[0] > critical_value(t[1:], 0.05)) == ((1 + k) / 40 <= 0.05)
+    assert 7 <= rejections <= 36, rejections
