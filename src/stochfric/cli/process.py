@@ -274,8 +274,11 @@ def _echo_checks(analysis: StatisticalContactAnalysis) -> None:
                    "held-out test)", err=True)
     ho = analysis.holdout
     if ho is not None:
-        typer.echo(f"check: held out ({ho.method}, {ho.realizations} surrogates per fold) max |z| "
-                   f"{_num(ho.max_abs_z, '.2f')} (threshold {_num(ho.threshold, '.2f')}) → {ho.verdict}", err=True)
+        reach = (f", {ho.exceedances} of {ho.realizations} surrogate pairs as extreme"
+                 if ho.exceedances is not None and ho.tests else "")
+        typer.echo(f"check: held out ({ho.method}, {ho.realizations} surrogates per fold) largest |z| "
+                   f"{_num(ho.max_abs_z, '.2f')} (rank tail probability {_num(ho.held_out_rank_p, '.3f')}{reach}; "
+                   f"detects a scatter ratio ≥ {_num(ho.detectable_scatter_ratio, '.2g')}) → {ho.verdict}", err=True)
 
 
 @contextlib.contextmanager

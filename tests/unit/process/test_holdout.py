@@ -96,3 +96,50 @@ def test_measured_windows_rest_on_the_measurement_with_intervals() -> None:
     assert np.all(mw.mu_mean_ci95[:, 0] <= mw.mu_mean) and np.all(mw.mu_mean <= mw.mu_mean_ci95[:, 1])
     assert np.all(mw.effective_windows <= mw.windows) and np.all(mw.effective_windows > 0)
     assert measured_windows([_field((40, 40), 1.5)], MAT, _u(_field((40, 40), 1.5)), rule="thesis") is None
+
+
+def test_the_extreme_rank_test_has_its_stated_false_alarm_rate() -> None:
+    """Exactness of the held-out test's global extreme-rank-length test: held-out statistics drawn from the same
+    (skewed, correlated) distribution as the R surrogates' are refused with probability ≤ α, ties counting
+    against the data (conservative).  400 trials, R = 39, 12 tests: the exact rate of (1 + K)/40 ≤ 0.05 is at
+    most 2/40; the count must not exceed the binomial 99.9 % bound of 20 (36), and a test that never rejects
+    is no test (≥ 3).  Measured: 13 of 400 (3.3 %: ties make it conservative)."""
+    from stochfric.process.holdout import extreme_rank_exceedances, rank_tail_probabilities
+
+    rng = np.random.default_rng(3)
+    cov = np.full((12, 12), 0.5) + 0.5 * np.eye(12)
+    rejections = 0
+    for _ in range(400):
+        rows = np.exp(rng.multivariate_normal(np.zeros(12), cov, size=40))
+        k, _sorted = extreme_rank_exceedances(rows)
+        rejections += (1 + k) / 40 <= 0.05
+    assert 3 <= rejections <= 36, rejections
+    # a held-out row far outside every column is as extreme as no draw; NaN counts as not extreme
+    rows = rng.standard_normal((40, 5))
+    rows[0] = 10.0
+    assert extreme_rank_exceedances(rows)[0] == 0
+    p = rank_tail_probabilities(np.array([[np.nan, 1.0], [0.0, 2.0], [1.0, 3.0]]))
+    assert p[0, 0] == 1.0 and p[0, 1] == pytest.approx(2 / 3)
+
+
+def test_pooled_scans_get_their_own_surrogate_streams(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Surrogate k of each pooled scan comes from its own stream (they shared one before 2026-11-28, so the
+    pooled statistics did not average and the test's power did not grow with the scans); scan 0 keeps the fold's
+    stream, so a single scan's surrogates are unchanged."""
+    from stochfric.surface import surrogates
+
+    first: list[float] = []
+
+    def recording(self, heights, rng, *, settings):  # type: ignore[no-untyped-def]
+        first.append(float(rng.standard_normal()))
+        return heights + 1e-9 * rng.standard_normal(heights.shape)
+
+    monkeypatch.setattr(surrogates.PhaseSurrogate, "predictive_heights", recording)
+    a, b = _field((300, 300), 1.5, seed=1), _field((300, 300), 1.5, seed=2)
+    holdout_validation([a, b], MAT, _u(a), SurrogateOptions(method="phase"), seed=4, realizations=4,
+                       max_realizations=4)
+    pooled = first[:]
+    first.clear()
+    holdout_validation([a], MAT, _u(a), SurrogateOptions(method="phase"), seed=4, realizations=4, max_realizations=4)
+    assert len(set(pooled)) == len(pooled) == 16  # 2 folds × 4 surrogates × 2 scans, all different
+    assert pooled[0::2] == first  # scan 0's draws are the single scan's
