@@ -2,8 +2,8 @@
 
 Crops of the periodic 1700² Gaussian self-affine map of ``benchmarks/holdout_gaussian_maps.py`` (H = 0.8,
 roll-off at 50 points, spacing 5.3 mm / 1700 = 3.118 µm), scaled to Sq 1.25 µm (2.5 × the benchmark's, so that
-brake-pad gives E[μ] of a brake, 0.4–0.5), at the corners of a 3 × 3 grid 594 points
-apart (nine disjoint scans: the held-out test needs about seven of this size to see a factor 2 in σ_μ), as ``.npy`` height matrices in metres (give ``--size-um 1596.24:1596.24 --height-unit m``).  No shared
+brake-pad gives E[μ] of a brake, 0.4–0.5), at the corners of a 3 × 3 grid 594 points apart (nine disjoint
+scans), as ``.npy`` height matrices in metres (give ``--size-um 1596.24:1596.24 --height-unit m``).  No shared
 scan gives a credible surface model (docs/statistical_contact.md §0d); these show what a credible case looks
 like, on data whose truth is known:
 
@@ -13,24 +13,16 @@ like, on data whose truth is known:
 from __future__ import annotations
 
 import argparse
+import sys
 from pathlib import Path
 
 import numpy as np
 
-N, SIDE, SPACING_M, SQ_M = 512, 1700, 5.3e-3 / 1700, 1.25e-6
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+from holdout_gaussian_maps import SPACING_M, gaussian_map
+
+N, SIDE, SQ_M = 512, 1700, 1.25e-6
 CORNERS = tuple((i, j) for i in (0, 594, 1188) for j in (0, 594, 1188))
-
-
-def gaussian_map(seed: int, hurst: float = 0.8, rolloff: float = 0.02) -> np.ndarray:
-    """The periodic 1700² map of ``benchmarks/holdout_gaussian_maps.gaussian_map``, scaled to ``SQ_M``."""
-    rng = np.random.default_rng(seed)
-    k = np.hypot(np.fft.fftfreq(SIDE)[:, None], np.fft.rfftfreq(SIDE)[None, :])
-    k[0, 0] = 1.0
-    psd = np.maximum(k, rolloff) ** (-2.0 * (1.0 + hurst))
-    psd[0, 0] = 0.0
-    coef = np.sqrt(psd) * (rng.standard_normal(psd.shape) + 1j * rng.standard_normal(psd.shape))
-    z = np.fft.irfft2(coef, s=(SIDE, SIDE))
-    return np.asarray(z * (SQ_M / z.std()))
 
 
 def main() -> None:
@@ -39,7 +31,7 @@ def main() -> None:
     ap.add_argument("--seed", type=int, default=1)
     args = ap.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
-    whole = gaussian_map(args.seed)
+    whole = gaussian_map(SIDE, args.seed) * (SQ_M / 0.5e-6)
     for k, (i, j) in enumerate(CORNERS):
         path = args.out / f"gaussian-{args.seed}-{k}.npy"
         np.save(path, whole[i:i + N, j:j + N])
