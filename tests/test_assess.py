@@ -107,3 +107,27 @@ def test_the_contact_model_is_named_and_its_spread_reported(tmp_path: Path) -> N
     assert "Persson's theory" in contact and "models gw, persson differ by up to" in contact
     assert any(line.startswith("model choice: E[μ] over gw, persson spans") for line in screen)
     assert (out / "friction_process" / "contact_models.json").is_file()
+
+
+@pytest.mark.slow
+def test_a_credible_surface_gives_a_verdict_without_forcing(tmp_path: Path) -> None:
+    """The path a user wants: scans whose surface model is credible give exit 0 and a verdict per force, no
+    --accept-not-credible.  No shared scan is credible (docs/statistical_contact.md §0d), so nine 512² crops of a
+    synthetic Gaussian surface whose random-phase model is exact (docs/examples/gaussian_scans.py) on the
+    calliper rig of docs/assess.md.  Slow tier: about 1 min on 2 cores."""
+    import subprocess
+    import sys
+
+    root = Path(__file__).resolve().parents[1]
+    subprocess.run([sys.executable, str(root / "docs/examples/gaussian_scans.py"), str(tmp_path / "scans")],
+                   check=True, capture_output=True)
+    scans = sorted((tmp_path / "scans").glob("*.npy"))
+    settings = AssessSettings(runs=2, refine=False, forces=1, damping_points=3, tau_end=5.0, workers=2,
+                              analysis=AnalysisConfig(realizations=40, long_surfaces=3, seed=1, surrogate="phase"),
+                              normal_force_study=False)
+    res = assess(scans, "brake-pad", root / "docs/examples/calliper-rig.toml", out=tmp_path / "o", settings=settings,
+                 physical_size_m=(1596.24e-6, 1596.24e-6), height_unit="m")
+    assert res.exit_code == 0 and res.status == "verdict" and not res.forced, res.reasons
+    screen = res.first_screen()
+    assert not screen[0].startswith("WARNING") and any("the surface model is credible" in line for line in screen)
+    assert len(res.forces) == 1 and (tmp_path / "o" / "damping" / "damping.json").is_file()

@@ -162,11 +162,27 @@ class Assessment:
             f"A_nom = {m.contact_area:g} m², N = {lo:g}–{hi:g} N (p = {lo / m.contact_area / 1e6:.3g}–"
             f"{hi / m.contact_area / 1e6:.3g} MPa), D = {m.damping_ratio:g}",
             self._contact_line(),
-            f"status:     {self.status}" + (f" — {'; '.join(self.reasons)}" if self.reasons else ""),
+            f"status:     {self.status}" + (f" — {'; '.join(self.reasons)}" if self.reasons else self._credible_why()),
         ]
         head += [f.line(self.risk_level) for f in self.forces]
         head += self.how_sure()
         return head
+
+    def _credible_why(self) -> str:
+        """Why a verdict's surface model was called credible: the two rank tests, in numbers."""
+        run = self.analysis
+        if self.status != "verdict" or run is None:
+            return ""
+        a = run.analysis
+        sc, ho = a.surrogate_check, a.holdout
+        r = int(a.ensemble.contact_area_m2.shape[0])
+        parts = []
+        if sc.global_exceed is not None:
+            parts.append(f"summit check passed ({sc.global_exceed} of {r} surrogates as extreme as the map)")
+        if ho is not None and ho.exceedances is not None and ho.tests:
+            parts.append(f"held-out test passed ({ho.exceedances} of {ho.realizations} surrogate pairs as extreme as "
+                         f"the unseen halves; it detects a factor {ho.detectable_scatter_ratio:.2g} in σ_μ)")
+        return (" — the surface model is credible: " + "; ".join(parts)) if parts else ""
 
     def _contact_line(self) -> str:
         """Which contact model the studies read, and the spread where the other models were solved."""
