@@ -263,8 +263,8 @@ def _echo_checks(analysis: StatisticalContactAnalysis) -> None:
     typer.echo(
         f"check: summits ({sc.surrogate}) z count {z['summit_count']:+.1f}, β̄ {z['summit_radius_mean_m']:+.1f}, "
         f"σ_S {z['summit_height_std_m']:+.1f}, max |z| of μ(u) {_num(sc.max_abs_mu_z, '.1f')} (limit "
-        f"{sc.limit:.2f}" + (f", {sc.global_exceed} of {analysis.ensemble.contact_area_m2.shape[0]} realisations "
-                             "reach the map's largest |z|" if sc.global_exceed is not None else "")
+        f"{sc.limit:.2f}" + (f"; rank test: {sc.global_exceed} of {analysis.ensemble.contact_area_m2.shape[0]} "
+                             "realisations as extreme as the map" if sc.global_exceed is not None else "")
         + f") → {_summit_verdict(analysis)[0]}", err=True)
     if wc is None:
         typer.echo("check: measured windows not checked (too few summits for 2 x 2 windows)", err=True)

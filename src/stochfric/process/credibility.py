@@ -107,15 +107,15 @@ def assess_credibility(
     if not surrogate_ok:
         out.append(ValidityWarning(
             "surrogate-check-failed",
-            f"{name}: the measured map lies outside its surrogate ensemble (the largest |z| beyond the Monte Carlo "
-            f"rank test's critical value, 5 % family-wise, decided) at {', '.join(surrogate_failures)}: the "
+            f"{name}: the measured map lies outside its surrogate ensemble (Monte Carlo rank test, 5 % "
+            f"family-wise, decided; furthest out: {', '.join(surrogate_failures)}): the "
             "surrogates do not resemble this surface; try another "
             "--surrogate (quilt keeps local non-Gaussian structure) or check the preparation",
         ))  # fmt: skip
     if surrogate_ok and surrogate_undecided:
         out.append(ValidityWarning(
             UNDECIDED_SUMMIT_CODE,
-            f"{name}: the summit check's Monte Carlo p-value (the map's largest |z|, at "
+            f"{name}: the summit check's Monte Carlo p-value (the map furthest out at "
             f"{', '.join(surrogate_undecided)}) lies within its binomial error of 5 % with {realizations} "
             "realisations: another seed could decide either way; "
             + (f"about {realizations_to_decide} realisations would decide it (--summit-budget lets the check grow "
