@@ -49,7 +49,8 @@ def run(case: str, seed: int, out: Path) -> str:
     r = int(a.ensemble.contact_area_m2.shape[0])
     codes = ", ".join(sorted(x.code for x in a.credibility.reasons)) or "–"
     summit = f"{sc.global_exceed}/{r}" if sc.global_exceed is not None else "–"
-    held = (f"{ho.verdict}, {ho.exceedances}/{ho.realizations}, detects {ho.detectable_scatter_ratio:.2f}×"
+    held = (f"{ho.verdict}, max |z| {ho.max_abs_z:.2f} / {ho.threshold:.2f} at R = {ho.realizations}, detects "
+            f"{ho.detectable_scatter_ratio:.2f}×"
             if ho is not None else "–")
     return f"| {case} | {seed} | {a.credibility.status} | {codes} | {summit} | {held} | {dt:.0f} |"
 
@@ -60,7 +61,8 @@ def main() -> None:
     ap.add_argument("--seeds", type=int, nargs="+", default=[1, 2, 3, 4, 5, 6])
     ap.add_argument("--out", type=Path, default=None, help="where the .npy scans go (default: a temporary folder)")
     args = ap.parse_args()
-    print("| case | map seed | status | reasons | summit check K/R | held-out (verdict, K/R, power) | s |")
+    print("| case | map seed | status | reasons | summit check K/R | held-out (verdict, max |z| / threshold, power) "
+          "| s |")
     print("|---|---|---|---|---|---|---|")
     with tempfile.TemporaryDirectory() as tmp:
         out = args.out or Path(tmp)

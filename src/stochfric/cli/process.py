@@ -67,8 +67,8 @@ _SURROGATE_HELP = (
 ValidationBudgetOpt = Annotated[
     int | None, typer.Option(
         "--validation-budget", help="Most surrogates per fold of the held-out validation: it starts with "
-        f"min({HOLDOUT_REALIZATIONS}, --realizations) and doubles while the Monte Carlo p-value of its rank test "
-        "is within its binomial error of 5 %; undecided after the budget. Default: 8 × the "
+        f"min({HOLDOUT_REALIZATIONS}, --realizations) and doubles while a statistic lies within 2 Monte Carlo SE "
+        "of the threshold; undecided after the budget. Default: 8 × the "
         f"start, at most {HOLDOUT_MAX_REALIZATIONS}.")
 ]
 SummitBudgetOpt = Annotated[
@@ -274,11 +274,9 @@ def _echo_checks(analysis: StatisticalContactAnalysis) -> None:
                    "held-out test)", err=True)
     ho = analysis.holdout
     if ho is not None:
-        reach = (f", {ho.exceedances} of {ho.realizations} surrogate pairs as extreme"
-                 if ho.exceedances is not None and ho.tests else "")
-        typer.echo(f"check: held out ({ho.method}, {ho.realizations} surrogates per fold) largest |z| "
-                   f"{_num(ho.max_abs_z, '.2f')} (rank tail probability {_num(ho.held_out_rank_p, '.3f')}{reach}; "
-                   f"detects a scatter ratio ≥ {_num(ho.detectable_scatter_ratio, '.2g')}) → {ho.verdict}", err=True)
+        typer.echo(f"check: held out ({ho.method}, {ho.realizations} surrogates per fold) max |z| "
+                   f"{_num(ho.max_abs_z, '.2f')} (threshold {_num(ho.threshold, '.2f')}; detects a scatter ratio ≥ "
+                   f"{_num(ho.detectable_scatter_ratio, '.2g')}) → {ho.verdict}", err=True)
 
 
 @contextlib.contextmanager

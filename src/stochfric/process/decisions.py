@@ -21,7 +21,6 @@ import numpy as np
 import numpy.typing as npt
 from scipy import stats as sps
 
-from stochfric.arrays import FloatArray
 from stochfric.errors import AnalysisError
 
 __all__ = [
@@ -29,11 +28,9 @@ __all__ = [
     "SUMMIT_ALPHA",
     "critical_value",
     "decision_margin",
-    "extreme_rank_exceedances",
     "looks_within",
     "monte_carlo_draws_to_decide",
     "monte_carlo_rank_decision",
-    "rank_tail_probabilities",
 ]
 
 #: The largest probability that a decided verdict is one another seed would reverse (all quantities and
@@ -115,34 +112,3 @@ def critical_value(t_null: npt.ArrayLike, alpha: float) -> float:
     t = np.sort(np.asarray(t_null, dtype=np.float64))[::-1]
     k = math.floor(alpha * (t.size + 1) + 1e-9) - 1
     return float(t[max(k, 0)]) if t.size else math.inf
-
-
-def rank_tail_probabilities(values: FloatArray) -> FloatArray:
-    """Per column of ``values`` (rows: the data then the draws), each row's two-sided rank tail probability
-    min(1, 2 min(#(v ≤ x), #(v ≥ x))/n) over the n finite values of the column; 1 where the row lacks one."""
-    v = np.asarray(values, dtype=np.float64)
-    out = np.ones_like(v)
-    for j in range(v.shape[1]):
-        ok = np.isfinite(v[:, j])
-        col = np.sort(v[ok, j])
-        n = col.size
-        if n == 0:
-            continue
-        lo = np.searchsorted(col, v[ok, j], side="right")
-        hi = n - np.searchsorted(col, v[ok, j], side="left")
-        out[ok, j] = np.minimum(1.0, 2.0 * np.minimum(lo, hi) / n)
-    return out
-
-
-def extreme_rank_exceedances(values: FloatArray) -> tuple[int, FloatArray]:
-    """The global extreme-rank-length test (Myllymäki et al. 2017, J. R. Stat. Soc. B 79: 381): row 0 is the
-    data, rows 1 … R the draws.  Each row's rank tail probabilities (:func:`rank_tail_probabilities`) sorted
-    ascending; a draw is at least as extreme as the data when its sorted vector is lexicographically ≤ the
-    data's.  Returns K, the draws at least as extreme, and the data's sorted vector.  Exchangeable rows make
-    (1 + K)/(R + 1) an exact p-value; no scale is estimated, so the statistic does not move with a heavy tail."""
-    p = np.sort(rank_tail_probabilities(values), axis=1)
-    diff = p[1:] - p[0]
-    differs = diff != 0.0
-    first = np.argmax(differs, axis=1)
-    at_least = ~differs.any(axis=1) | (diff[np.arange(diff.shape[0]), first] < 0.0)
-    return int(np.sum(at_least)), p[0]

@@ -15,28 +15,21 @@ check), the summit count, the mean summit radius β̄ and the summit-height sd �
 statistics of the J windows of a map: their **mean** and their **standard deviation**.
 
 **The test.**  The model predicts the distribution of each statistic: its value on each of the R surrogates.
-For every test (a statistic of one quantity in one fold) each map's *rank tail probability* among the held-out
-value and the R surrogates, min(1, 2 min(#≤, #≥)/(R + 1)); each map's probabilities sorted ascending; a
-surrogate pair (surrogate k of fold 1 with surrogate k of fold 2) is at least as extreme as the held-out half
-when its sorted vector is lexicographically ≤ the held-out one — the global *extreme rank length* test
-(Myllymäki, Mrkvička, Grabarnik, Seijo & Hahn 2017, J. R. Stat. Soc. B 79: 381–404).  Under "the model
-describes the held-out half" the R + 1 maps are exchangeable, so the model fails when (1 + K)/(R + 1) ≤ α
-(K the pairs at least as extreme): an exact family-wise false-alarm rate α = :data:`HOLDOUT_ALPHA` for any R,
-whatever the correlation between the tests or the shape of their distributions, and no scale is estimated.
-It replaced (2026-11-28) |z| against the normal Bonferroni threshold Φ⁻¹(1 − α/(2m)), whose z is Student-t
-with R − 1 degrees of freedom when the sd comes from R = 24 surrogates (about 3.3 times the nominal tail per
-test at m = 60); a rank test of the largest |z| tried on the way moved with the seed, because the scale of a
-heavy-tailed statistic (the sd of μ over 4 windows) estimated from 24–96 surrogates did (al3d-1: the held-out
-pairs reached by 0 of 96 surrogate pairs for one seed, 6 of 24 for another; by ranks 25 of 192 and 9 of 24).
-Each test still reports z = (held-out − median)/(1.4826 MAD) over the held-out value and the surrogates, for
-reading.
+z = (held-out − mean)/(sd √(1 + 1/R)), the prediction of one new value from R draws, so z is Student-t with R − 1
+degrees of freedom for Gaussian statistics; all tests of both folds form one family, threshold
+c = t_{R−1}⁻¹(1 − α/(2m)) (Bonferroni, family-wise α = :data:`HOLDOUT_ALPHA`; :func:`student_threshold`).  Until
+2026-11-28 c was the normal quantile Φ⁻¹(1 − α/(2m)) = 3.34 for m = 60, whose tail is 3.4 times too thin for
+R = 24 (about 17 % family-wise instead of 5 %); the exact model of a Gaussian map was then refused or left
+undecided.  Two Monte Carlo rank tests were tried the same day (the largest |z|, and the global extreme rank
+length of Myllymäki et al. 2017): both exact under exchangeability, but the held-out half's own statistic moves
+with the draws (the scale of a heavy-tailed statistic; the coarse ranks of 24 draws), and the decision rule,
+which bounds the binomial error of K only, let one seed call opd-1's quilt model credible and another not
+credible (docs/statistical_contact.md §0a).  The z rule carries the Monte Carlo error of z itself.
 
-**A verdict that does not move with the seed.**  K is binomial about R p; the verdict is decided only when the
-one-sided Clopper–Pearson bound of p at confidence 1 − 0.05/L (L looks within the budget) excludes α
-(:func:`~stochfric.process.decisions.monte_carlo_rank_decision`), and otherwise more surrogates are made (R
-doubled, the first R unchanged: surrogate k of a fold is fixed by the seed, the fold and k) until it is decided
-or :data:`HOLDOUT_MAX_REALIZATIONS` are spent; then it is ``undecided`` and says how many it needs.  A decided
-failure with K = 0 needs about 80 surrogates per fold.
+**A verdict that does not move with the seed.**  z carries a Monte Carlo error SE_z ≈ √(1/R + z²/(2(R − 1))).
+``credible`` needs every |z| + 2 SE_z < c, ``not credible`` some |z| − 2 SE_z > c; otherwise R doubles (the first
+R unchanged: surrogate k of a fold is fixed by the seed, the fold and k, and of pooled scan i by child i of that)
+until it is decided or :data:`HOLDOUT_MAX_REALIZATIONS` are spent; then it is ``undecided``.
 
 **The model's predictive distribution.**  The surrogates that stand for the model are drawn by
 :meth:`~stochfric.surface.surrogates.SurrogateMethod.predictive_heights`: a prediction of an *independent*
@@ -76,14 +69,6 @@ from stochfric.contact.asperity import bowden_tabor_mu
 from stochfric.contact.materials import Material
 from stochfric.errors import AnalysisError
 from stochfric.io_utils import json_ready
-from stochfric.process.checks import robust_center_scale
-from stochfric.process.decisions import (
-    extreme_rank_exceedances,
-    looks_within,
-    monte_carlo_draws_to_decide,
-    monte_carlo_rank_decision,
-    rank_tail_probabilities,
-)
 from stochfric.process.ensemble import SurrogateOptions, summit_statistics, tile_contact, tile_grid
 from stochfric.random import SeedLike, child_seed, spawn_seed_sequences
 from stochfric.surface.io import Surface
@@ -97,11 +82,10 @@ __all__ = [
     "HeldOutTest",
     "HoldoutValidation",
     "MeasuredWindows",
-    "extreme_rank_exceedances",
     "holdout_validation",
     "measured_windows",
-    "rank_tail_probabilities",
     "split_halves",
+    "student_threshold",
     "window_summary",
 ]
 
@@ -112,6 +96,9 @@ HOLDOUT_MIN_SUMMITS = 20
 #: Surrogates per fold to start with, and the most the sequential decision may make.
 HOLDOUT_REALIZATIONS = 24
 HOLDOUT_MAX_REALIZATIONS = 192
+#: Monte Carlo standard errors a decision keeps from the threshold: a reversal needs one seed to decide each
+#: way, a 4-SE swing (docs/statistical_contact.md §0a).
+DECISION_MARGIN = 2.0
 #: Most windows per side.
 HOLDOUT_TILES = 4
 #: The scatter ratio of μ the test must detect with 80 % probability to vouch for a model: σ_μ is what the
@@ -155,17 +142,10 @@ class HoldoutValidation:
     detectable_scatter_ratio: float
     detectable_mean_shift_sd: float
     tests: tuple[HeldOutTest, ...] = field(repr=False)
-    #: K of the rank test: surrogate pairs whose largest |z| reaches the held-out one (None: a record from
-    #: before the rank test, decided by |z| against a Bonferroni threshold).
-    exceedances: int | None = None
-    #: The held-out half's smallest rank tail probability over the tests (where it lies furthest out).
-    held_out_rank_p: float | None = None
     rule: str = ("2-fold cross-validation over halves of every scan; per window mu(u), summit count, mean summit "
-                 "radius, summit-height sd; mean and sd over the windows of a map against the surrogates of the "
-                 "other half; global extreme-rank-length Monte Carlo test over all tests of both folds (family-wise "
-                 "alpha, exact for any number of surrogates, no scale estimated); decided only when the "
-                 "Clopper-Pearson bound of its p-value excludes alpha, else more surrogates; threshold: the |z| "
-                 "(Bonferroni) at which the power is stated")
+                 "radius, summit-height sd; mean and sd over the windows of a map against their distribution over "
+                 "the surrogates of the other half; |z| <= Student-t Bonferroni threshold (R - 1 degrees of "
+                 "freedom, family-wise alpha); decided only 2 Monte Carlo SE away from it, else more surrogates")
 
     @property
     def credible(self) -> bool:
@@ -185,8 +165,7 @@ class HoldoutValidation:
         """The JSON form (the tests as a list of dicts)."""
         out = {k: getattr(self, k) for k in (
             "method", "verdict", "reason", "alpha", "threshold", "realizations", "tiles", "held_out_windows",
-            "max_abs_z", "worst", "detectable_scatter_ratio", "detectable_mean_shift_sd", "exceedances",
-            "held_out_rank_p", "rule")}
+            "max_abs_z", "worst", "detectable_scatter_ratio", "detectable_mean_shift_sd", "rule")}
         out["window_size_m"] = list(self.window_size_m)
         out["tests"] = [t.__dict__.copy() for t in self.tests]
         return json_ready(out)
@@ -311,43 +290,36 @@ def _scans_needed(c: float, r: int, rel: float, scans: int) -> int:
     return max(scans + 1, math.ceil(scans * (rel / lo) ** 2)) if lo > 0 else scans + 1
 
 
-def _fold_tests(fold: int, held: FloatArray, model: FloatArray,
-                names: list[str]) -> tuple[list[HeldOutTest], FloatArray]:
+def _fold_tests(fold: int, held: FloatArray, model: FloatArray, names: list[str]) -> list[HeldOutTest]:
     """Tests of one fold: ``held`` (2, Q) statistics of the held-out windows, ``model`` (R, 2, Q) of the
-    surrogates.  Returns the tests and the surrogates' values of every test, (R, tests) (NaN where a surrogate
-    lacks the statistic), for the rank test of :func:`holdout_validation`.
-
-    Each test reports z = (held-out − median)/(1.4826 MAD) over the held-out value and the R surrogates
-    together, for reading (how far out the held-out half lies); the decision is the rank test, which needs no
-    scale (:func:`_rank_test`)."""
-    out, null = [], []
+    surrogates.  z = (held-out − mean)/(sd √(1 + 1/R)) over the R surrogates (the prediction of one new value),
+    with its Monte Carlo error SE_z ≈ √(1/R + z²/(2(R − 1)))."""
+    out = []
     for s, stat in enumerate(("mean", "sd")):
         for q, name in enumerate(names):
-            column = model[:, s, q]
-            values = column[np.isfinite(column)]
+            values = model[:, s, q]
+            values = values[np.isfinite(values)]
             x = float(held[s, q])
             if values.size < 3 or not math.isfinite(x):
                 continue
             m, sd = float(values.mean()), float(values.std(ddof=1))
-            center, scale = robust_center_scale(np.concatenate([[x], values])[:, None])
-            z = (x - float(center[0])) / float(scale[0]) if float(scale[0]) > 0.0 else 0.0
-            se = math.sqrt(1.0 / values.size + z * z / (2.0 * (values.size - 1)))
+            if sd <= 0.0:
+                z = 0.0 if x == m else math.copysign(math.inf, x - m)
+            else:
+                z = (x - m) / (sd * math.sqrt(1.0 + 1.0 / values.size))
+            se = math.sqrt(1.0 / values.size + z * z / (2.0 * (values.size - 1))) if math.isfinite(z) else 0.0
             out.append(HeldOutTest(fold=fold, quantity=name, statistic=stat, held_out=x, model_mean=m, model_sd=sd,
                                    z=float(z), mc_se=float(se)))
-            null.append(column)
-    return out, (np.stack(null, axis=1) if null else np.zeros((model.shape[0], 0)))
+    return out
 
 
-def _rank_test(tests: list[HeldOutTest], null: FloatArray) -> tuple[int, float, int]:
-    """The rank test over every test of both folds (module docstring; surrogate k of fold 1 paired with
-    surrogate k of fold 2): K, the pairs at least as extreme as the held-out half; the held-out half's smallest
-    rank tail probability; and the test at which it is reached (index into ``tests``)."""
-    held = np.array([[t.held_out for t in tests]])
-    values = np.vstack([held, null])
-    exceed, _sorted = extreme_rank_exceedances(values)
-    p_held = rank_tail_probabilities(values)[0]
-    worst = int(np.lexsort((-np.abs([t.z for t in tests]), p_held))[0]) if tests else 0
-    return exceed, float(p_held[worst]) if tests else 1.0, worst
+def student_threshold(alpha: float, tests: int, realizations: int) -> float:
+    """The two-sided Bonferroni threshold of |z| for ``tests`` tests at family-wise ``alpha`` when each z is a
+    prediction from ``realizations`` = R draws: z is Student-t with R − 1 degrees of freedom for Gaussian
+    statistics, so c = t_{R−1}⁻¹(1 − α/(2m)) (3.84 for m = 60 and R = 24; the normal quantile, 3.34, had 3.4
+    times the nominal tail there)."""
+    m, r = max(int(tests), 1), max(int(realizations), 3)
+    return float(sps.t.isf(alpha / (2.0 * m), df=r - 1))
 
 
 def holdout_validation(
@@ -386,9 +358,7 @@ def holdout_validation(
     model: list[list[FloatArray]] = [[], []]
     r = 0
     target = min(int(realizations), int(max_realizations))
-    c_power = rank_p = 1.0
-    exceed, worst_index = 0, 0
-    looks = looks_within(target, int(max_realizations))
+    c = c_power = 0.0
     tests: list[HeldOutTest] = []
     while True:
         for f in range(2):
@@ -407,12 +377,10 @@ def holdout_validation(
                 if progress is not None:
                     progress(len(model[0]) + len(model[1]), 2 * target)
         r = target
-        tests1, null1 = _fold_tests(1, held[0], np.stack(model[0]), names)
-        tests2, null2 = _fold_tests(2, held[1], np.stack(model[1]), names)
-        tests = tests1 + tests2
-        exceed, rank_p, worst_index = _rank_test(tests, np.concatenate([null1, null2], axis=1))
-        decision = monte_carlo_rank_decision(exceed, r, alpha, looks)
-        fail, passed = decision == "fail", decision == "pass"
+        tests = _fold_tests(1, held[0], np.stack(model[0]), names) + _fold_tests(2, held[1], np.stack(model[1]), names)
+        c = student_threshold(alpha, len(tests), r)
+        fail = any(abs(t.z) - DECISION_MARGIN * t.mc_se > c for t in tests)
+        passed = all(abs(t.z) + DECISION_MARGIN * t.mc_se < c for t in tests)
         # the power at the test's critical value for many draws, bounded by Bonferroni over the m tests: the
         # critical value of R draws is itself random (at R = 24 the largest of 24 T), and a power read from it
         # let the same map be "undecided by power" for one seed and not for another (two 512² Gaussian crops:
@@ -422,37 +390,31 @@ def holdout_validation(
         if fail or passed or r >= max_realizations:
             break
         target = min(2 * r, int(max_realizations))
-    worst = tests[worst_index] if tests else None
-    p_value = (1.0 + exceed) / (r + 1.0)
-    where = (f"its most extreme statistic, {worst.statistic} of {worst.quantity} (fold {worst.fold}, z = "
-             f"{worst.z:+.2f}), at rank tail probability {rank_p:.3f}" if worst is not None else "")
+    worst = max(tests, key=lambda t: abs(t.z)) if tests else None
     if fail and worst is not None:
         verdict = "not credible"
-        reason = (f"{exceed} of {r} surrogate pairs are as extreme as the held-out half, {where} (Monte Carlo "
-                  f"p = {p_value:.3f} < {alpha:g}, decided)")
+        reason = (f"held-out {worst.statistic} of {worst.quantity} (fold {worst.fold}) lies at z = {worst.z:+.2f} "
+                  f"± {worst.mc_se:.2f} of the model's distribution, beyond {c:.2f}")
     elif passed and ratio <= REQUIRED_SCATTER_RATIO:
         verdict = "credible"
-        reason = f"{exceed} of {r} surrogate pairs are as extreme as the held-out half (Monte Carlo p = {p_value:.2f})"
+        reason = f"every held-out statistic within {c:.2f} standard deviations of the model's (2 MC SE margin)"
     elif passed:
         verdict = "undecided"
-        reason = (f"no held-out statistic contradicts the model (Monte Carlo p = {p_value:.2f}), but the test "
-                  f"detects only a scatter ratio of μ ≥ {ratio:.2g} (needed: {REQUIRED_SCATTER_RATIO:g}); about "
+        reason = (f"no held-out statistic contradicts the model, but the test detects only a scatter ratio of μ "
+                  f"≥ {ratio:.2g} (needed: {REQUIRED_SCATTER_RATIO:g}); about "
                   f"{_scans_needed(c_power, r, rel, len(scans))} scans of this size would decide it")
     else:
         verdict = "undecided"
-        need = monte_carlo_draws_to_decide(exceed, r, alpha, looks)
-        reason = (f"{exceed} of {r} surrogate pairs are as extreme as the held-out half, {where} (Monte Carlo p = "
-                  f"{p_value:.3f}): within the Monte Carlo error of {alpha:g}; "
-                  + (f"about {need} per fold would decide it (raise --validation-budget)" if need else
-                     "the held-out half sits on the limit: more surrogates would not decide it"))
+        near = [t for t in tests if abs(abs(t.z) - c) <= DECISION_MARGIN * t.mc_se]
+        reason = (f"{len(near)} statistic(s) within 2 Monte Carlo SE of the threshold {c:.2f} after {r} "
+                  f"surrogates per fold; about {4 * r} would decide it (raise --validation-budget)")
         if not ratio <= REQUIRED_SCATTER_RATIO:
             reason += (f"; even then the test detects only a scatter ratio of μ ≥ {ratio:.2g}: about "
                        f"{_scans_needed(c_power, r, rel, len(scans))} scans of this size are needed")
     i0, i1, j0, j1 = tile_grid(halves[0][0].nb_grid_pts, tiles)[0]
     dx, dy = scans[0].grid_spacing_m
     return HoldoutValidation(
-        method=method.name, verdict=verdict, reason=reason, alpha=alpha, threshold=c_power, realizations=r, tiles=tiles,
-        exceedances=exceed, held_out_rank_p=rank_p,
+        method=method.name, verdict=verdict, reason=reason, alpha=alpha, threshold=c, realizations=r, tiles=tiles,
         window_size_m=((i1 - i0) * dx, (j1 - j0) * dy), held_out_windows=tiles * tiles * len(scans),
         max_abs_z=float(max((abs(t.z) for t in tests), default=0.0)),
         worst=f"{worst.statistic} of {worst.quantity}, fold {worst.fold}" if worst else "",
