@@ -47,7 +47,7 @@ def test_two_crops_of_a_gaussian_map_are_credible_under_their_exact_model(tmp_pa
 
 
 def test_one_crop_is_refused_by_nothing_but_its_power(tmp_path: Path) -> None:
-    a = _analyse(_scans(tmp_path, 2, [(0, 0)]))
+    a = _analyse(_scans(tmp_path, 1, [(0, 0)]))
     assert [r.code for r in a.credibility.reasons] == ["holdout-undecided"], a.credibility.reasons
     assert a.holdout is not None and "scans of this size" in a.holdout.reason
     assert a.surrogate_check.decided(int(a.ensemble.contact_area_m2.shape[0]), looks=a.config.summit_looks) == ([], [])
