@@ -40,9 +40,9 @@ narrow for a new sample, and a Gaussian map was refused by its own exact model (
 
 **Power.**  The output states the smallest ratio of held-out to model scatter of μ, and the smallest
 shift of the held-out window mean of μ (in units of the window sd), that the test detects with 80 %
-probability at these numbers of windows and surrogates (median over the approaches), at the Bonferroni bound
-Φ⁻¹(1 − α/(2m)) of the rank test's critical value for many surrogates (the critical value of R surrogates is
-itself random, and a power read from it moved with the seed).
+probability at these numbers of windows and surrogates (median over the approaches), at the threshold the
+test tends to with many surrogates, the normal Bonferroni quantile Φ⁻¹(1 − α/(2m)): a power read from the
+threshold of the surrogates made so far would move with how many the sequential decision happened to need.
 
 **The measured windows** (:func:`measured_windows`): μ(u) over the disjoint windows of the whole prepared
 measurement — numbers that rest on the measurement alone, with their sampling uncertainty: the jackknife
@@ -381,10 +381,7 @@ def holdout_validation(
         c = student_threshold(alpha, len(tests), r)
         fail = any(abs(t.z) - DECISION_MARGIN * t.mc_se > c for t in tests)
         passed = all(abs(t.z) + DECISION_MARGIN * t.mc_se < c for t in tests)
-        # the power at the test's critical value for many draws, bounded by Bonferroni over the m tests: the
-        # critical value of R draws is itself random (at R = 24 the largest of 24 T), and a power read from it
-        # let the same map be "undecided by power" for one seed and not for another (two 512² Gaussian crops:
-        # detects 1.79× and 2.77× with two seed streams)
+        # the power at the threshold for many surrogates (module docstring), not at c of the R made so far
         c_power = float(sps.norm.isf(alpha / (2.0 * max(len(tests), 1))))
         ratio, shift, rel = _power(tests, c_power, r)
         if fail or passed or r >= max_realizations:

@@ -169,7 +169,7 @@ class Assessment:
         return head
 
     def _credible_why(self) -> str:
-        """Why a verdict's surface model was called credible: the two rank tests, in numbers."""
+        """Why a verdict's surface model was called credible: the summit check and the held-out test, in numbers."""
         run = self.analysis
         if self.status != "verdict" or run is None:
             return ""
