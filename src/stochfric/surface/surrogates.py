@@ -158,9 +158,10 @@ class PhaseSurrogate(SurrogateMethod):
 
     def predictive_heights(self, heights: FloatArray, rng: np.random.Generator, *,
                            settings: SurrogateSettings) -> FloatArray:
-        """The random-phase model as a prediction of a new sample: the Gaussian field of the map's
-        smoothed spectrum with random amplitudes (:func:`~stochfric.surface.synthesis.gaussian_field_heights`),
-        not the map's own periodogram with random phases."""
+        """The random-phase model as a prediction of a new sample: a Gaussian field with random amplitudes
+        whose spectrum is the map's tapered periodogram in Welch's normalisation
+        (:func:`~stochfric.surface.synthesis.gaussian_field_heights`), not the map's own amplitudes with
+        random phases."""
         return gaussian_field_heights(heights, rng, amplitude=settings.amplitude)
 
 

@@ -16,7 +16,6 @@ from enum import StrEnum
 
 import numpy as np
 import numpy.typing as npt
-from scipy.ndimage import uniform_filter
 from scipy.signal import windows as sig_windows
 
 from stochfric.arrays import FloatArray
@@ -26,7 +25,6 @@ from stochfric.surface.io import Surface, SurfaceError
 __all__ = [
     "AMPLITUDE_METHODS",
     "DEFAULT_AMPLITUDE",
-    "GAUSSIAN_SMOOTHING",
     "IAAFT_METHOD",
     "PHASE_METHOD",
     "TUKEY_ALPHA",
@@ -45,6 +43,7 @@ __all__ = [
     "random_phase_heights",
     "random_phase_surface",
     "surrogate_surface",
+    "windowed_periodogram",
 ]
 
 
@@ -64,10 +63,6 @@ IAAFT_METHOD = "iaaft"
 DEFAULT_AMPLITUDE = AmplitudeEstimate.TUKEY
 #: Fraction of each axis inside the cosine tapers of the ``"tukey"`` estimate (half at each edge).
 TUKEY_ALPHA = 0.2
-#: Side of the Daniell (box) kernel that smooths the periodogram of :func:`gaussian_field_heights`,
-#: in frequency bins: 3 × 3 averages 9 bins (the estimate's relative sd falls from 1 to 1/3 per bin)
-#: while moving power by at most one bin.
-GAUSSIAN_SMOOTHING = 3
 
 ComplexArray = npt.NDArray[np.complex128]
 
@@ -176,7 +171,6 @@ def random_phase_heights(
 
 def gaussian_field_heights(
     heights: npt.ArrayLike, rng: np.random.Generator | SeedLike = None, *, amplitude: str = DEFAULT_AMPLITUDE,
-    smoothing: int = GAUSSIAN_SMOOTHING,
 ) -> FloatArray:
     """A new sample of the Gaussian random field whose spectrum is estimated from ``heights`` [m].
 
@@ -184,36 +178,50 @@ def gaussian_field_heights(
     |Z| exactly: it is the Gaussian model *conditioned on the map's periodogram*, right for statistics of
     the map itself, but every surrogate then has the map's own realised low-wavenumber power.  An
     independent sample of the same surface (a held-out half, another scan) has its own: its |Z|² scatter
-    about the spectrum as a χ²₂/2 variable per bin.  This generator draws that sample: the periodogram of
-    the estimate ``amplitude`` (:func:`amplitude_spectrum`) is smoothed by a periodic ``smoothing`` ×
-    ``smoothing`` box (Daniell) kernel to Ŝ; Ŝ is re-estimated as another sample would have given it (Ŝ times an
-    exponential variable per bin, smoothed again), and the coefficients are that estimate's square root times
-    W/√(MN), W the DFT of white Gaussian noise (complex Gaussian: Rayleigh amplitudes, uniform phases,
-    Hermitian).  So E|DFT2(h)|² is Ŝ smoothed once more, and the map's variance, summit count and
-    summit-height scatter vary from sample to sample as an independent sample's do
-    (docs/statistical_contact.md §0a).  The mean is the map's mean.
+    about the spectrum S as a χ²₂/2 (exponential) variable per bin.  This generator draws that sample from
+    the plug-in spectrum Ŝ = P, the tapered periodogram of the map (:func:`windowed_periodogram`, Welch's
+    normalisation): coefficients √P · W/√(MN), W the DFT of white Gaussian noise (complex Gaussian: Rayleigh
+    amplitudes, uniform phases, Hermitian), so E|DFT2(h)|² = P.
+
+    Why the periodogram itself, unsmoothed: P = S·E₁ scatters about S as a new sample's does (E₁ exponential),
+    and a draw's power P·E₂ then scatters about a map's expectation with E[P²E₂²] − S² = 3S² against the
+    2S² of (new sample − estimate) = S(E₃ − E₁): on average over maps the draws' spread of a sum over many bins
+    matches the prediction error, the estimate's own error included.  Measured on exact Gaussian maps (docs
+    §0a, ``benchmarks/holdout_calibration.py``): smoothing P by a 3 × 3 box and re-drawing the estimate
+    (the design until 2026-11-28) biased the summit count of the draws by −5 % at 128-point halves (a box
+    average changes the shape of a steep spectrum) and set the window-mean summit radius 0.6 sd off.
+
+    Why Welch's normalisation (P = |DFT((h − h̄)·w)|² / mean(w²)), not :func:`amplitude_spectrum`'s: that one
+    rescales the tapered spectrum so that its total equals the map's variance.  The taper weights the
+    centre, so that factor depends on where the map's long waves happen to lie and multiplies the *whole*
+    spectrum — its curvature too: the window mean of the summit radius then scattered 1.7–1.9 times wider
+    from map to map than the draws predicted (Hann: 6.4 times).  The mean is the map's mean.
     """
     z = checked_heights(heights)
-    k = int(smoothing)
-    if k < 1 or k % 2 == 0:
-        raise SurfaceError(f"the smoothing kernel must be an odd number of bins >= 1 (centred), got {smoothing!r}")
     gen = as_generator(rng)
-    periodogram = _full_amplitudes(z, amplitude) ** 2
-    periodogram[0, 0] = 0.0  # the mean is not a fluctuation: kept out of the smoothing
-    spectrum = _smoothed(periodogram, k)
-    # the estimate as it might have come out of another sample: the periodogram of a Gaussian field of
-    # that spectrum is the spectrum times |W|²/(MN), an exponential variable per bin (Hermitian)
-    resampled = np.abs(np.fft.fft2(gen.standard_normal(z.shape))) ** 2 / z.size
-    power = _smoothed(spectrum * resampled, k)
+    power = windowed_periodogram(z, amplitude)
     white = np.fft.fft2(gen.standard_normal(z.shape)) / np.sqrt(z.size)
     return np.asarray(np.fft.ifft2(np.sqrt(power) * white).real + float(z.mean()))
 
 
-def _smoothed(power: FloatArray, k: int) -> FloatArray:
-    """``power`` (DC bin 0) averaged over a periodic k × k box of bins, the DC bin set to 0 again."""
-    out = uniform_filter(power, size=k, mode="wrap") if k > 1 else power.copy()
-    out[0, 0] = 0.0
-    return np.asarray(out)
+def windowed_periodogram(heights: npt.ArrayLike, method: str = DEFAULT_AMPLITUDE) -> FloatArray:
+    """The periodogram |DFT2((h − h̄)·w)|² / mean(w²), full M × N, DC bin 0 [m² · MN]: Welch's normalisation of
+    the taper ``w`` of ``method`` (``"tukey"``, ``"hann"``; ``"raw"``: w = 1), unbiased for a stationary field's
+    spectrum away from the lowest bins and free of the map's own weighting by the taper
+    (:func:`gaussian_field_heights`)."""
+    z = checked_heights(heights)
+    if method not in AMPLITUDE_METHODS:
+        raise SurfaceError(f"unknown amplitude estimate {method!r}; use one of {', '.join(AMPLITUDE_METHODS)}")
+    z0 = z - float(z.mean())
+    if method == AmplitudeEstimate.RAW:
+        w = np.ones_like(z0)
+    else:
+        alpha = 1.0 if method == AmplitudeEstimate.HANN else TUKEY_ALPHA
+        wx, wy = (sig_windows.tukey(n, alpha, sym=False) for n in z.shape)
+        w = wx[:, None] * wy[None, :]
+    power = np.abs(np.fft.fft2(z0 * w)) ** 2 / float(np.mean(w**2))
+    power[0, 0] = 0.0
+    return np.asarray(power)
 
 
 def interpolate_amplitudes(amplitude: npt.ArrayLike, factor: int) -> FloatArray:

@@ -134,33 +134,31 @@ def test_similar_surface_methods_and_errors(shipped: np.ndarray) -> None:
         random_phase_heights(np.full((4, 4), np.nan), 1)
 
 
-def test_gaussian_field_draws_new_amplitudes_around_the_smoothed_spectrum() -> None:
+def test_gaussian_field_draws_new_amplitudes_around_the_windowed_periodogram() -> None:
     """gaussian_field_heights: real, the map's mean, reproducible; |DFT|² varies from draw to draw (unlike
-    random phases) and averages to the estimate smoothed twice (once as the estimate, once as the
-    re-estimate another sample would give: two 3 × 3 boxes)."""
-    from scipy.ndimage import uniform_filter
+    random phases) and averages to the tapered periodogram in Welch's normalisation, |DFT((h − h̄)w)|²/mean(w²)
+    (computed here from scipy's Tukey window, not through the package)."""
+    from scipy.signal import windows
 
-    from stochfric.surface.synthesis import _full_amplitudes, gaussian_field_heights
+    from stochfric.surface.synthesis import TUKEY_ALPHA, gaussian_field_heights, windowed_periodogram
 
     z = np.random.default_rng(4).standard_normal((24, 32)).cumsum(axis=0).cumsum(axis=1) + 5.0
     a = gaussian_field_heights(z, 11)
     assert a.shape == z.shape and np.isrealobj(a) and a.mean() == pytest.approx(z.mean(), abs=1e-9)
     np.testing.assert_array_equal(a, gaussian_field_heights(z, 11))
     assert not np.array_equal(np.abs(np.fft.fft2(a)), np.abs(np.fft.fft2(gaussian_field_heights(z, 12))))
-    draws = np.array([np.abs(np.fft.fft2(gaussian_field_heights(z, s) - z.mean())) ** 2 for s in range(1000)])
-    raw = _full_amplitudes(z, "tukey") ** 2
-    raw[0, 0] = 0.0
-    once = uniform_filter(raw, size=3, mode="wrap")
-    once[0, 0] = 0.0
-    expected = uniform_filter(once, size=3, mode="wrap")
+    w = windows.tukey(24, TUKEY_ALPHA, sym=False)[:, None] * windows.tukey(32, TUKEY_ALPHA, sym=False)[None, :]
+    expected = np.abs(np.fft.fft2((z - z.mean()) * w)) ** 2 / np.mean(w**2)
     expected[0, 0] = 0.0
+    np.testing.assert_allclose(windowed_periodogram(z), expected, rtol=1e-12, atol=1e-12 * expected.max())
+    draws = np.array([np.abs(np.fft.fft2(gaussian_field_heights(z, s) - z.mean())) ** 2 for s in range(1000)])
     mean = draws.mean(axis=0)
-    # total power: the mean of 1000 draws; one draw's total has a relative sd of about 0.3 here (a few
-    # low-wavenumber bins dominate), so the SE of the mean is about 1 %
+    # each bin of a draw is the expected power times an exponential variable: over 1000 draws the mean of a
+    # bin is within 3 SE (3/sqrt(1000) ~ 10 %) of it, and the total (a few bins dominate) within 5 %
     assert mean.sum() == pytest.approx(expected.sum(), rel=0.05)
     band = expected > np.quantile(expected, 0.5)
     ratio = mean[band] / expected[band]
-    assert np.median(ratio) == pytest.approx(1.0, abs=0.1)
-    for bad in (0, 2, -1):
-        with pytest.raises(SurfaceError, match="odd number"):
-            gaussian_field_heights(z, 1, smoothing=bad)
+    assert np.median(ratio) == pytest.approx(1.0, abs=0.03)
+    assert np.mean(np.abs(ratio - 1.0) < 0.1) > 0.95
+    with pytest.raises(SurfaceError, match="unknown amplitude"):
+        windowed_periodogram(z, "boxcar")
