@@ -287,13 +287,11 @@ def _power(tests: list[HeldOutTest], c: float, r: int) -> tuple[float, float, fl
 
 
 def _scans_needed(c: float, r: int, rel: float, scans: int) -> int:
-    """Scans of the present size that would let the test detect :data:`REQUIRED_SCATTER_RATIO`: the relative
-    spread of a window sd falls as 1/√(windows), so the scans needed grow with (rel / rel_needed)²."""
-    lo, hi = 1e-4, rel
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if _detectable(c, r, mid)[0] <= REQUIRED_SCATTER_RATIO else (lo, mid)
-    return max(scans + 1, math.ceil(scans * (rel / lo) ** 2)) if lo > 0 else scans + 1
+    """Scans of the present size that would let the test detect :data:`REQUIRED_SCATTER_RATIO`: the spread of
+    the log window sd falls as 1/√(windows), so the scans needed grow with (rel / rel_needed)², rel_needed the
+    spread at which :func:`_detectable` gives the required ratio (its closed form solved for the spread)."""
+    needed = math.log(REQUIRED_SCATTER_RATIO) / ((c + float(sps.norm.ppf(0.8))) * math.sqrt(1.0 + 1.0 / r))
+    return max(scans + 1, math.ceil(scans * (rel / needed) ** 2))
 
 
 def _fold_tests(fold: int, held: FloatArray, model: FloatArray, names: list[str]) -> list[HeldOutTest]:

@@ -112,10 +112,7 @@ def _full_amplitudes(z: FloatArray, method: str) -> FloatArray:
         raise SurfaceError(f"unknown amplitude estimate {method!r}; use one of {', '.join(AMPLITUDE_METHODS)}")
     mean = float(z.mean())
     z0 = z - mean
-    alpha = 1.0 if method == AmplitudeEstimate.HANN else TUKEY_ALPHA  # a Tukey window with alpha = 1 is the Hann window
-    wx = sig_windows.tukey(z.shape[0], alpha, sym=False)
-    wy = sig_windows.tukey(z.shape[1], alpha, sym=False)
-    amp = np.abs(np.fft.fft2(z0 * wx[:, None] * wy[None, :]))
+    amp = np.abs(np.fft.fft2(z0 * _taper(z.shape, method)))
     amp[0, 0] = 0.0
     power = float(np.sum(amp**2))
     target = float(np.sum(z0**2)) * z.size  # Parseval: Σ|X|² = MN Σ z0²
@@ -123,6 +120,13 @@ def _full_amplitudes(z: FloatArray, method: str) -> FloatArray:
         amp *= np.sqrt(target / power)
     amp[0, 0] = abs(mean) * z.size
     return np.asarray(amp)
+
+
+def _taper(shape: tuple[int, ...], method: str) -> FloatArray:
+    """The separable periodic taper of ``method``: Tukey with :data:`TUKEY_ALPHA`, or Hann (Tukey with α = 1)."""
+    alpha = 1.0 if method == AmplitudeEstimate.HANN else TUKEY_ALPHA
+    wx, wy = (sig_windows.tukey(n, alpha, sym=False) for n in shape)
+    return np.asarray(wx[:, None] * wy[None, :])
 
 
 def _half_amplitudes(z: FloatArray, method: str) -> FloatArray:
@@ -213,12 +217,7 @@ def windowed_periodogram(heights: npt.ArrayLike, method: str = DEFAULT_AMPLITUDE
     if method not in AMPLITUDE_METHODS:
         raise SurfaceError(f"unknown amplitude estimate {method!r}; use one of {', '.join(AMPLITUDE_METHODS)}")
     z0 = z - float(z.mean())
-    if method == AmplitudeEstimate.RAW:
-        w = np.ones_like(z0)
-    else:
-        alpha = 1.0 if method == AmplitudeEstimate.HANN else TUKEY_ALPHA
-        wx, wy = (sig_windows.tukey(n, alpha, sym=False) for n in z.shape)
-        w = wx[:, None] * wy[None, :]
+    w = np.ones_like(z0) if method == AmplitudeEstimate.RAW else _taper(z.shape, method)
     power = np.abs(np.fft.fft2(z0 * w)) ** 2 / float(np.mean(w**2))
     power[0, 0] = 0.0
     return np.asarray(power)
