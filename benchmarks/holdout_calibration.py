@@ -8,7 +8,7 @@ Each is validated on its held-out halves (:func:`stochfric.process.holdout.holdo
 Bonferroni threshold c.  A sound test has a rate ≤ α = 5 %; the Clopper–Pearson 95 % interval is printed, with
 the mean and sd of z per statistic (1 and 0 for a calibrated one; a per-statistic excess names the culprit).
 
-    python benchmarks/holdout_calibration.py [--size 256] [--maps 200] [--realizations 24]
+    python benchmarks/holdout_calibration.py [--size 256] [--maps 200] [--realizations 24] [--amplitude hann]
 
 About 1 s per 256² map and 3 s per 512² map on one core.  Not run in CI.
 """
@@ -44,6 +44,8 @@ def main() -> None:
     ap.add_argument("--realizations", type=int, default=24)
     ap.add_argument("--sequential", action="store_true",
                     help="the gate's own procedure: 2-SE margin, R doubling to the default budget; counts verdicts")
+    ap.add_argument("--amplitude", default="tukey", choices=["tukey", "hann"],
+                    help="the taper of the predictive spectrum (the analysis's --amplitude; default tukey)")
     args = ap.parse_args()
     budget = HOLDOUT_MAX_REALIZATIONS if args.sequential else args.realizations
     verdicts: collections.Counter[str] = collections.Counter()
@@ -63,7 +65,8 @@ def main() -> None:
         surface = Surface(heights_m=z, physical_size_m=(n * SPACING_M, n * SPACING_M), source=f"gaussian-{idx}")
         top = np.sort(find_summits(z, (SPACING_M, SPACING_M)).heights_m)[::-1]
         u = top[0] - top[[r for r in (20, 60, 150, 400) if r < top.size // 2]]
-        v = holdout_validation([surface], material, u, SurrogateOptions(method="phase"), seed=idx,
+        options = SurrogateOptions(method="phase", amplitude=args.amplitude)
+        v = holdout_validation([surface], material, u, options, seed=idx,
                                realizations=args.realizations, max_realizations=budget)
         verdicts[v.verdict] += 1
         c = v.threshold
