@@ -28,14 +28,32 @@ from stochfric.surface.surrogates import AUTO_SURROGATE, SURROGATES, surrogate_m
 from stochfric.surface.synthesis import AMPLITUDE_METHODS, DEFAULT_AMPLITUDE, PHASE_METHOD, AmplitudeEstimate
 from stochfric.validation import count
 
-__all__ = ["AUTO_SURROGATE", "HOLDOUT_GROWTH", "SUMMIT_GROWTH", "AnalysisConfig"]  # AUTO_SURROGATE: .surface.surrogates
+__all__ = ["AUTO_SURROGATE", "HOLDOUT_GROWTH", "SUMMIT_GROWTH", "SUMMIT_MAX_GROWTH", "SUMMIT_WORK_POINTS",
+           "AnalysisConfig", "summit_budget"]  # AUTO_SURROGATE: .surface.surrogates
 
-#: The default budgets of the two sequential checks, as multiples of their start (docs/statistical_contact.md §0a,
-#: §0e).  The summit check's rank test starts with the ensemble's R = 100 and may grow to 400 (a failure with no
-#: realisation as extreme is decided from about 80, one with K = 1–2 from about 190).  The held-out test starts with
-#: 24 per fold and may grow to 192 (its Student-t threshold falls from 3.63 at 24 to 3.24 at 192 for 36 tests).
+#: The default budgets of the two sequential checks (docs/statistical_contact.md §0a, §0e).  The held-out test
+#: starts with 24 per fold and may grow to 192 (HOLDOUT_GROWTH; its Student-t threshold falls from 3.63 at 24 to
+#: 3.24 at 192 for 36 tests).  The summit check's rank test starts with the ensemble's R = 100 and doubles while
+#: undecided, by default while the grown ensemble holds at most SUMMIT_WORK_POINTS surface points (a bounded amount
+#: of work whatever the map's size), at least to SUMMIT_GROWTH·R and at most to SUMMIT_MAX_GROWTH·R
+#: (:func:`summit_budget`).  At 32 R = 3200 the binomial bound decides a p-value outside about 5 % ± 0.9 %; at 4 R
+#: = 400, outside 5 % ± 2.3 % — where the shipped map's p-value lies (3–4 %), which left its verdict to the seed.
 SUMMIT_GROWTH = 4
+SUMMIT_MAX_GROWTH = 32
+SUMMIT_WORK_POINTS = 2**30
 HOLDOUT_GROWTH = 8
+
+
+def summit_budget(realizations: int, points: int) -> int:
+    """The summit check's default budget for an ensemble of ``realizations`` surrogates of ``points`` surface points
+    each (all pooled scans together): R·2^j, the largest with R·2^j·points ≤ :data:`SUMMIT_WORK_POINTS`, within
+    [:data:`SUMMIT_GROWTH`·R, :data:`SUMMIT_MAX_GROWTH`·R].  The shipped al3d-1 (59,200 points) gets 32 R, a 512²
+    map 32 R, x3p-2 and mnt-1 16 R, a 1700² map 4 R (docs/statistical_contact.md §0e)."""
+    r, n = int(realizations), max(int(points), 1)
+    budget = SUMMIT_GROWTH * r
+    while 2 * budget <= SUMMIT_MAX_GROWTH * r and 2 * budget * n <= SUMMIT_WORK_POINTS:
+        budget *= 2
+    return budget
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -90,16 +108,15 @@ class AnalysisConfig:
         if self.holdout_max_realizations is None:  # the sequential decision may double them 3 times, up to the cap
             object.__setattr__(self, "holdout_max_realizations",
                                min(HOLDOUT_MAX_REALIZATIONS, HOLDOUT_GROWTH * int(start)))
-        if self.summit_max_realizations is None:  # the summit check may double the ensemble twice to decide
-            object.__setattr__(self, "summit_max_realizations", SUMMIT_GROWTH * int(self.realizations))
         for name in ("realizations", "long_surfaces", "window_shift_points", "pdf_bins", "check_realizations",
                      "window_tiles", "holdout_realizations", "holdout_max_realizations", "summit_max_realizations"):
-            object.__setattr__(self, name, count(name, getattr(self, name), error=AnalysisError))
+            if getattr(self, name) is not None:  # summit_max_realizations None: by the map (with_summit_budget)
+                object.__setattr__(self, name, count(name, getattr(self, name), error=AnalysisError))
         object.__setattr__(self, "length_factor", count("length_factor", self.length_factor, 2, error=AnalysisError))
         if self.holdout_start < 4 or self.holdout_budget < self.holdout_start:
             raise AnalysisError(f"the held-out validation needs 4 <= holdout_realizations <= holdout_max_realizations, "
                                 f"got {self.holdout_realizations} and {self.holdout_max_realizations}")
-        if int(self.summit_max_realizations or 0) < int(self.realizations):
+        if self.summit_max_realizations is not None and int(self.summit_max_realizations) < int(self.realizations):
             raise AnalysisError(f"summit_max_realizations ({self.summit_max_realizations}) must be at least "
                                 f"realizations ({self.realizations}): it is the most the summit check may grow to")
         if self.window_tiles < 2:
@@ -131,8 +148,18 @@ class AnalysisConfig:
     @property
     def summit_looks(self) -> int:
         """The looks the summit check may take: the ensemble doubles from ``realizations`` within
-        ``summit_max_realizations`` (the L of :func:`~stochfric.process.decisions.decision_margin`)."""
-        return looks_within(self.realizations, int(self.summit_max_realizations or self.realizations))
+        ``summit_max_realizations`` (the L of :func:`~stochfric.process.decisions.decision_margin`; before the
+        budget is resolved for a map, the most the default rule allows, which decides no more readily)."""
+        budget = self.summit_max_realizations
+        return looks_within(self.realizations, int(budget) if budget is not None else
+                            SUMMIT_MAX_GROWTH * int(self.realizations))
+
+    def with_summit_budget(self, points: int) -> AnalysisConfig:
+        """This configuration with the summit check's budget resolved for an ensemble of surrogates of ``points``
+        surface points (:func:`summit_budget`); unchanged when the budget was given."""
+        if self.summit_max_realizations is not None:
+            return self
+        return replace(self, summit_max_realizations=summit_budget(self.realizations, points))
 
     @property
     def holdout_budget(self) -> int:

@@ -142,6 +142,8 @@ def analyse(
     scans = [surface] if isinstance(surface, Surface) else list(surface)
     if not scans:
         raise AnalysisError("no surface to analyse")
+    # the summit check's default budget, a bounded amount of work on these scans (recorded in the result's config)
+    cfg = cfg.with_summit_budget(sum(int(np.asarray(s.heights_m).size) for s in scans))
     u = np.asarray(approach_m, dtype=np.float64)
     long_workers = _long_surface_workers(scans[0], cfg, u.size, workers)
     root = as_seed_sequence(cfg.seed)
@@ -210,7 +212,9 @@ def _decided_ensemble(
     failure (:meth:`~stochfric.process.checks.SurrogateCheck.decided`) — and the doubled size stays within
     ``cfg.summit_max_realizations`` (issue 29 item 6: realisations are added until the decision is made or the
     stated budget is spent).  Realisation r depends on the seed and r only, so a grown ensemble starts with
-    the smaller one and the numbers do not depend on how it grew."""
+    the smaller one and the numbers do not depend on how it grew.  A budget not yet resolved is resolved here
+    for these scans (:meth:`~stochfric.process.analysis_config.AnalysisConfig.with_summit_budget`)."""
+    cfg = cfg.with_summit_budget(sum(int(np.asarray(s.heights_m).size) for s in scans))
     r = cfg.realizations
     ens: ContactSamples | None = None
     while True:

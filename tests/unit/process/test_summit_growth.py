@@ -1,7 +1,8 @@
 """The summit check grows its own ensemble (issue 29 item 6): realisations are added (doubled) while its
 Monte Carlo rank test is within its binomial error of the level (records from before the rank test: a quantity
-within the decision margin of the limit), until the check decides or ``summit_max_realizations`` (default 4 R)
-is spent; a grown ensemble equals a fresh one of that size, so the numbers do not depend on how it grew."""
+within the decision margin of the limit), until the check decides or ``summit_max_realizations`` (default: by the
+map's size, 4 R … 32 R) is spent; a grown ensemble equals a fresh one of that size, so the numbers do not depend on
+how it grew."""
 
 from __future__ import annotations
 
@@ -12,7 +13,13 @@ from stochfric.contact.asperity import default_approach_m
 from stochfric.contact.materials import get_material
 from stochfric.errors import AnalysisError
 from stochfric.process import statistics
-from stochfric.process.analysis_config import AnalysisConfig
+from stochfric.process.analysis_config import (
+    SUMMIT_GROWTH,
+    SUMMIT_MAX_GROWTH,
+    SUMMIT_WORK_POINTS,
+    AnalysisConfig,
+    summit_budget,
+)
 from stochfric.process.checks import SurrogateCheck
 from stochfric.process.ensemble import ensemble_contact
 from stochfric.random import as_seed_sequence
@@ -71,8 +78,9 @@ def test_grows_until_decided(coarse: Surface, monkeypatch: pytest.MonkeyPatch) -
 def test_stops_at_the_budget(coarse: Surface, monkeypatch: pytest.MonkeyPatch) -> None:
     n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3, summit_max_realizations=12)
     assert seen == [3, 6, 12] and n == 12
-    n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3)  # default: up to 4 R
-    assert seen == [3, 6, 12] and n == 12
+    n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3)  # default on a small map: 32 R
+    assert coarse.heights_m.size * 96 <= SUMMIT_WORK_POINTS
+    assert seen == [3, 6, 12, 24, 48, 96] and n == 96
     n, seen = _run(coarse, monkeypatch, undecided_below=10**6, realizations=3, summit_max_realizations=3)
     assert seen == [3] and n == 3
 
@@ -80,7 +88,27 @@ def test_stops_at_the_budget(coarse: Surface, monkeypatch: pytest.MonkeyPatch) -
 def test_budget_below_the_realisations_is_refused() -> None:
     with pytest.raises(AnalysisError, match=r"summit_max_realizations \(5\) must be at least realizations"):
         AnalysisConfig(realizations=10, summit_max_realizations=5)
-    assert AnalysisConfig(realizations=10).summit_max_realizations == 40
+    assert AnalysisConfig(realizations=10).summit_max_realizations is None  # resolved for the map by analyse
+
+
+def test_the_default_budget_is_a_bounded_amount_of_work() -> None:
+    """32 R on small maps, 4 R on a thesis-size one, and in between the largest doubling whose ensemble holds at most
+    SUMMIT_WORK_POINTS points; a budget the user gives is kept."""
+    assert summit_budget(100, 200 * 296) == 3200  # the shipped al3d-1
+    assert summit_budget(100, 512 * 512) == 3200
+    assert summit_budget(100, 960 * 600) == 1600  # 3200 × 576,000 > 2³⁰ ≥ 1600 × 576,000
+    assert summit_budget(100, 1700 * 1700) == 400
+    assert summit_budget(7, 10**12) == 28
+    for r, points in ((100, 59_200), (40, 576_000), (3, 10**7)):
+        b = summit_budget(r, points)
+        assert b % r == 0 and SUMMIT_GROWTH * r <= b <= SUMMIT_MAX_GROWTH * r
+        assert b == SUMMIT_GROWTH * r or b * points <= SUMMIT_WORK_POINTS
+        assert b == SUMMIT_MAX_GROWTH * r or 2 * b * points > SUMMIT_WORK_POINTS
+    cfg = AnalysisConfig(realizations=100)
+    assert cfg.with_summit_budget(59_200).summit_max_realizations == 3200
+    assert cfg.with_summit_budget(59_200).summit_looks == 6
+    assert AnalysisConfig(realizations=100, summit_max_realizations=400).with_summit_budget(59_200) \
+        .summit_max_realizations == 400
 
 
 def test_the_margin_counts_quantities_and_looks() -> None:
