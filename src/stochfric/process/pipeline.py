@@ -160,13 +160,18 @@ def window_shift_points(surface: Surface, window_shift_m: float | None, length_f
 
 def notify_cost(surface: Surface, cfg: AnalysisConfig, notify: Callable[[str], None]) -> None:
     """Say before the work what the surrogates of ``cfg`` will cost on this grid, when their method
-    estimates it (``"auto"`` resolves to methods that do not)."""
+    estimates it (``"auto"`` resolves to methods that do not), and what they cost if the summit check grows the
+    ensemble to its budget (``cfg`` with the budget resolved, :func:`analyse_scans`)."""
     method = SURROGATES.get(cfg.surrogate)
-    maps = cfg.realizations + cfg.long_surfaces * cfg.length_factor
-    seconds = None if method is None else method.cost_seconds(surface.nb_grid_pts, maps)
+    long_maps = cfg.long_surfaces * cfg.length_factor
+    seconds = None if method is None else method.cost_seconds(surface.nb_grid_pts, cfg.realizations + long_maps)
     if method is not None and seconds is not None:
+        budget = int(cfg.summit_max_realizations or cfg.realizations)
+        grown = method.cost_seconds(surface.nb_grid_pts, budget + long_maps) if budget > cfg.realizations else None
         notify(f"{method.cost_reason}: about {seconds:.0f} s for {cfg.realizations} maps and "
-               f"{cfg.long_surfaces} long surfaces of this grid (estimate)")
+               f"{cfg.long_surfaces} long surfaces of this grid (estimate)"
+               + (f"; up to about {grown:.0f} s if the summit check grows the ensemble to its budget of {budget}"
+                  if grown is not None else ""))
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -311,6 +316,7 @@ def analyse_scans(
     u = choose_approach(surfaces, summit_rule=cfg.summit_rule, approach_m=approach_m, rule=approach_rule,
                         max_area_fraction=cfg.max_area_fraction, window_tiles_max=cfg.window_tiles)
     cfg = replace(cfg, window_shift_points=window_shift_points(surfaces[0], window_shift_m, cfg.length_factor))
+    cfg = cfg.with_summit_budget(sum(int(s.heights_m.size) for s in surfaces))  # before the cost is said
     if notify is not None:
         notify_cost(surfaces[0], cfg, notify)
     analysis = analyse(surfaces, mat, u, cfg, name=pooled.name, progress=progress, workers=workers)

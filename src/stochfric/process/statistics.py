@@ -212,9 +212,8 @@ def _decided_ensemble(
     failure (:meth:`~stochfric.process.checks.SurrogateCheck.decided`) — and the doubled size stays within
     ``cfg.summit_max_realizations`` (issue 29 item 6: realisations are added until the decision is made or the
     stated budget is spent).  Realisation r depends on the seed and r only, so a grown ensemble starts with
-    the smaller one and the numbers do not depend on how it grew.  A budget not yet resolved is resolved here
-    for these scans (:meth:`~stochfric.process.analysis_config.AnalysisConfig.with_summit_budget`)."""
-    cfg = cfg.with_summit_budget(sum(int(np.asarray(s.heights_m).size) for s in scans))
+    the smaller one and the numbers do not depend on how it grew.  ``cfg`` carries the budget resolved for these
+    scans (:func:`analyse`, :meth:`~stochfric.process.analysis_config.AnalysisConfig.with_summit_budget`)."""
     r = cfg.realizations
     ens: ContactSamples | None = None
     while True:

@@ -63,7 +63,7 @@ def _run(coarse: Surface, monkeypatch: pytest.MonkeyPatch, undecided_below: int,
 
     monkeypatch.setattr(SurrogateCheck, "decided", decided)
     u = default_approach_m(summits_of(coarse))[:3]
-    config = AnalysisConfig(seed=3, **cfg)
+    config = AnalysisConfig(seed=3, **cfg).with_summit_budget(coarse.heights_m.size)  # as analyse resolves it
     opts = config.surrogate_options
     ens, _ = statistics._decided_ensemble([coarse], MAT, u, config, opts, None, as_seed_sequence(3), None, 1)
     assert set(looks_seen) == {config.summit_looks}
